@@ -1,0 +1,41 @@
+#pragma once
+// Shared pieces of huygens-bench: the section registry, the context a section reports
+// into, and timing helpers. Speed claims are ratios measured in the same run (DESIGN.md 7).
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "huygens/report.hpp"
+
+namespace huygens::bench {
+
+struct Context {
+  /// CI-sized run (the whole --quick run stays under 3 minutes).
+  bool quick = false;
+  /// Thread counts to sweep (1 and the machine's count).
+  std::vector<int> threads;
+  /// Accuracy checks that failed (a --quick run exits non-zero when any did).
+  int failures = 0;
+  /// Prints a titled table and keeps its rows for --csv.
+  void report(const std::string& section, const std::string& title, const Table& table);
+  /// Records an accuracy check; a failure is printed and counted.
+  void expect(bool ok, const std::string& what);
+
+  std::vector<std::pair<std::string, Table>> tables;
+};
+
+using Section = std::function<void(Context&)>;
+
+/// Runs fn `reps` times (after one warm-up) and returns the median wall time in seconds.
+double median_seconds(int reps, const std::function<void()>& fn);
+
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Sections, one per file (bench_<name>.cpp).
+void bench_huygens(Context&);
+
+}  // namespace huygens::bench

@@ -1,0 +1,79 @@
+#pragma once
+// Thin RAII wrapper over FFTW single precision (fftw3f + fftw3f_omp): 64-byte aligned
+// buffers and 2D complex-to-complex plans made once (DESIGN.md 3.2). Execution never
+// allocates. FFTW's convention: forward X_k = sum x_n e^{-2 pi i k n / N}, the inverse is
+// unnormalised (the caller folds 1/N^2 into its spectral multiplier).
+#include <complex>
+#include <cstddef>
+#include <span>
+
+namespace huygens {
+
+using cfloat = std::complex<float>;
+
+/// A 64-byte aligned array, value-initialised, movable, not copyable.
+template <class T>
+class AlignedBuffer {
+ public:
+  AlignedBuffer() = default;
+  explicit AlignedBuffer(std::size_t n);
+  ~AlignedBuffer();
+  AlignedBuffer(AlignedBuffer&& o) noexcept : p_(o.p_), n_(o.n_) { o.p_ = nullptr; o.n_ = 0; }
+  AlignedBuffer& operator=(AlignedBuffer&& o) noexcept;
+  AlignedBuffer(const AlignedBuffer&) = delete;
+  AlignedBuffer& operator=(const AlignedBuffer&) = delete;
+
+  T* data() { return p_; }
+  const T* data() const { return p_; }
+  std::size_t size() const { return n_; }
+  T& operator[](std::size_t i) { return p_[i]; }
+  const T& operator[](std::size_t i) const { return p_[i]; }
+  std::span<T> span() { return {p_, n_}; }
+  std::span<const T> span() const { return {p_, n_}; }
+
+ private:
+  T* p_ = nullptr;
+  std::size_t n_ = 0;
+};
+
+/// How much time FFTW may spend choosing an algorithm when a plan is made.
+enum class PlanEffort { estimate, measure, patient };
+
+/// Process-wide FFTW set-up: thread count used by plans made after this call.
+/// Plans made earlier keep their thread count. Returns the count in force.
+int fft_set_threads(int threads);
+/// FFTW's version string (for machine lines in benchmarks).
+const char* fft_version();
+
+/// A 2D complex-to-complex transform of rows x cols, in place on the buffer given at
+/// construction (or out of place from `in` to `out`). Plans are made once here.
+class Fft2D {
+ public:
+  Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort = PlanEffort::measure);
+  ~Fft2D();
+  Fft2D(Fft2D&& o) noexcept : plan_(o.plan_), in_(o.in_), out_(o.out_), rows_(o.rows_), cols_(o.cols_) {
+    o.plan_ = nullptr;
+  }
+  Fft2D(const Fft2D&) = delete;
+  Fft2D& operator=(const Fft2D&) = delete;
+  Fft2D& operator=(Fft2D&&) = delete;
+
+  /// Runs the planned transform on the planned buffers.
+  void execute() const;
+  /// Runs the plan on other buffers of the same size and alignment (fftwf_execute_dft).
+  void execute(cfloat* in, cfloat* out) const;
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+
+  static constexpr int forward = -1;
+  static constexpr int backward = +1;
+
+ private:
+  void* plan_ = nullptr;
+  cfloat* in_ = nullptr;
+  cfloat* out_ = nullptr;
+  int rows_ = 0;
+  int cols_ = 0;
+};
+
+}  // namespace huygens

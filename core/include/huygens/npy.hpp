@@ -1,0 +1,26 @@
+#pragma once
+// NumPy .npy writer (format version 1.0, little-endian float32, C order) and
+// a reader for the same, used by tests. Writes go to FILE.tmp then rename, so a
+// file that exists is always complete.
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace huygens {
+
+/// Writes `data` with the given shape (product of shape == data.size()). Throws on I/O error.
+void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape);
+
+/// A float32 array read back from .npy.
+struct NpyArray {
+  std::vector<std::size_t> shape;
+  std::vector<float> data;
+};
+/// Reads a float32 little-endian C-order .npy. Throws on anything else.
+NpyArray read_npy(const std::string& path);
+
+/// Writes `text` to `path` atomically (temporary file + rename).
+void write_file_atomic(const std::string& path, const std::string& text);
+
+}  // namespace huygens

@@ -1,0 +1,85 @@
+#pragma once
+// Scene files (DESIGN.md section 6): JSON parsed into plain parameter structs. Every
+// error names the JSON path of the offending value ("$.grid.n", "$.initial[2].x_m")
+// and is reported by the programs with exit code 2.
+#include <nlohmann/json_fwd.hpp>
+
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace huygens {
+
+/// A scene error: `path` is the JSON path of the offending value, `what()` the full message.
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(std::string path, const std::string& reason)
+      : std::runtime_error(path + ": " + reason), path_(std::move(path)) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+/// Read access to one JSON object or value with its path, for parsing parameter structs.
+/// Each getter checks type and range and throws SceneError naming the path.
+class JsonIn {
+ public:
+  JsonIn(const nlohmann::json& j, std::string path);
+
+  const std::string& path() const { return path_; }
+  const nlohmann::json& raw() const { return *j_; }
+  bool has(const std::string& key) const;
+  /// True when the key is present and JSON null.
+  bool is_null(const std::string& key) const;
+  std::string child_path(const std::string& key) const { return path_ + "." + key; }
+
+  /// Throws for every key of this object that is not in `allowed` ("unknown key").
+  void allow_only(std::initializer_list<const char*> allowed) const;
+  /// The object under `key` (required).
+  JsonIn object(const std::string& key) const;
+  /// The object under `key`, or nullopt when absent or null.
+  std::optional<JsonIn> optional_object(const std::string& key) const;
+  /// Elements of the array under `key`; empty when absent.
+  std::vector<JsonIn> array(const std::string& key) const;
+
+  /// A required number in [lo, hi].
+  double number(const std::string& key, double lo, double hi) const;
+  /// A number in [lo, hi], or `fallback` when absent.
+  double number(const std::string& key, double fallback, double lo, double hi) const;
+  /// A number in [lo, hi], or nullopt when absent or null.
+  std::optional<double> optional_number(const std::string& key, double lo, double hi) const;
+  /// An integer in [lo, hi], or `fallback` when absent.
+  long long integer(const std::string& key, long long fallback, long long lo, long long hi) const;
+  /// A required integer in [lo, hi].
+  long long integer(const std::string& key, long long lo, long long hi) const;
+  bool boolean(const std::string& key, bool fallback) const;
+  /// A string, one of `allowed` when that is not empty; `fallback` when absent.
+  std::string string(const std::string& key, const std::string& fallback,
+                     std::initializer_list<const char*> allowed = {}) const;
+
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
+  [[noreturn]] void fail_here(const std::string& reason) const;
+
+ private:
+  const nlohmann::json* j_;
+  std::string path_;
+};
+
+/// A loaded scene document: the file it came from and its parsed JSON.
+struct Scene {
+  std::string file;
+  std::string solver;  ///< "huygens", "sph" or "lbm"
+  std::shared_ptr<const nlohmann::json> doc;
+  JsonIn root() const;
+};
+
+/// Reads and parses a scene file; syntax errors name the line and column.
+Scene load_scene(const std::string& file);
+/// Parses scene text (for tests); `name` stands for the file in messages.
+Scene parse_scene_text(const std::string& text, const std::string& name = "<scene>");
+
+}  // namespace huygens

@@ -1,0 +1,75 @@
+#pragma once
+// The interface every solver (Huygens, SPH, LBM) offers to the programs, the runner and
+// the renderer: step, time, output fields, per-stage statistics. Solvers are built from
+// a scene by make_solver(); each solver's factory lives with the solver.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "huygens/scene.hpp"
+#include "huygens/stats.hpp"
+
+namespace huygens {
+
+/// Raised when a stage produced a non-finite value; names the stage and the step.
+class NonFiniteError : public std::runtime_error {
+ public:
+  NonFiniteError(std::string stage, std::int64_t step)
+      : std::runtime_error("non-finite value produced by stage '" + stage + "' at step " + std::to_string(step)),
+        stage_(std::move(stage)), step_(step) {}
+  const std::string& stage() const { return stage_; }
+  std::int64_t step() const { return step_; }
+
+ private:
+  std::string stage_;
+  std::int64_t step_;
+};
+
+/// A named output array for dumps: `name` is the file prefix (eta, h, u, pos), `shape`
+/// its C-order shape, `data` a view valid until the next step.
+struct OutputField {
+  std::string name;
+  std::vector<std::size_t> shape;
+  std::span<const float> data;
+};
+
+/// Options that come from the command line rather than the scene.
+struct RunOptions {
+  /// FFTW planning effort: false = FFTW_ESTIMATE (fast start), true = FFTW_MEASURE.
+  bool measure_plans = true;
+};
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  /// Advances one full step. Throws NonFiniteError naming the stage on a non-finite value.
+  virtual void step() = 0;
+  /// Simulated time (unit: s).
+  virtual double time() const = 0;
+  /// Full steps taken so far.
+  virtual std::int64_t steps() const = 0;
+  /// The fields a dump writes for the current state (may allocate: not called inside a step).
+  virtual std::vector<OutputField> outputs() = 0;
+  /// Grid, spacing, time step and visible region for meta.json.
+  virtual nlohmann::json meta() const = 0;
+  virtual const StageStats& stats() const = 0;
+  /// Heightfield of the visible region (rows = y, cols = x; unit: m) for the renderer.
+  virtual std::span<const float> height() = 0;
+  virtual std::size_t height_rows() const = 0;
+  virtual std::size_t height_cols() const = 0;
+};
+
+/// Builds the solver the scene names. Throws SceneError (JSON path) for a bad scene.
+std::unique_ptr<Solver> make_solver(const Scene& scene, const RunOptions& options = {});
+
+/// Per-solver factories (each defined with its solver).
+std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
+std::unique_ptr<Solver> make_sph_solver(const Scene& scene, const RunOptions& options);
+std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions& options);
+
+}  // namespace huygens

@@ -1,0 +1,8 @@
+#!/usr/bin/env bash
+# Configures and builds Huygens (Release) into ${HUYGENS_BUILD_DIR:-build}.
+# Extra arguments go to CMake's configure step (e.g. -DHUYGENS_SANITIZE=address).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${HUYGENS_BUILD_DIR:-$root/build}
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+cmake --build "$build" -j "$(nproc)"
