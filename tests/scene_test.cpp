@@ -5,9 +5,12 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "huygens/solver.hpp"
+
+#include <sys/wait.h>
 
 using namespace huygens;
 
@@ -63,4 +66,99 @@ TEST(JsonIn, SyntaxErrorNamesLineAndColumn) {
 
 TEST(JsonIn, UnknownSolverIsRefused) {
   EXPECT_EQ(error_path_of(R"({"solver": "navier"})"), "$.solver");
+}
+
+// ---- the "huygens" scene (issue 2, validation item 6): one test per kind of error -------------
+namespace {
+// A valid scene with one field replaced (JSON-merge style) for the error tests.
+std::string huygens_scene(const std::string& grid_json = "", const std::string& extra = "") {
+  const std::string grid = grid_json.empty() ? R"({"n": 64, "length_m": 2.0, "margin": 8})" : grid_json;
+  return R"({"solver": "huygens", "grid": )" + grid + R"(, "time": {"dt": 0.02}, "stokes": false,
+             "initial": [{"type": "gaussian", "x_m": 1.0, "y_m": 1.0, "sigma_m": 0.1, "amplitude_m": 0.01}])" +
+         extra + "}";
+}
+}  // namespace
+
+TEST(HuygensScene, ValidSceneBuildsAndSteps) {
+  auto solver = make_solver(parse_scene_text(huygens_scene({}, R"(, "drops": [{"t": 0.03, "x_m": 0.5, "y_m": 0.5,
+      "radius_m": 0.05, "depth_m": 0.01}], "ships": [], "wind": null, "water": {"depth_m": null})")),
+                            RunOptions{false});
+  for (int i = 0; i < 3; ++i) solver->step();
+  EXPECT_EQ(solver->height_rows(), 48u);
+  EXPECT_EQ(solver->height().size(), 48u * 48u);
+  const auto meta = solver->meta();
+  EXPECT_EQ(meta["solver"], "huygens");
+  EXPECT_EQ(meta["visible"]["rows"][0], 8);
+  EXPECT_EQ(meta["visible"]["rows"][1], 56);
+  const auto& st = solver->stats();
+  EXPECT_EQ(st[st.find("drops")].calls, 1u);
+  EXPECT_EQ(st[st.find("propagate")].calls, 3u);
+}
+
+TEST(HuygensScene, SyntaxError) { EXPECT_EQ(error_path_of("{\"solver\": \"huygens\", \"grid\": {\"n\": 64,, }"), "$"); }
+
+TEST(HuygensScene, UnknownKey) {
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": 8, "size": 3})")), "$.grid.size");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drop": [])")), "$.drop");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t": 1, "x_m": 1, "y_m": 1, "radius_m": 0.1,
+      "depth_m": 0.01, "colour": 3}])")), "$.drops[0].colour");
+}
+
+TEST(HuygensScene, WrongType) {
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": "64", "length_m": 2.0, "margin": 8})")), "$.grid.n");
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": [2.0], "margin": 8})")), "$.grid.length_m");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "water": {"depth_m": "deep"})")), "$.water.depth_m");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": {"t": 1})")), "$.drops");
+}
+
+TEST(HuygensScene, NegativeSize) {
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": -64, "length_m": 2.0, "margin": 8})")), "$.grid.n");
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": -2.0, "margin": 8})")), "$.grid.length_m");
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": -1})")), "$.grid.margin");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t": 1, "x_m": 1, "y_m": 1, "radius_m": -0.1,
+      "depth_m": 0.01}])")), "$.drops[0].radius_m");
+}
+
+TEST(HuygensScene, MarginTooLargeForN) {
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": 32})")), "$.grid.margin");
+}
+
+TEST(HuygensScene, NonPowerOfTwoN) {
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 100, "length_m": 2.0, "margin": 8})")), "$.grid.n");
+}
+
+TEST(HuygensScene, OutOfRangeValues) {
+  const std::string g = R"({"n": 64, "length_m": 2.0, "margin": 8})";
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(, "time": {"dt": 0}})"), "$.time.dt");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(, "time": {"dt": -1}})"), "$.time.dt");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(})"), "$.time");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t": 1, "x_m": 3, "y_m": 1, "radius_m": 0.1,
+      "depth_m": 0.01}])")), "$.drops[0].x_m");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g +
+                          R"(, "time": {"dt": 0.1}, "initial": [{"type": "ring"}]})"),
+            "$.initial[0].type");
+}
+
+TEST(HuygensScene, NotYetSupportedFeaturesAreRefusedAtTheirPath) {
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
+      "time": {"dt": 0.1}, "stokes": true})"), "$.stokes");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 1}])")), "$.ships");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "wind": {"speed_mps": 5})")), "$.wind");
+}
+
+// The real program: a bad scene file gives exit code 2 and the JSON path on stderr.
+TEST(HuygensScene, ProgramExitsTwoAndNamesThePath) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = dir + "/bad_margin.json", out = dir + "/bad_margin.out";
+  {
+    std::ofstream f(scene);
+    f << huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": 40})");
+  }
+  const std::string cmd = std::string(HUYGENS_CLI) + " run " + scene + " --steps 1 > " + out + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  std::ifstream f(out);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("$.grid.margin"), std::string::npos) << text;
 }
