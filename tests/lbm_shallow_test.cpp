@@ -1,0 +1,325 @@
+// D2Q9 shallow-water LBM (paper 002 sec. 2, Zhou 2004): equilibrium against Zhou's form and its
+// moments, refusals before the run, mass, lake at rest (centred vs naive bed term), wave speed,
+// Stoker dam breaks, inflow discharge, determinism across thread counts, failure containment.
+#include "huygens/lbm_shallow.hpp"
+
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "huygens/solver.hpp"
+
+using namespace huygens;
+
+namespace {
+
+constexpr int kEx[9] = {0, 1, 0, -1, 0, 1, -1, -1, 1};
+constexpr int kEy[9] = {0, 0, 1, 0, -1, 1, 1, -1, -1};
+
+// Zhou 2004 eq. 13 with e = 1, written out independently of the solver.
+double zhou(int a, double g, double h, double ux, double uy) {
+  const double usq = ux * ux + uy * uy;
+  if (a == 0) return h - 5 * g * h * h / 6 - 2 * h * usq / 3;
+  const double eu = kEx[a] * ux + kEy[a] * uy;
+  const double axis = g * h * h / 6 + h * eu / 3 + h * eu * eu / 2 - h * usq / 6;
+  return a <= 4 ? axis : axis / 4;
+}
+
+LbmFields uniform(int rows, int cols, double h, double ux = 0, double uy = 0) {
+  LbmFields f;
+  const std::size_t n = static_cast<std::size_t>(rows) * cols;
+  f.depth_m.assign(n, static_cast<float>(h));
+  f.ux_mps.assign(n, static_cast<float>(ux));
+  f.uy_mps.assign(n, static_cast<float>(uy));
+  return f;
+}
+
+double nu_for_tau(double tau, const LbmParams& p) { return (tau - 0.5) * p.cell_m * p.cell_m / (3 * p.dt_s); }
+
+std::string refusal(const LbmParams& p, const LbmFields& f) {
+  try {
+    lbm_check(p, f);
+  } catch (const LbmRefused& e) {
+    return e.parameter() + " | " + e.what();
+  }
+  return "<accepted>";
+}
+
+}  // namespace
+
+TEST(LbmEquilibrium, MatchesZhouAndHasTheShallowWaterMoments) {
+  const double g = 0.13;
+  for (double h : {0.3, 1.0, 2.5})
+    for (double ux : {-0.1, 0.0, 0.07})
+      for (double uy : {-0.05, 0.0, 0.12}) {
+        const auto f = lbm_equilibrium(g, h, ux, uy);
+        double m0 = 0, mx = 0, my = 0, pxx = 0, pxy = 0, pyy = 0;
+        for (int a = 0; a < 9; ++a) {
+          EXPECT_NEAR(f[a], zhou(a, g, h, ux, uy), 1e-14) << a;
+          m0 += f[a];
+          mx += kEx[a] * f[a];
+          my += kEy[a] * f[a];
+          pxx += kEx[a] * kEx[a] * f[a];
+          pxy += kEx[a] * kEy[a] * f[a];
+          pyy += kEy[a] * kEy[a] * f[a];
+        }
+        EXPECT_NEAR(m0, h, 1e-14);
+        EXPECT_NEAR(mx, h * ux, 1e-14);
+        EXPECT_NEAR(my, h * uy, 1e-14);
+        EXPECT_NEAR(pxx, g * h * h / 2 + h * ux * ux, 1e-14);
+        EXPECT_NEAR(pyy, g * h * h / 2 + h * uy * uy, 1e-14);
+        EXPECT_NEAR(pxy, h * ux * uy, 1e-14);
+      }
+}
+
+// With tau = 1 one step leaves every population at the equilibrium of the cell's new moments:
+// the vectorised kernel's equilibrium must be Zhou's.
+TEST(LbmKernel, TauOneRelaxesToZhouEquilibrium) {
+  LbmParams p;
+  p.cols = 37;
+  p.rows = 11;
+  p.cell_m = 0.5;
+  p.dt_s = 0.05;
+  p.viscosity_m2s = nu_for_tau(1.0, p);
+  p.left = p.right = p.bottom = p.top = LbmSide::periodic;
+  LbmFields f = uniform(p.rows, p.cols, 1.0);
+  for (int r = 0; r < p.rows; ++r)
+    for (int c = 0; c < p.cols; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * p.cols + c;
+      f.depth_m[i] = static_cast<float>(1.0 + 0.2 * std::sin(0.3 * c + 0.5 * r));
+      f.ux_mps[i] = static_cast<float>(0.3 * std::cos(0.2 * c));
+      f.uy_mps[i] = static_cast<float>(-0.2 * std::sin(0.4 * r + 0.1 * c));
+    }
+  LbmShallow sim(p, f);
+  sim.step();
+  const double g = sim.lattice().g_lat;
+  double worst = 0;
+  for (int r = 0; r < p.rows; ++r)
+    for (int c = 0; c < p.cols; ++c) {
+      double h = 0, mx = 0, my = 0;
+      for (int a = 0; a < 9; ++a) {
+        const double fa = sim.population(r, c, a);
+        h += fa;
+        mx += kEx[a] * fa;
+        my += kEy[a] * fa;
+      }
+      for (int a = 0; a < 9; ++a)
+        worst = std::max(worst, std::abs(sim.population(r, c, a) - zhou(a, g, h, mx / h, my / h)));
+    }
+  EXPECT_LT(worst, 2e-6);
+  // And the state did move (the test would not notice a kernel that copies).
+  EXPECT_GT(std::abs(sim.depth_at(3, 3) - f.depth_m[3 * p.cols + 3]), 1e-4);
+}
+
+TEST(LbmCheck, RefusesUnstableParametersNamingThemWithAFix) {
+  LbmParams p;
+  p.cols = 32;
+  p.rows = 8;
+  p.cell_m = 0.1;
+  p.dt_s = 0.4 * p.cell_m / std::sqrt(9.81);
+  p.viscosity_m2s = nu_for_tau(0.6, p);
+  EXPECT_EQ(refusal(p, uniform(8, 32, 1.0)), "<accepted>");
+  // tau < 0.55
+  LbmParams q = p;
+  q.viscosity_m2s = nu_for_tau(0.52, p);
+  std::string r = refusal(q, uniform(8, 32, 1.0));
+  EXPECT_EQ(r.substr(0, r.find(" |")), "viscosity_m2s");
+  EXPECT_NE(r.find("0.55"), std::string::npos);
+  EXPECT_NE(r.find("raise viscosity_m2s to >="), std::string::npos);
+  // (|u| + sqrt(g h)) dt/dx >= 0.8, with a suggested dt
+  q = p;
+  q.dt_s = 2.5 * p.dt_s;
+  r = refusal(q, uniform(8, 32, 1.0));
+  EXPECT_EQ(r.substr(0, r.find(" |")), "dt_s");
+  EXPECT_NE(r.find("use dt_s <="), std::string::npos);
+  r = refusal(p, uniform(8, 32, 1.0, 4.0));
+  EXPECT_EQ(r.substr(0, r.find(" |")), "dt_s");
+  // f0 < 0 (g h > 1.2 in lattice units)
+  q = p;
+  q.dt_s = 3.0 * p.dt_s;
+  r = refusal(q, uniform(8, 32, 1.0));
+  EXPECT_NE(r.find("rest population"), std::string::npos);
+  // dry cell
+  LbmFields f = uniform(8, 32, 1.0);
+  f.depth_m[40] = 0.0f;
+  r = refusal(p, f);
+  EXPECT_EQ(r.substr(0, r.find(" |")), "depth_m");
+  EXPECT_NE(r.find("dry"), std::string::npos);
+  // ... unless the dry cell is an obstacle
+  f.solid.assign(f.depth_m.size(), 0);
+  f.solid[40] = 1;
+  EXPECT_EQ(refusal(p, f), "<accepted>");
+  // transcritical flow
+  q = p;
+  q.expected_froude = 1.2;
+  EXPECT_EQ(refusal(q, uniform(8, 32, 1.0)).substr(0, 15), "expected_froude");
+  // periodic sides in pairs
+  q = p;
+  q.left = LbmSide::periodic;
+  EXPECT_EQ(refusal(q, uniform(8, 32, 1.0)).substr(0, 5), "right");
+  EXPECT_THROW(LbmShallow(q, uniform(8, 32, 1.0)), LbmRefused);
+}
+
+TEST(LbmPhysics, MassDriftOver1e5StepsWithWalls) {
+  // 1e5 steps of a closed 8 x 64 box with a bed mound and a released hump.
+  const double drift = lbm_mass_drift(8, 64, 100000);
+  EXPECT_LT(std::abs(drift), 1e-5);
+}
+
+TEST(LbmPhysics, LakeAtRestOverTheGoutalMaurelBump) {
+  const auto w = lbm_lake_at_rest(100000, LbmBedForce::centred);
+  EXPECT_LT(w.max_speed_mps, 1e-4);
+  EXPECT_LT(w.max_surface_error_m, 1e-5);
+  const auto n = lbm_lake_at_rest(20000, LbmBedForce::naive);
+  EXPECT_GT(n.max_speed_mps, 10 * w.max_speed_mps);
+  EXPECT_GT(n.max_surface_error_m, 10 * w.max_surface_error_m);
+}
+
+// Well balanced in 2D too: a mound varying along x and y, an obstacle, no-slip and free-slip
+// walls, and periodic sides, all with a sloping bed under them.
+TEST(LbmPhysics, LakeAtRestIn2DWithObstacleAndEveryWallKind) {
+  for (int variant = 0; variant < 2; ++variant) {
+    LbmParams p;
+    p.cols = 48;
+    p.rows = 40;
+    p.cell_m = 0.1;
+    p.dt_s = 0.4 * p.cell_m / std::sqrt(9.81);
+    p.viscosity_m2s = nu_for_tau(0.7, p);
+    if (variant == 0) {
+      p.left = LbmSide::wall;
+      p.right = LbmSide::slip;
+      p.bottom = LbmSide::slip;
+      p.top = LbmSide::wall;
+    } else {
+      p.left = p.right = LbmSide::periodic;
+      p.bottom = LbmSide::wall;
+      p.top = LbmSide::slip;
+    }
+    LbmFields f = uniform(p.rows, p.cols, 1.0);
+    f.bed_m.assign(f.depth_m.size(), 0.0f);
+    f.solid.assign(f.depth_m.size(), 0);
+    for (int r = 0; r < p.rows; ++r)
+      for (int c = 0; c < p.cols; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r) * p.cols + c;
+        const double x = c - 20.0, y = r - 15.0;
+        const float z = static_cast<float>(0.4 * std::exp(-(x * x + 2 * y * y) / 200.0) + 0.002 * r);
+        f.bed_m[i] = z;
+        f.depth_m[i] = 1.0f - z;
+        if (c >= 30 && c < 34 && r >= 10 && r < 25) f.solid[i] = 1;
+      }
+    LbmShallow sim(p, f);
+    sim.run(5000);
+    double umax = 0, emax = 0;
+    for (int r = 0; r < p.rows; ++r)
+      for (int c = 0; c < p.cols; ++c) {
+        if (sim.solid_at(r, c)) continue;
+        const auto u = sim.velocity_at(r, c);
+        umax = std::max(umax, std::hypot(double(u[0]), double(u[1])));
+        emax = std::max(emax, std::abs(sim.depth_at(r, c) + f.bed_m[r * p.cols + c] - 1.0));
+      }
+    EXPECT_LT(umax, 1e-5) << "variant " << variant;
+    EXPECT_LT(emax, 1e-5) << "variant " << variant;
+  }
+}
+
+TEST(LbmPhysics, LongWaveSpeedIsSqrtGH) { EXPECT_NEAR(lbm_wave_speed_ratio(2000), 1.0, 5e-3); }
+
+TEST(LbmPhysics, StokerDamBreaksConvergeAndTheTranscriticalOneIsRefused) {
+  for (double ratio : {2.0, 5.0}) {
+    const auto r512 = lbm_dam_break_1d(ratio, 512), r1024 = lbm_dam_break_1d(ratio, 1024);
+    ASSERT_TRUE(r1024.stopped.empty() && r1024.refused.empty()) << r1024.stopped << r1024.refused;
+    EXPECT_LT(r1024.l1_relative, 5e-3) << ratio;
+    EXPECT_LT(r1024.l1_relative, 0.75 * r512.l1_relative) << ratio;
+  }
+  const auto r10 = lbm_dam_break_1d(10.0, 256);
+  EXPECT_NE(r10.refused.find("expected_froude"), std::string::npos) << r10.refused;
+}
+
+TEST(LbmBoundaries, InflowDeliversTheGivenDischarge) {
+  LbmParams p;
+  p.cols = 120;
+  p.rows = 6;
+  p.cell_m = 0.01;
+  const double h0 = 0.1, c0 = std::sqrt(9.81 * h0);
+  p.dt_s = 0.4 * p.cell_m / c0;
+  p.viscosity_m2s = nu_for_tau(0.6, p);
+  p.left = LbmSide::inflow;
+  p.right = LbmSide::outflow;
+  p.bottom = p.top = LbmSide::slip;
+  const double u0 = 0.1 * p.cell_m / p.dt_s;
+  p.inflow_discharge_m2s = u0 * h0;
+  p.outflow_depth_m = h0;
+  LbmShallow sim(p, uniform(p.rows, p.cols, h0, 0.5 * u0));  // starts at half the flow
+  sim.run(20000);
+  for (int c : {5, 60, 115}) {
+    double q = 0;
+    for (int r = 0; r < p.rows; ++r) q += sim.depth_at(r, c) * sim.velocity_at(r, c)[0];
+    q /= p.rows;
+    EXPECT_NEAR(q, p.inflow_discharge_m2s, 0.01 * p.inflow_discharge_m2s)
+        << "column " << c << " depth " << sim.depth_at(0, c);
+  }
+}
+
+TEST(LbmKernel, SameResultWithOneAndTwoThreads) {
+  auto run = [](int threads) {
+    omp_set_num_threads(threads);
+    LbmParams p;
+    p.cols = 160;
+    p.rows = 128;  // above the size at which the pass goes parallel
+    p.cell_m = 1.0;
+    p.dt_s = 0.4 / std::sqrt(9.81);
+    p.viscosity_m2s = nu_for_tau(0.6, p);
+    LbmFields f = uniform(p.rows, p.cols, 1.0);
+    f.bed_m.assign(f.depth_m.size(), 0.0f);
+    for (int r = 0; r < p.rows; ++r)
+      for (int c = 0; c < p.cols; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r) * p.cols + c;
+        f.bed_m[i] = static_cast<float>(0.2 * std::exp(-((c - 50.0) * (c - 50.0) + (r - 60.0) * (r - 60.0)) / 300.0));
+        f.depth_m[i] =
+            static_cast<float>(1.0 + 0.1 * std::exp(-((c - 100.0) * (c - 100.0) + (r - 40.0) * (r - 40.0)) / 100.0)) -
+            f.bed_m[i];
+      }
+    LbmShallow sim(p, f);
+    sim.run(300);
+    std::vector<float> h(f.depth_m.size());
+    sim.depth(h);
+    std::uint64_t hash = 1469598103934665603ull;
+    for (float x : h) {
+      std::uint32_t b;
+      std::memcpy(&b, &x, 4);
+      hash = (hash ^ b) * 1099511628211ull;
+    }
+    return hash;
+  };
+  const int saved = omp_get_max_threads();
+  const auto h1 = run(1), h2 = run(2);
+  omp_set_num_threads(saved);
+  EXPECT_EQ(h1, h2);
+}
+
+TEST(LbmFailure, RunawayIsStoppedNeverSilent) {
+  LbmParams p;
+  p.cols = 64;
+  p.rows = 4;
+  p.cell_m = 1.0;
+  p.dt_s = 0.4 / std::sqrt(9.81);
+  p.viscosity_m2s = nu_for_tau(0.6, p);
+  p.left = p.right = p.bottom = p.top = LbmSide::periodic;
+  p.accel_mps2 = {400.0, 0.0};  // a force the check does not bound: the flow runs away
+  LbmShallow sim(p, uniform(p.rows, p.cols, 1.0));
+  bool stopped = false;
+  try {
+    sim.run(100000);
+  } catch (const NonFiniteError& e) {
+    stopped = true;
+    EXPECT_EQ(e.stage(), "stream_collide");
+  } catch (const LbmDryError&) {
+    stopped = true;
+  }
+  EXPECT_TRUE(stopped);
+  EXPECT_LT(sim.steps(), 100000);
+}
