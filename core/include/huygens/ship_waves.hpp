@@ -1,0 +1,166 @@
+#pragma once
+// Ship waves of paper 004, eq. 2 (DESIGN.md 3.3): the waves a hull generates while it
+// moves along a straight line at velocity v during [t, t + dt], observed at t + dt,
+//   dZ^(k) = C(k) [ Phi1^(k) E^_t(k) + Phi2^(k) E^_{t+dt}(k) ],
+//   Phi1^ = e^{-i w} ( -1 + i w (e^{-i a} + i a - 1) / a^2 ),
+//   Phi2^ =            1 + i w (e^{+i a} - i a - 1) / a^2,
+//   a = alpha(k) = (k.v - omega(k)) dt,  w = omega(k) dt,  C(k) = -i omega(k) / k.
+// For a rigidly translating hull (E_{t+dt}(x) = E_t(x - v dt)) the bracket equals
+//   E^_t beta (e^{-i beta} - e^{-i w}) / (beta - w),  beta = k.v dt,
+// which is the exact integral over the step of the source dZ/dt = -i omega Z + C dE/dt:
+// the hull's elevation E enters the wave field through its time derivative only, so a
+// stationary hull makes no waves and one step of dt equals two steps of dt/2.
+//
+// Physical model (our choice, stated in the README): E(x, t) = +draft * p(x - x_ship(t)),
+// p = sqrt(1 - (2 x'/length)^2 - (2 y'/beam)^2) (a half-ellipsoid hull, x' along the
+// heading), blurred by exp(-k^2 blur^2 / 2) in the Fourier domain as the paper does.
+// dE/dt is the volume flux the moving hull displaces (up ahead of the bow, down behind
+// the stern, as Michell's thin-ship sources), entered with the convention's elevation rule
+// Z^ += -i omega/k E^. Its radiated (far-field) waves equal exactly those of a surface
+// pressure patch that holds a static depression of depth `draft` under the hull
+// (p^ = rho omega^2/k E^, i.e. p = rho g draft for long hulls): at the resonant wave
+// vectors k.v = omega(k), which alone make the steady wake, the two forcings coincide.
+//
+// The convolution runs on a P x P patch (P = 2M in the paper) around the ship with its own
+// small FFT; the hull spectrum is analytic (half-ellipsoid: 2 pi a b j1(q)/q), sub-cell
+// positions enter as the phase exp(-i k.delta) and the patch result is added to the big
+// spatial field with periodic wrap at the grid edge (the propagator's FFT is periodic too).
+#include <complex>
+#include <cstdint>
+#include <vector>
+
+#include "huygens/dispersion.hpp"
+#include "huygens/fft.hpp"
+#include "huygens/scene.hpp"
+
+namespace huygens {
+
+/// Shape of one hull.
+struct HullParams {
+  /// Hull length along the heading (unit: m).
+  double length_m = 1.0;
+  /// Hull beam, the width across the heading (unit: m).
+  double beam_m = 0.3;
+  /// Draft: the depth of the hull's deepest point (unit: m).
+  double draft_m = 0.05;
+  /// Standard deviation of the Gaussian blur of the profile (unit: m); negative means beam_m / 4.
+  double blur_m = -1.0;
+
+  /// Blur actually used (unit: m).
+  double blur() const { return blur_m < 0.0 ? 0.25 * beam_m : blur_m; }
+};
+
+/// One point of a timed path.
+struct PathPoint {
+  /// Time at which the hull centre is here (unit: s).
+  double t = 0.0;
+  /// Position along the grid's columns (unit: m).
+  double x_m = 0.0;
+  /// Position along the grid's rows (unit: m).
+  double y_m = 0.0;
+};
+
+/// A piecewise-linear timed path. Before the first point the hull rests at the first
+/// point, after the last point it rests at the last one. The heading is the direction of
+/// the segment containing t (right-continuous); on a segment without motion it keeps the
+/// heading of the last moving segment before it (or the first one after it; else +x).
+class ShipPath {
+ public:
+  ShipPath() = default;
+  /// Throws std::invalid_argument when empty or when times decrease.
+  explicit ShipPath(std::vector<PathPoint> points);
+  /// Appends a point (interactive dragging); throws when t is before the last point's time.
+  void append(const PathPoint& p);
+  const std::vector<PathPoint>& points() const { return pts_; }
+
+  /// Hull centre at time t (unit: m).
+  void position(double t, double& x, double& y) const;
+  /// Velocity of the segment containing t (unit: m/s); zero outside the path.
+  void velocity(double t, double& vx, double& vy) const;
+  /// Mean velocity over [t, t + dt] (unit: m/s): the segment's own velocity when the step
+  /// lies within one segment (bit-identical from step to step), else the chord velocity.
+  void step_velocity(double t, double dt, double& vx, double& vy) const;
+  /// Heading angle from +x towards +y (unit: rad).
+  double heading(double t) const;
+
+ private:
+  int segment(double t) const;  // index i with t in [t_i, t_{i+1}), -1 before, size-1 after
+  std::vector<PathPoint> pts_;
+};
+
+/// One ship: its hull and its path.
+struct Ship {
+  HullParams hull;
+  ShipPath path;
+};
+
+/// Reads the scene's `ships` array (absent: none): length_m, beam_m, draft_m, optional blur_m,
+/// and `path`, an array of {t, x_m, y_m} with non-decreasing t. Errors name the JSON path.
+std::vector<Ship> parse_ships(const JsonIn& root);
+
+/// Phi1^ and Phi2^ of paper 004 eq. 2 for one wave vector, with beta = k.v dt and
+/// w = omega dt (alpha = beta - w); a series in alpha is used for |alpha| < 0.5 so the
+/// kernels stay exact as alpha -> 0.
+void ship_kernels(double beta, double w, std::complex<double>& phi1, std::complex<double>& phi2);
+/// The rigid-translation closed form beta (e^{-i beta} - e^{-i w}) / (beta - w) (its limit
+/// -i w e^{-i w} at beta = w), i.e. Phi1^ + Phi2^ e^{-i beta}.
+std::complex<double> ship_translation_factor(double beta, double w);
+/// Continuous Fourier transform of the blurred hull elevation draft * p(x) centred at the
+/// origin with the given heading (unit: m^3): draft * 2 pi a b j1(q)/q * exp(-k^2 blur^2/2),
+/// q^2 = (a k_along)^2 + (b k_across)^2, a = length/2, b = beam/2.
+double hull_spectrum(const HullParams& hull, double kx, double ky, double heading);
+
+/// The ship-wave stage: preallocated patch, one small plan, per-ship cached kernel spectra.
+class ShipWaves {
+ public:
+  /// n x n grid of side length_m; patch P x P cells (even, <= n). Throws
+  /// std::invalid_argument when a hull (with its blur) does not fit in half the patch.
+  ShipWaves(const Water& water, int n, double length_m, int patch, std::vector<Ship> ships,
+            PlanEffort effort = PlanEffort::measure);
+
+  /// Throws std::invalid_argument (with the reason) when a ship moves more than a quarter of
+  /// the patch in one step of dt, so its waves would wrap around the patch.
+  void check_step(double dt) const;
+
+  /// Adds the waves every ship generates during [t, t + dt], observed at t + dt, into the
+  /// spatial wave field z (n x n, row-major, unit m^2/s). Call after the propagation of z
+  /// to t + dt. One P x P inverse FFT per ship; no allocation.
+  void add(cfloat* z, double t, double dt);
+
+  /// The patch spectrum of ship i for the step [t, t + dt] (P x P, FFTW order, already
+  /// normalised: an unnormalised inverse FFT gives the samples of dZ), and the big-grid
+  /// cell (row0, col0) on which patch sample (0, 0) lands. Used by add() and by tests.
+  void patch_spectrum(int i, double t, double dt, cfloat* out, int& row0, int& col0);
+
+  int n() const { return n_; }
+  int patch() const { return p_; }
+  int ships() const { return static_cast<int>(ships_.size()); }
+  /// The path of ship i (interactive dragging appends points between steps).
+  ShipPath& path(int i) { return ships_[static_cast<std::size_t>(i)].path; }
+  /// How often a kernel spectrum was rebuilt (velocity, heading or dt changed).
+  std::uint64_t kernel_rebuilds() const { return rebuilds_; }
+  /// Bytes of buffers owned by the stage.
+  std::size_t bytes() const;
+
+ private:
+  struct Cache {
+    double vx = 0, vy = 0, h0 = 0, h1 = 0, dt = -1;
+    AlignedBuffer<cfloat> g1, g2;  // C Phi1 E^(h0) / (dx^2 P^2) and C Phi2 E^(h1) / (dx^2 P^2)
+  };
+  void rebuild(const Ship& s, Cache& c, double vx, double vy, double h0, double h1, double dt);
+
+  Water water_;
+  int n_ = 0;
+  int p_ = 0;
+  double dx_ = 0;
+  std::vector<Ship> ships_;
+  std::vector<Cache> cache_;
+  std::vector<double> kx_, omega_;  // patch wavenumbers (per index) and omega per mode
+  AlignedBuffer<cfloat> buf_;
+  AlignedBuffer<cfloat> ph_;  // 4 P phase vectors: e^{-i kx dx0}, e^{-i ky dy0}, and for t + dt
+  std::vector<int> cols_;
+  Fft2D inverse_;
+  std::uint64_t rebuilds_ = 0;
+};
+
+}  // namespace huygens

@@ -1,0 +1,136 @@
+#include "huygens/wind.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace huygens {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDevelopedFetch = 1.7e4;  // g F / U^2 where 22 x^(-1/3) reaches 0.855 (Pierson-Moskowitz)
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// A unit complex Gaussian (E|c|^2 = 1) keyed by (seed, mode indices).
+std::complex<double> mode_gaussian(std::uint64_t seed, int mx, int my) {
+  const std::uint64_t key =
+      (static_cast<std::uint64_t>(static_cast<std::uint32_t>(mx)) << 32) | static_cast<std::uint32_t>(my);
+  const std::uint64_t a = splitmix64(splitmix64(seed) ^ key);
+  const std::uint64_t b = splitmix64(a);
+  const double u1 = (static_cast<double>(a >> 11) + 0.5) * 0x1.0p-53;  // (0, 1)
+  const double u2 = static_cast<double>(b >> 11) * 0x1.0p-53;
+  const double r = std::sqrt(-std::log(u1));  // sqrt(-2 ln u1) / sqrt(2)
+  return {r * std::cos(2.0 * kPi * u2), r * std::sin(2.0 * kPi * u2)};
+}
+
+double fetch_ratio(const WindParams& p, const Water& w) {
+  return std::min(w.gravity * p.fetch_m / (p.speed_mps * p.speed_mps), kDevelopedFetch);
+}
+
+}  // namespace
+
+WindParams parse_wind(const JsonIn& j) {
+  j.allow_only({"speed_mps", "direction_deg", "seed", "fetch_m", "gamma"});
+  WindParams p;
+  p.speed_mps = j.number("speed_mps", 0.0, 60.0);
+  p.direction_deg = j.number("direction_deg", -360.0, 360.0);
+  p.seed = static_cast<std::uint64_t>(j.integer("seed", 0, 9007199254740991LL));
+  p.fetch_m = j.number("fetch_m", p.fetch_m, 1.0, 1e7);
+  p.gamma = j.number("gamma", p.gamma, 1.0, 10.0);
+  return p;
+}
+
+double jonswap_peak(const WindParams& p, const Water& w) {
+  return 22.0 * w.gravity / p.speed_mps * std::pow(fetch_ratio(p, w), -1.0 / 3.0);
+}
+
+double jonswap_alpha(const WindParams& p, const Water& w) { return 0.076 * std::pow(fetch_ratio(p, w), -0.22); }
+
+double jonswap(const WindParams& p, const Water& w, double om) {
+  if (om <= 0.0 || p.speed_mps <= 0.0) return 0.0;
+  const double wp = jonswap_peak(p, w);
+  const double s = om <= wp ? 0.07 : 0.09;
+  const double r = std::exp(-(om - wp) * (om - wp) / (2.0 * s * s * wp * wp));
+  const double q = wp / om;
+  return jonswap_alpha(p, w) * w.gravity * w.gravity * std::pow(om, -5.0) * std::exp(-1.25 * q * q * q * q) *
+         std::pow(p.gamma, r);
+}
+
+double wind_density(const WindParams& p, const Water& w, double kx, double ky) {
+  const double k = std::hypot(kx, ky);
+  if (k <= 0.0) return 0.0;
+  const double th = p.direction_deg * kPi / 180.0;
+  const double c = (kx * std::cos(th) + ky * std::sin(th)) / k;  // cos(theta - theta_w)
+  if (c <= 0.0) return 0.0;
+  const double d = 2.0 / kPi * c * c;
+  return jonswap(p, w, omega(w, k)) * d * group_speed(w, k) / k;
+}
+
+WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, double dt)
+    : n_(n),
+      dt_(dt),
+      omega_(static_cast<std::size_t>(n) * n),
+      w0_(static_cast<std::size_t>(n) * n),
+      cur_(static_cast<std::size_t>(n) * n),
+      step_(static_cast<std::size_t>(n) * n) {
+  const double dk = 2.0 * kPi / length_m;
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const std::size_t m = static_cast<std::size_t>(r) * n + c;
+      const int mx = c < n / 2 ? c : c - n, my = r < n / 2 ? r : r - n;
+      const double kx = dk * mx, ky = dk * my, k = std::hypot(kx, ky);
+      const double om = omega(w, k);
+      omega_[m] = om;
+      step_[m] = cfloat(std::exp(std::complex<double>(0.0, -om * dt)));
+      // k = 0 and the Nyquist row and column (their own mirror) carry no wave
+      if (k == 0.0 || 2 * c == n || 2 * r == n) continue;
+      const double f = wind_density(p, w, kx, ky);
+      if (f <= 0.0) continue;
+      variance_ += f * dk * dk;
+      const double a = std::sqrt(2.0 * f * dk * dk);  // elevation amplitude (unit: m)
+      const std::complex<double> z = std::complex<double>(0.0, -om / k) * a * mode_gaussian(p.seed, mx, my);
+      w0_[m] = cfloat(z);
+    }
+  std::copy(w0_.data(), w0_.data() + w0_.size(), cur_.data());
+}
+
+void WindSea::advance() {
+  ++steps_;
+  if (steps_ % 256 == 0) {
+    spectrum_at(time(), cur_.data());
+    return;
+  }
+  const std::size_t total = cur_.size();
+  // complex multiply written out on interleaved floats so GCC vectorises it
+  float* cur = reinterpret_cast<float*>(cur_.data());
+  const float* st = reinterpret_cast<const float*>(step_.data());
+#pragma omp parallel for simd schedule(static) if (total > 65536)
+  for (std::size_t m = 0; m < total; ++m) {
+    const float a = cur[2 * m], b = cur[2 * m + 1], c = st[2 * m], d = st[2 * m + 1];
+    cur[2 * m] = a * c - b * d;
+    cur[2 * m + 1] = a * d + b * c;
+  }
+}
+
+void WindSea::spectrum_at(double t, cfloat* out) const {
+  const long long total = static_cast<long long>(w0_.size());
+  const cfloat* w0 = w0_.data();
+  const double* om = omega_.data();
+#pragma omp parallel for schedule(static) if (total > 65536)
+  for (long long m = 0; m < total; ++m) {
+    if (w0[m] == cfloat(0.0f, 0.0f)) {
+      out[m] = cfloat(0.0f, 0.0f);
+      continue;
+    }
+    out[m] = cfloat(std::complex<double>(w0[m]) * std::exp(std::complex<double>(0.0, -om[m] * t)));
+  }
+}
+
+}  // namespace huygens

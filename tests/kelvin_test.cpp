@@ -1,0 +1,109 @@
+// The Kelvin-wake measurement (kelvin.hpp) on reference wakes: the steady linear wake of the
+// ShipWaves source computed in the Fourier domain with a small Rayleigh damping. Deep gravity
+// water must give the cusp half-angle arcsin(1/3) and the transverse wavelength 2 pi U^2 / g;
+// finite depth (U = 0.8 sqrt(g h)) must give the wider angle the dispersion relation predicts
+// (so the measurement follows the pattern, not a built-in number). Very near the critical
+// speed (0.9 sqrt(g h), theory 34.6 deg) the method reads 28.8 deg on this grid: the long
+// cusp waves need far larger distances; that regime is not claimed.
+#include "huygens/kelvin.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <vector>
+
+using namespace huygens;
+
+namespace {
+
+WakeMeasurement measure_reference(const Water& w, double froude, WakeGrid& g, WakeTrack& t, double search_deg = 30.0) {
+  HullParams h;  // 1 m x 0.3 m x 0.05 m
+  const double u = froude * std::sqrt(w.gravity * h.length_m);
+  const double lam = 2 * std::numbers::pi * u * u / w.gravity;
+  g.rows = search_deg > 30 ? 1024 : 512;
+  g.cols = 1024;
+  g.dx = std::max(lam, h.length_m) / 16;
+  t.speed_mps = u;
+  t.heading_rad = 0.0;
+  t.x_m = 0.85 * g.cols * g.dx;
+  t.y_m = 0.5 * g.rows * g.dx;
+  std::vector<float> eta(static_cast<std::size_t>(g.rows) * g.cols);
+  steady_wake(w, h, g, t, 0.005 * w.gravity / u, eta.data());
+  WakeOptions o;
+  o.s_max_m = 0.6 * g.cols * g.dx;
+  o.search_angle_deg = search_deg;
+  return measure_kelvin_wake(eta.data(), g, t, o);
+}
+
+}  // namespace
+
+TEST(Kelvin, CuspAngleFromDispersion) {
+  Water w;
+  w.surface_tension = 0;
+  EXPECT_NEAR(kelvin_cusp_angle(w, 1.0), std::asin(1.0 / 3.0) * 180 / std::numbers::pi, 1e-3);
+  EXPECT_NEAR(kelvin_transverse_wavelength(w, 1.3) / (2 * std::numbers::pi * 1.69 / 9.81), 1.0, 1e-9);
+  w.depth_m = 1.0;
+  EXPECT_GT(kelvin_cusp_angle(w, 0.9 * std::sqrt(9.81)), 25.0);
+  Water cap;  // below the minimum phase speed nothing is stationary
+  EXPECT_TRUE(std::isnan(kelvin_transverse_wavelength(cap, 0.2)));
+}
+
+TEST(Kelvin, MeasuresDeepWaterReferenceWakes) {
+  Water w;
+  w.surface_tension = 0;
+  for (double fr : {0.3, 0.4, 0.5}) {
+    WakeGrid g;
+    WakeTrack t;
+    const WakeMeasurement m = measure_reference(w, fr, g, t);
+    const double lam = kelvin_transverse_wavelength(w, t.speed_mps);
+    std::printf(
+        "Fr %.1f: envelope %.3f deg (19.471), max amplitude %.2f deg, transverse %.4f m (%.4f), %d profiles over "
+        "%.1f-%.1f m\n",
+        fr, m.envelope_angle_deg, m.max_amplitude_angle_deg, m.transverse_wavelength_m, lam, m.profiles, m.s_min_m,
+        m.s_max_m);
+    EXPECT_NEAR(m.envelope_angle_deg, 19.4712, 0.5) << "Fr " << fr;
+    EXPECT_NEAR(m.transverse_wavelength_m / lam, 1.0, 0.02) << "Fr " << fr;
+    EXPECT_GT(m.profiles, 100);
+  }
+}
+
+TEST(Kelvin, FollowsTheWiderFiniteDepthWedge) {
+  const double kDepthFroude = 0.8;
+  // depth Froude number U / sqrt(g h) = 0.8: the cusp opens to 24.3 deg
+  Water w;
+  w.surface_tension = 0;
+  w.depth_m = 1.0;
+  const double fr =
+      kDepthFroude * std::sqrt(w.gravity * w.depth_m) / std::sqrt(w.gravity * 1.0);  // hull Froude number of that speed
+  WakeGrid g;
+  WakeTrack t;
+  const WakeMeasurement m = measure_reference(w, fr, g, t, 45.0);
+  const double expect = kelvin_cusp_angle(w, t.speed_mps);
+  std::printf("finite depth, U = 0.8 sqrt(g h): envelope %.3f deg, theory %.3f deg\n", m.envelope_angle_deg, expect);
+  EXPECT_GT(expect, 23.0);
+  EXPECT_NEAR(m.envelope_angle_deg, expect, 0.5);
+}
+
+TEST(Kelvin, PropagatorWakeAtFroude04) {
+  // The full pipeline (HuygensPropagator + ShipWaves, paper cutoff) on a cheap grid: a 1 m hull
+  // at Fr 0.4 started from rest, n = 256 with 8 cells per transverse wavelength, measured over
+  // 3 wavelengths to half the distance travelled. Issue 3 validation 1 at reduced size.
+  KelvinCase c;
+  c.water.surface_tension = 0.0;
+  c.speed_mps = 0.4 * std::sqrt(c.water.gravity * c.hull.length_m);
+  const double lam = kelvin_transverse_wavelength(c.water, c.speed_mps);
+  c.n = 256;
+  c.dx_m = lam / 8;
+  c.margin = 25;
+  c.dt = 0.05;
+  const KelvinRunResult r = run_kelvin_case(c);
+  std::printf(
+      "propagator, Fr 0.4, n 256: envelope %.3f deg, max amplitude %.2f deg, transverse %.4f m (%.4f), "
+      "%d steps, %.1f m travelled, measured %.1f-%.1f m\n",
+      r.wake.envelope_angle_deg, r.wake.max_amplitude_angle_deg, r.wake.transverse_wavelength_m, lam, r.steps,
+      r.travelled_m, r.wake.s_min_m, r.wake.s_max_m);
+  EXPECT_NEAR(r.wake.envelope_angle_deg, 19.4712, 0.5);
+  EXPECT_NEAR(r.wake.transverse_wavelength_m / lam, 1.0, 0.02);
+}

@@ -1,0 +1,163 @@
+// Wind sea: JONSWAP spectrum and its wavenumber-plane Jacobian, determinism by seed,
+// a progressive (downwind only) sea, the realised variance, and drift-free advancing.
+#include "huygens/wind.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <vector>
+
+#include "huygens/scene.hpp"
+
+using namespace huygens;
+using cd = std::complex<double>;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double integrate_omega(const WindParams& p, const Water& w) {
+  // midpoint rule in log(omega) over a range holding all of the spectrum
+  const double lo = std::log(0.05), hi = std::log(400.0);
+  const int m = 200000;
+  double s = 0;
+  for (int i = 0; i < m; ++i) {
+    const double om = std::exp(lo + (hi - lo) * (i + 0.5) / m);
+    s += jonswap(p, w, om) * om;
+  }
+  return s * (hi - lo) / m;
+}
+
+}  // namespace
+
+TEST(Wind, PiersonMoskowitzShapeIntegratesToClosedForm) {
+  // gamma = 1: integral of alpha g^2 omega^-5 exp(-5/4 (omega_p/omega)^4) = alpha g^2 / (5 omega_p^4)
+  Water w;
+  WindParams p;
+  p.gamma = 1.0;
+  const double wp = jonswap_peak(p, w), alpha = jonswap_alpha(p, w);
+  EXPECT_NEAR(integrate_omega(p, w) / (alpha * w.gravity * w.gravity / (5 * std::pow(wp, 4))), 1.0, 1e-6);
+  // the fetch law caps at the developed sea, where omega_p is Pierson-Moskowitz's 0.855 g / U
+  p.fetch_m = 1e7;
+  EXPECT_NEAR(jonswap_peak(p, w) / (0.855 * w.gravity / p.speed_mps), 1.0, 0.01);
+}
+
+TEST(Wind, WavenumberDensityHasTheRightJacobian) {
+  // integral over the k-plane of F(kx, ky) equals integral S(omega) d omega, with capillarity
+  Water w;
+  WindParams p;
+  p.speed_mps = 3.0;
+  p.fetch_m = 2000.0;
+  p.direction_deg = 40.0;
+  const double s_omega = integrate_omega(p, w);
+  // polar quadrature in log k and theta
+  const double lo = std::log(0.01), hi = std::log(5000.0);
+  const int mk = 6000, mt = 720;
+  double s = 0;
+  for (int i = 0; i < mk; ++i) {
+    const double k = std::exp(lo + (hi - lo) * (i + 0.5) / mk);
+    for (int j = 0; j < mt; ++j) {
+      const double th = 2 * kPi * (j + 0.5) / mt;
+      s += wind_density(p, w, k * std::cos(th), k * std::sin(th)) * k * k;
+    }
+  }
+  s *= (hi - lo) / mk * 2 * kPi / mt;
+  EXPECT_NEAR(s / s_omega, 1.0, 1e-3);
+  // nothing travels upwind
+  const double th = 40.0 * kPi / 180.0;
+  EXPECT_EQ(wind_density(p, w, -std::cos(th), -std::sin(th)), 0.0);
+  EXPECT_GT(wind_density(p, w, std::cos(th), std::sin(th)), 0.0);
+}
+
+TEST(Wind, SameSeedSameSea) {
+  Water w;
+  WindParams p;
+  const int n = 64;
+  WindSea a(p, w, n, 20.0, 0.05), b(p, w, n, 20.0, 0.05);
+  EXPECT_EQ(std::memcmp(a.spectrum(), b.spectrum(), sizeof(cfloat) * n * n), 0);
+  p.seed = 2;
+  WindSea c(p, w, n, 20.0, 0.05);
+  EXPECT_NE(std::memcmp(a.spectrum(), c.spectrum(), sizeof(cfloat) * n * n), 0);
+  // the same physical mode gets the same random number on a grid twice as fine
+  p.seed = 1;
+  WindSea d(p, w, 2 * n, 20.0, 0.05);
+  EXPECT_EQ(a.spectrum()[3 * n + 5], d.spectrum()[3 * 2 * n + 5]);
+}
+
+TEST(Wind, ProgressiveSeaWithTheExpectedVariance) {
+  Water w;
+  WindParams p;
+  p.direction_deg = 30.0;
+  const int n = 128;
+  const double L = 40.0, dk = 2 * kPi / L;
+  WindSea sea(p, w, n, L, 0.05);
+  const cfloat* W = sea.spectrum();
+  const double th = 30.0 * kPi / 180.0;
+  // elevation of each mode from its Z^ (a = |i k/omega Z^|), realised variance sum a^2/2,
+  // its expectation sum F dk^2 and the statistical spread sqrt(sum (F dk^2)^2)
+  double realised = 0, sd2 = 0, ex = 0, ey = 0, mx = 0, my = 0, sx2 = 0, sy2 = 0;
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const double kx = dk * (c < n / 2 ? c : c - n), ky = dk * (r < n / 2 ? r : r - n), k = std::hypot(kx, ky);
+      const cd z = W[static_cast<std::size_t>(r) * n + c];
+      if (z == 0.0) continue;
+      EXPECT_GT(kx * std::cos(th) + ky * std::sin(th), 0.0) << "mode travels upwind";
+      const double a = std::abs(z) * k / omega(w, k);
+      realised += a * a / 2;
+      ex += a * a * kx / k;
+      ey += a * a * ky / k;
+      const double v = wind_density(p, w, kx, ky) * dk * dk;
+      sd2 += v * v;
+      // expectation and spread of the direction sums (a^2 = 2 v |c|^2, Var |c|^2 = 1)
+      mx += 2 * v * kx / k;
+      my += 2 * v * ky / k;
+      sx2 += 4 * v * v * kx * kx / (k * k);
+      sy2 += 4 * v * v * ky * ky / (k * k);
+    }
+  EXPECT_GT(sea.grid_variance(), 0.0);
+  EXPECT_NEAR(realised, sea.grid_variance(), 4 * std::sqrt(sd2));
+  // energy-weighted direction: the grid's expected mean direction is the wind's, and the
+  // realised one scatters around it within 4 standard deviations
+  EXPECT_NEAR(std::atan2(my, mx) * 180 / kPi, 30.0, 1.0);
+  EXPECT_NEAR(ex, mx, 4 * std::sqrt(sx2));
+  EXPECT_NEAR(ey, my, 4 * std::sqrt(sy2));
+  std::printf("expected direction %.2f deg, realised %.2f deg; variance %.4g (expected %.4g +- %.2g) m^2\n",
+              std::atan2(my, mx) * 180 / kPi, std::atan2(ey, ex) * 180 / kPi, realised, sea.grid_variance(),
+              std::sqrt(sd2));
+}
+
+TEST(Wind, AdvancingStaysOnTheExactPhase) {
+  Water w;
+  WindParams p;
+  const int n = 32;
+  WindSea sea(p, w, n, 10.0, 0.05);
+  for (int i = 0; i < 300; ++i) sea.advance();  // crosses the exact resync at 256
+  std::vector<cfloat> exact(static_cast<std::size_t>(n) * n);
+  sea.spectrum_at(sea.time(), exact.data());
+  double err = 0, ref = 0;
+  for (std::size_t m = 0; m < exact.size(); ++m) {
+    err += std::norm(cd(sea.spectrum()[m]) - cd(exact[m]));
+    ref += std::norm(cd(exact[m]));
+  }
+  EXPECT_LT(std::sqrt(err / ref), 1e-5);
+}
+
+TEST(Wind, SceneBlockErrorsNameThePath) {
+  const Scene s = parse_scene_text(
+      R"({"solver": "huygens", "wind": {"speed_mps": 5, "direction_deg": 30, "seed": 3, "fetch_m": 500}})");
+  const WindParams p = parse_wind(s.root().object("wind"));
+  EXPECT_EQ(p.seed, 3u);
+  EXPECT_EQ(p.fetch_m, 500.0);
+  const Scene bad =
+      parse_scene_text(R"({"solver": "huygens", "wind": {"speed_mps": -5, "direction_deg": 30, "seed": 3}})");
+  try {
+    parse_wind(bad.root().object("wind"));
+    FAIL() << "negative speed accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "$.wind.speed_mps");
+  }
+}
