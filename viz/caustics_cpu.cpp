@@ -1,0 +1,330 @@
+// CPU side of the caustics (paper 004 section 5) and the photon-histogram reference.
+#include "caustics_cpu.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+
+namespace huygens::viz {
+namespace {
+
+std::array<double, 3> unit_sun(const CausticsParams& p) {
+  const double x = p.sun_dir[0], y = p.sun_dir[1], z = p.sun_dir[2];
+  const double l = std::sqrt(x * x + y * y + z * z);
+  if (!(z < 0.0) || !(l > 0.0)) throw std::invalid_argument("CausticsParams.sun_dir must point downwards (z < 0)");
+  if (!(p.refractive_index >= 1.0f)) throw std::invalid_argument("CausticsParams.refractive_index must be >= 1");
+  return {x / l, y / l, z / l};
+}
+
+// bilinear sample of a row-major grid at fractional index (fx along cols, fy along rows), clamped
+inline float bilinear(const float* g, int rows, int cols, double fx, double fy) {
+  fx = std::clamp(fx, 0.0, double(cols - 1));
+  fy = std::clamp(fy, 0.0, double(rows - 1));
+  const int j = std::min(int(fx), cols - 2), i = std::min(int(fy), rows - 2);
+  const float u = float(fx - j), v = float(fy - i);
+  const float* r0 = g + std::size_t(i) * cols + j;
+  const float* r1 = r0 + cols;
+  return (1 - v) * ((1 - u) * r0[0] + u * r0[1]) + v * ((1 - u) * r1[0] + u * r1[1]);
+}
+
+void check_field(const HeightfieldView& f) {
+  if (f.rows < 2 || f.cols < 2 || f.eta.size() != std::size_t(f.rows) * f.cols || !(f.dx_m > 0) || !(f.depth_m > 0))
+    throw std::invalid_argument("HeightfieldView: need rows, cols >= 2, eta.size() == rows*cols, dx > 0, depth > 0");
+}
+
+}  // namespace
+
+std::array<double, 2> refract_displacement(const CausticsParams& p, double depth_m, double eta, double gx, double gy) {
+  const auto s = unit_sun(p);
+  const double nl = std::sqrt(gx * gx + gy * gy + 1.0);
+  const double nx = -gx / nl, ny = -gy / nl, nz = 1.0 / nl;
+  double cos_i = -(nx * s[0] + ny * s[1] + nz * s[2]);
+  double Nx = nx, Ny = ny, Nz = nz;
+  if (cos_i < 0) {  // sun below the local tangent plane: refract as seen from the other side
+    cos_i = -cos_i;
+    Nx = -nx, Ny = -ny, Nz = -nz;
+  }
+  const double r = 1.0 / p.refractive_index;
+  const double k = 1.0 - r * r * (1.0 - cos_i * cos_i);  // > 0 always when entering the denser medium
+  const double f = r * cos_i - std::sqrt(k);
+  const double tx = r * s[0] + f * Nx, ty = r * s[1] + f * Ny, tz = r * s[2] + f * Nz;
+  const double len = (eta + depth_m) / std::max(-tz, 1e-9);
+  return {tx * len, ty * len};
+}
+
+LinearProjection linear_projection(const CausticsParams& p, double depth_m) {
+  LinearProjection L;
+  const auto d0 = refract_displacement(p, depth_m, 0.0, 0.0, 0.0);
+  L.x0 = d0[0];
+  L.y0 = d0[1];
+  const double h = 1e-4;
+  const auto px = refract_displacement(p, depth_m, 0.0, h, 0.0), mx = refract_displacement(p, depth_m, 0.0, -h, 0.0);
+  const auto py = refract_displacement(p, depth_m, 0.0, 0.0, h), my = refract_displacement(p, depth_m, 0.0, 0.0, -h);
+  L.a = (px[0] - mx[0]) / (2 * h);
+  L.b = (py[0] - my[0]) / (2 * h);
+  L.c = (px[1] - mx[1]) / (2 * h);
+  L.d = (py[1] - my[1]) / (2 * h);
+  return L;
+}
+
+GroundRect ground_rect(const CausticsParams& p, const HeightfieldView& field) {
+  const auto d0 = refract_displacement(p, field.depth_m, 0.0, 0.0, 0.0);
+  return {d0[0], d0[1], double(field.cols - 1) * field.dx_m, double(field.rows - 1) * field.dx_m};
+}
+
+void caustics_mesh_init(const CausticsParams& p, CausticsMesh& m) {
+  if (p.mesh_cols < 2 || p.mesh_rows < 2) throw std::invalid_argument("CausticsParams: mesh needs >= 2x2 vertices");
+  m.cols = p.mesh_cols;
+  m.rows = p.mesh_rows;
+  const std::size_t n = std::size_t(m.cols) * m.rows;
+  m.height.assign(n, 0.0f);
+  m.ground_uv.assign(2 * n, 0.0f);
+  m.surface_uv.resize(2 * n);
+  for (int i = 0; i < m.rows; ++i)
+    for (int j = 0; j < m.cols; ++j) {
+      m.surface_uv[2 * (std::size_t(i) * m.cols + j)] = float(j) / float(m.cols - 1);
+      m.surface_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float(i) / float(m.rows - 1);
+    }
+  m.indices.clear();
+  m.indices.reserve(std::size_t(m.cols - 1) * (m.rows - 1) * 6);
+  for (int i = 0; i + 1 < m.rows; ++i)
+    for (int j = 0; j + 1 < m.cols; ++j) {
+      const std::uint32_t v00 = std::uint32_t(i * m.cols + j), v01 = v00 + 1, v10 = v00 + std::uint32_t(m.cols),
+                          v11 = v10 + 1;
+      m.indices.insert(m.indices.end(), {v00, v01, v11, v00, v11, v10});
+    }
+}
+
+void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, CausticsMesh& m) {
+  check_field(f);
+  if (m.cols != p.mesh_cols || m.rows != p.mesh_rows) caustics_mesh_init(p, m);
+  const GroundRect g = ground_rect(p, f);
+  const double W = g.width, H = g.height;
+  const double hx = W / (m.cols - 1), hy = H / (m.rows - 1);
+  // heights at the mesh vertices, bilinear from the full field
+  const double sx = double(f.cols - 1) / (m.cols - 1), sy = double(f.rows - 1) / (m.rows - 1);
+  for (int i = 0; i < m.rows; ++i)
+    for (int j = 0; j < m.cols; ++j)
+      m.height[std::size_t(i) * m.cols + j] = bilinear(f.eta.data(), f.rows, f.cols, j * sx, i * sy);
+  const LinearProjection L = linear_projection(p, f.depth_m);
+  // ray crossing of z = 0: rest position + eta s_xy / (-s_z)
+  const auto sun = unit_sun(p);
+  const double bx = p.flux_by_beam_area ? sun[0] / -sun[2] : 0.0, by = p.flux_by_beam_area ? sun[1] / -sun[2] : 0.0;
+  const bool exact = p.projection == CausticsProjection::Exact;
+  for (int i = 0; i < m.rows; ++i) {
+    const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, m.rows - 1);
+    for (int j = 0; j < m.cols; ++j) {
+      const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, m.cols - 1);
+      const float* h = m.height.data();
+      // slopes by central differences on the mesh (one-sided at the border)
+      const double gx = (h[std::size_t(i) * m.cols + j1] - h[std::size_t(i) * m.cols + j0]) / ((j1 - j0) * hx);
+      const double gy = (h[std::size_t(i1) * m.cols + j] - h[std::size_t(i0) * m.cols + j]) / ((i1 - i0) * hy);
+      double X = j * hx, Y = i * hy;
+      if (exact) {
+        const auto d = refract_displacement(p, f.depth_m, h[std::size_t(i) * m.cols + j], gx, gy);
+        X += d[0];
+        Y += d[1];
+      } else {
+        X += L.x0 + L.a * gx + L.b * gy;
+        Y += L.y0 + L.c * gx + L.d * gy;
+      }
+      const double e = h[std::size_t(i) * m.cols + j];
+      m.surface_uv[2 * (std::size_t(i) * m.cols + j)] = float((j * hx + e * bx) / W);
+      m.surface_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float((i * hy + e * by) / H);
+      m.ground_uv[2 * (std::size_t(i) * m.cols + j)] = float((X - g.x0) / W);
+      m.ground_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float((Y - g.y0) / H);
+    }
+  }
+}
+
+ShipShadow make_ellipse_hull(float cx, float cy, float heading, float length, float beam, int segments) {
+  ShipShadow s;
+  const float c = std::cos(heading), sn = std::sin(heading);
+  for (int k = 0; k < segments; ++k) {
+    const float t = 2.0f * std::numbers::pi_v<float> * float(k) / float(segments);
+    const float u = 0.5f * length * std::cos(t), v = 0.5f * beam * std::sin(t);
+    s.outline.push_back({cx + c * u - sn * v, cy + sn * u + c * v});
+  }
+  return s;
+}
+
+std::vector<std::array<float, 2>> shadow_on_surface(const CausticsParams& p, const ShipShadow& ship) {
+  const auto s = unit_sun(p);
+  const float ox = float(ship.height_m * s[0] / -s[2]), oy = float(ship.height_m * s[1] / -s[2]);
+  std::vector<std::array<float, 2>> out = ship.outline;
+  for (auto& q : out) q = {q[0] + ox, q[1] + oy};
+  return out;
+}
+
+bool inside_convex(const std::vector<std::array<float, 2>>& poly, float x, float y) {
+  const std::size_t n = poly.size();
+  if (n < 3) return false;
+  int sign = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto& a = poly[k];
+    const auto& b = poly[(k + 1) % n];
+    const float cr = (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
+    const int sg = (cr > 0) - (cr < 0);
+    if (sg == 0) continue;
+    if (sign == 0)
+      sign = sg;
+    else if (sg != sign)
+      return false;
+  }
+  return true;
+}
+
+std::vector<float> photon_caustics(const CausticsParams& p, const HeightfieldView& f, int per_cell, std::uint64_t seed,
+                                   const ShipShadow* ship) {
+  check_field(f);
+  if (per_cell < 1) throw std::invalid_argument("photon_caustics: per_cell >= 1");
+  const auto s = unit_sun(p);
+  const int R = f.rows, C = f.cols;
+  // slopes of the full-resolution surface: central differences, one-sided at the border
+  std::vector<float> gx(std::size_t(R) * C), gy(std::size_t(R) * C);
+  for (int i = 0; i < R; ++i)
+    for (int j = 0; j < C; ++j) {
+      const int j0 = std::max(j - 1, 0), j1 = std::min(j + 1, C - 1);
+      const int i0 = std::max(i - 1, 0), i1 = std::min(i + 1, R - 1);
+      gx[std::size_t(i) * C + j] =
+          (f.eta[std::size_t(i) * C + j1] - f.eta[std::size_t(i) * C + j0]) / ((j1 - j0) * f.dx_m);
+      gy[std::size_t(i) * C + j] =
+          (f.eta[std::size_t(i1) * C + j] - f.eta[std::size_t(i0) * C + j]) / ((i1 - i0) * f.dx_m);
+    }
+  const GroundRect g = ground_rect(p, f);
+  const int TW = p.texture_width, TH = p.texture_height;
+  std::vector<double> acc(std::size_t(TW) * TH, 0.0);
+  // each photon carries (surface area per photon) * (flux factor), in units of texel area
+  const double texel_area = (g.width / TW) * (g.height / TH);
+  const double cell = f.dx_m / per_cell;
+  const double w0 = cell * cell / texel_area;
+  std::vector<std::array<float, 2>> shadow;
+  if (ship) shadow = shadow_on_surface(p, *ship);
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const double inv_dx = 1.0 / f.dx_m;
+  for (int i = 0; i + 1 < R; ++i)
+    for (int j = 0; j + 1 < C; ++j)
+      for (int a = 0; a < per_cell; ++a)
+        for (int b = 0; b < per_cell; ++b) {
+          const double x = (j + (b + U(rng)) / per_cell) * f.dx_m;
+          const double y = (i + (a + U(rng)) / per_cell) * f.dx_m;
+          const double fx = x * inv_dx, fy = y * inv_dx;
+          const double eta = bilinear(f.eta.data(), R, C, fx, fy);
+          // the shadow polygon lies on z = 0: test where the photon's ray crosses it
+          if (!shadow.empty() && inside_convex(shadow, float(x + eta * s[0] / -s[2]), float(y + eta * s[1] / -s[2])))
+            continue;
+          const double sx = bilinear(gx.data(), R, C, fx, fy), sy = bilinear(gy.data(), R, C, fx, fy);
+          // flux through the surface element per horizontal area, relative to still water
+          const double flux = std::abs(s[2] - s[0] * sx - s[1] * sy) / -s[2];
+          const auto d = refract_displacement(p, f.depth_m, eta, sx, sy);
+          const double u = (x + d[0] - g.x0) / g.width * TW, v = (y + d[1] - g.y0) / g.height * TH;
+          if (u < 0 || v < 0 || u >= TW || v >= TH) continue;
+          acc[std::size_t(v) * TW + std::size_t(u)] += w0 * flux;
+        }
+  return std::vector<float>(acc.begin(), acc.end());
+}
+
+std::vector<float> blur121_f32(std::span<const float> img, int w, int h) {
+  std::vector<float> out(std::size_t(w) * h);
+  static constexpr float k[3] = {1.0f, 2.0f, 1.0f};
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double s = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int xx = std::clamp(x + dx, 0, w - 1), yy = std::clamp(y + dy, 0, h - 1);
+          s += k[dx + 1] * k[dy + 1] * img[std::size_t(yy) * w + xx];
+        }
+      out[std::size_t(y) * w + x] = float(s / 16.0);
+    }
+  return out;
+}
+
+CausticsDiff compare_caustics(std::span<const float> a, std::span<const float> b, int w, int h, int border) {
+  if (a.size() != std::size_t(w) * h || b.size() != a.size() || 2 * border >= std::min(w, h))
+    throw std::invalid_argument("compare_caustics: size mismatch or border too wide");
+  CausticsDiff r;
+  double n = 0;
+  for (int y = border; y < h - border; ++y)
+    for (int x = border; x < w - border; ++x) {
+      r.mean_a += a[std::size_t(y) * w + x];
+      r.mean_b += b[std::size_t(y) * w + x];
+      n += 1;
+    }
+  r.mean_a /= n;
+  r.mean_b /= n;
+  double d2 = 0, b2 = 0, c2 = 0;
+  for (int y = border; y < h - border; ++y)
+    for (int x = border; x < w - border; ++x) {
+      const double va = a[std::size_t(y) * w + x] / r.mean_a, vb = b[std::size_t(y) * w + x] / r.mean_b;
+      d2 += (va - vb) * (va - vb);
+      b2 += vb * vb;
+      c2 += (vb - 1) * (vb - 1);
+      r.max_abs = std::max(r.max_abs, std::abs(va - vb));
+    }
+  r.rel_l2 = std::sqrt(d2 / b2);
+  r.rel_l2_contrast = std::sqrt(d2 / std::max(c2, 1e-300));
+  return r;
+}
+
+double focus_factor(double depth_m, double n) { return depth_m * (1.0 - 1.0 / n); }
+
+// 0 on [0, 0.1] and [0.9, 1], 1 on [0.3, 0.7], smoothstep between
+static double edge_window(double t) {
+  const double u = std::clamp((std::min(t, 1 - t) - 0.1) / 0.2, 0.0, 1.0);
+  return u * u * (3 - 2 * u);
+}
+
+// wind-like sea: a sum of sines with wave vectors on the periodic lattice of the domain,
+// amplitudes scaled so that sum (1 - 1/n) D A_k k^2 = strength (the largest possible local
+// compression of the ground map); `window` multiplies by a smooth window that is zero in the
+// outer tenth of the domain, so the border stays still (all projected triangles stay on the ground)
+SyntheticField synthetic_wind_sea(int n, double L, double depth, double strength, bool window) {
+  struct C {
+    int ix, iy;
+    double a, phase;
+  };
+  const C comps[] = {{5, 2, 1.0, 0.3}, {-3, 6, 0.8, 1.1}, {7, -4, 0.5, 2.0}, {2, 9, 0.35, 4.2}, {11, 3, 0.2, 0.7}};
+  double sum = 0;
+  for (const auto& c : comps)
+    sum += c.a * (2 * std::numbers::pi / L) * (2 * std::numbers::pi / L) * (c.ix * c.ix + c.iy * c.iy);
+  const double scale = strength / (focus_factor(depth, 1.333) * sum);
+  SyntheticField f;
+  f.n = n;
+  f.dx = float(L / (n - 1));
+  f.depth = float(depth);
+  f.eta.resize(std::size_t(n) * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = j * L / (n - 1), y = i * L / (n - 1);
+      double e = 0;
+      for (const auto& c : comps)
+        e += scale * c.a * std::sin(2 * std::numbers::pi / L * (c.ix * x + c.iy * y) + c.phase);
+      if (window) e *= edge_window(x / L) * edge_window(y / L);
+      f.eta[std::size_t(i) * n + j] = float(e);
+    }
+  return f;
+}
+
+// ring wave: A J0(k r) exp(-r^2 / (2 s^2)) about the centre; at the centre the Hessian is
+// -A k^2 / 2 I, so `strength` = (1 - 1/n) D A k^2 / 2 is the central compression
+SyntheticField synthetic_ring_wave(int n, double L, double depth, double strength) {
+  const double k = 2 * std::numbers::pi / (0.15 * L), s = 0.2 * L;
+  const double A = strength / (focus_factor(depth, 1.333) * k * k / 2);
+  SyntheticField f;
+  f.n = n;
+  f.dx = float(L / (n - 1));
+  f.depth = float(depth);
+  f.eta.resize(std::size_t(n) * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = j * L / (n - 1) - L / 2, y = i * L / (n - 1) - L / 2, r = std::hypot(x, y);
+      f.eta[std::size_t(i) * n + j] = float(A * std::cyl_bessel_j(0.0, k * r) * std::exp(-r * r / (2 * s * s)));
+    }
+  return f;
+}
+
+}  // namespace huygens::viz

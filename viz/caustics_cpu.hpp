@@ -1,0 +1,175 @@
+// CPU side of the caustics of paper 004 section 5 (no GL here): the heightfield view,
+// the parameters, the per-vertex refraction of sun rays onto the ground (the paper's
+// linear approximation and the exact Snell projection), the ship-shadow outline, and
+// the photon-histogram reference of papers 001/003 used to validate the renderer.
+//
+// Geometry: the water surface at rest is the plane z = 0, the heightfield eta(x, y) is
+// sampled at x = j dx, y = i dx (row i, column j; the surface domain is
+// [0, (cols-1) dx] x [0, (rows-1) dx]), the ground is the plane z = -depth. Sun light
+// travels along the unit vector s (s_z < 0). Refraction (Snell, vector form, relative
+// index r = 1/n): t = r s + (r cos_i - sqrt(1 - r^2 (1 - cos_i^2))) N, cos_i = -N.s,
+// N = (-eta_x, -eta_y, 1)/|.|. A ray entering at (x, y, eta) reaches the ground at
+// (x, y) + (eta + depth) t_xy / (-t_z).
+// The caustics texture covers the ground rectangle onto which the flat surface projects
+// (the surface domain shifted by the flat-water displacement), so a still surface gives
+// uniform light filling the texture exactly.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace huygens::viz {
+
+/// A read-only view of a heightfield (row-major, rows = y, cols = x).
+struct HeightfieldView {
+  std::span<const float> eta;  ///< surface elevation (unit: m), rows*cols values
+  int rows = 0;                ///< samples along y
+  int cols = 0;                ///< samples along x
+  float dx_m = 0.0f;           ///< grid spacing (unit: m)
+  float depth_m = 1.0f;        ///< depth of the ground below the surface at rest (unit: m)
+};
+
+/// How a surface triangle's vertices are projected onto the ground.
+enum class CausticsProjection {
+  Linear,  ///< paper 004 sec. 5: (x, y) = (x0, y0) + [a b; c d] (eta_x, eta_y), coefficients from
+           ///< numerical derivatives of the exact projection at rest (the ray starts at z = 0)
+  Exact,   ///< exact Snell refraction of the ray entering at (x, y, eta) and its intersection with z = -depth
+};
+
+/// How each projected triangle's brightness is made inversely proportional to its area.
+enum class CausticsArea {
+  Mip,       ///< paper 004 sec. 5: trilinear MIP map whose levels are constant, each 4x brighter
+  Explicit,  ///< brightness = (surface triangle area) / (ground triangle area), computed per triangle
+};
+
+struct CausticsParams {
+  /// Caustics mesh vertices along x (the paper's 96).
+  int mesh_cols = 96;
+  /// Caustics mesh vertices along y.
+  int mesh_rows = 96;
+  /// Caustics texture width (unit: texels).
+  int texture_width = 512;
+  /// Caustics texture height (unit: texels).
+  int texture_height = 512;
+  /// Refractive index of water (unit: 1).
+  float refractive_index = 1.333f;
+  /// Direction sun light travels, need not be normalised, z < 0 (unit: 1).
+  std::array<float, 3> sun_dir{0.0f, 0.0f, -1.0f};
+  /// Vertex projection.
+  CausticsProjection projection = CausticsProjection::Linear;
+  /// Brightness model.
+  CausticsArea area = CausticsArea::Mip;
+  /// Float (R32F) caustics target instead of the paper's 8-bit one.
+  bool float_target = false;
+  /// Value of unit irradiance (still water) in the 8-bit target (unit: 8-bit level); float targets store 1.
+  float unit_level_u8 = 32.0f;
+  /// MIP mode: still water selects level 2 + mip_lod_offset (a texture() LOD bias); the constant
+  /// levels are 4^(L-2) / (1 + 3 mip_lod_offset), so still water still reads 1. 0 puts still water
+  /// on a level (the kink of the piecewise-linear interpolation: brightening is overstated 2x);
+  /// 0.5 centres it between two, which halves the MIP mode's error against the photon reference
+  /// (huygens-caustics-bench) (unit: MIP levels, in [0, 1)).
+  float mip_lod_offset = 0.5f;
+  /// MIP mode variant (not in the paper): take the level of detail from the area scale
+  /// sqrt|det J| of the surface-to-ground map (textureGrad) instead of GL's own lambda, which
+  /// follows the more compressed axis only and so overstates line-like caustics.
+  bool mip_isotropic_lod = false;
+  /// Light carried by a triangle: its beam cross-section (the area of its projection along the
+  /// sun onto z = 0; exact flux for an oblique sun) if true, or the same for every triangle (the
+  /// paper) if false. Identical for an overhead sun.
+  bool flux_by_beam_area = true;
+};
+
+/// Horizontal displacement (dx, dy) on the ground of the ray entering a surface point with
+/// slopes (gx, gy) = (d eta/dx, d eta/dy) at height eta above rest. Exact Snell refraction.
+std::array<double, 2> refract_displacement(const CausticsParams& p, double depth_m, double eta, double gx, double gy);
+
+/// The paper's linear approximation, coefficients x0 = displacement at rest and
+/// [a b; c d] = d(displacement)/d(gx, gy) at rest (numerical central derivatives of the
+/// exact projection, as the paper does for its section 4 coefficients).
+struct LinearProjection {
+  double x0 = 0, y0 = 0;              ///< displacement of a ray through still water (unit: m)
+  double a = 0, b = 0, c = 0, d = 0;  ///< d(dx,dy)/d(gx,gy) (unit: m per unit slope)
+};
+LinearProjection linear_projection(const CausticsParams& p, double depth_m);
+
+/// The ground rectangle the caustics texture covers: origin (unit: m) and size (unit: m).
+struct GroundRect {
+  double x0 = 0, y0 = 0, width = 0, height = 0;
+};
+GroundRect ground_rect(const CausticsParams& p, const HeightfieldView& field);
+
+/// The caustics mesh on the CPU: heights bilinearly sampled from the full heightfield at the
+/// mesh vertices, slopes by central differences on the mesh (one-sided at its border), each
+/// vertex projected onto the ground. Sized once, refilled each frame without allocation.
+struct CausticsMesh {
+  int cols = 0, rows = 0;
+  std::vector<float> height;     ///< sampled elevation per vertex (unit: m)
+  std::vector<float> ground_uv;  ///< projected vertex position in texture coordinates [0,1]^2 of the ground rect
+  /// where the sun ray through the vertex crosses z = 0, in [0,1]^2 of the surface domain (the
+  /// vertex position at rest when the sun is overhead or flux_by_beam_area is off): the
+  /// triangle's area here is its beam cross-section, and MIP / shadow lookups use it
+  std::vector<float> surface_uv;
+  std::vector<std::uint32_t> indices;  ///< two triangles per mesh cell
+};
+void caustics_mesh_init(const CausticsParams& p, CausticsMesh& mesh);
+void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& field, CausticsMesh& mesh);
+
+/// Ship shadow: a convex hull outline (counter-clockwise or clockwise, metres, surface frame),
+/// at height `height_m` above the surface at rest; it is projected along the sun onto the
+/// surface. make_ellipse_hull() builds an elliptic outline.
+struct ShipShadow {
+  std::vector<std::array<float, 2>> outline;  ///< convex polygon (unit: m)
+  float height_m = 0.0f;                      ///< height of the shadow-casting outline above z = 0 (unit: m)
+};
+ShipShadow make_ellipse_hull(float cx_m, float cy_m, float heading_rad, float length_m, float beam_m,
+                             int segments = 64);
+
+/// Photon-histogram caustics reference (papers 001 and 003): photons on a jittered
+/// `per_cell` x `per_cell` grid in every cell of the full-resolution surface, height and
+/// slopes bilinearly interpolated from the full field (slopes: central differences),
+/// refracted exactly, binned (nearest texel) on the ground rect. Result normalised to
+/// irradiance relative to still water (1 = unlit-by-caustics level), texture_height rows
+/// of texture_width, row 0 at the ground rect's y0 (GL's texture order). Photons inside the
+/// shadow polygon (projected along the sun onto z = 0) carry no light.
+std::vector<float> photon_caustics(const CausticsParams& p, const HeightfieldView& field, int per_cell,
+                                   std::uint64_t seed, const ShipShadow* ship = nullptr);
+
+/// Projected shadow polygon on the surface plane z = 0 (the outline shifted along the sun).
+std::vector<std::array<float, 2>> shadow_on_surface(const CausticsParams& p, const ShipShadow& ship);
+/// Point-in-convex-polygon test (either orientation).
+bool inside_convex(const std::vector<std::array<float, 2>>& poly, float x, float y);
+
+/// Normalised 3x3 [1 2 1; 2 4 2; 1 2 1]/16 blur of a float image, clamp-to-edge.
+std::vector<float> blur121_f32(std::span<const float> img, int width, int height);
+
+/// Comparison of two caustics images (e.g. renderer against photon reference) on the
+/// interior window that leaves out `border` texels on every side: both are divided by their
+/// mean there; rel_l2 = ||a - b|| / ||b||, rel_l2_contrast = ||a - b|| / ||b - 1|| (relative
+/// to the caustic contrast of b), max_abs = max |a - b| (all after normalisation).
+struct CausticsDiff {
+  double rel_l2 = 0, rel_l2_contrast = 0, max_abs = 0;
+  double mean_a = 0, mean_b = 0;  ///< the means before normalisation
+};
+CausticsDiff compare_caustics(std::span<const float> a, std::span<const float> b, int width, int height, int border);
+
+/// Synthetic heightfields for the tests and the benchmark (n x n points on an L x L domain).
+struct SyntheticField {
+  std::vector<float> eta;  ///< elevation (unit: m)
+  int n = 0;               ///< points per side
+  float dx = 0;            ///< spacing (unit: m)
+  float depth = 0.5f;      ///< ground depth (unit: m)
+  HeightfieldView view() const { return {eta, n, n, dx, depth}; }
+};
+/// (1 - 1/n) D: ground displacement per unit surface slope (linearised, sun overhead) (unit: m).
+double focus_factor(double depth_m, double n);
+/// Wind-like sea: five sines with wave vectors on the domain's periodic lattice, amplitudes
+/// scaled so that sum (1 - 1/n) D A_k k^2 = strength (the largest local compression of the
+/// ground map, sun overhead); `window` zeroes the outer tenth of the domain smoothly.
+SyntheticField synthetic_wind_sea(int n, double L_m, double depth_m, double strength, bool window);
+/// Ring wave A J0(k r) exp(-r^2 / (2 s^2)) about the centre, k = 2 pi / (0.15 L), s = 0.2 L; its
+/// Hessian at the centre is -A k^2 / 2 I, and strength = (1 - 1/n) D A k^2 / 2.
+SyntheticField synthetic_ring_wave(int n, double L_m, double depth_m, double strength);
+
+}  // namespace huygens::viz
