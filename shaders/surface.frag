@@ -1,0 +1,72 @@
+// (#version and ground_common.glsl are prepended by the renderer)
+// Water surface shading (paper 004, section 4; paper 003 for colour and absorption).
+// Per pixel: the normal from the full-resolution central height differences,
+//   n = normalize(-eta_u / (2 dx), -eta_v / (2 dx), 1);
+// the ground point seen through the surface, either linearised
+//   G = (u0, v0) + eta (a, b) + [c d; e f] (eta_u, eta_v)
+// or exact (Snell: t = refract(d, n, 1/index), followed to z = ground_z);
+// then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S + g L, T = exp(-a_rgb d).
+in vec3 v_pos;
+in vec2 v_base;
+out vec4 o_color;
+
+uniform sampler2D u_diffs;  // RG32F: eta_u, eta_v at the grid points
+uniform sampler2D u_coef;   // RGBA32F: c, d, e, f at the grid points
+uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
+uniform vec2 u_grid_size;   // cols, rows
+uniform float u_dx;
+uniform vec3 u_eye;
+uniform int u_ortho;
+uniform vec3 u_view_dir;
+uniform float u_index;
+uniform float u_ground_z;
+uniform int u_exact;
+uniform int u_fresnel;      // 0 off, 1 paper, 2 Schlick
+uniform int u_glint;
+uniform int u_absorption;
+uniform vec3 u_absorb;
+uniform vec3 u_water_colour;
+uniform vec3 u_sky;
+uniform vec3 u_sun_dir;
+uniform vec3 u_sun_colour;
+
+void main() {
+  vec2 tc = ((v_pos.xy - u_grid_origin) / u_dx + 0.5) / u_grid_size;
+  vec2 d = texture(u_diffs, tc).rg;
+  vec3 n = normalize(vec3(-d / (2.0 * u_dx), 1.0));
+  vec3 dir = u_ortho != 0 ? u_view_dir : normalize(v_pos - u_eye);
+
+  vec2 G;
+  if (u_exact != 0) {
+    vec3 nn = dot(n, dir) > 0.0 ? -n : n;
+    vec3 t = refract(dir, nn, 1.0 / u_index);
+    t.z = min(t.z, -1e-6);
+    G = v_pos.xy + t.xy * ((u_ground_z - v_pos.z) / t.z);
+  } else {
+    vec4 c = texture(u_coef, tc);
+    G = v_base + vec2(c.x * d.x + c.y * d.y, c.z * d.x + c.w * d.y);
+  }
+
+  vec3 refr = lit_ground(G);
+  if (u_absorption != 0) {
+    float path = length(vec3(G, u_ground_z) - v_pos);
+    vec3 T = exp(-u_absorb * path);
+    refr = refr * T + u_water_colour * (1.0 - T);
+  }
+
+  vec3 v = -dir;
+  float nv = max(dot(n, v), 0.0);
+  float F = 0.0;
+  if (u_fresnel == 1) {
+    F = clamp(1.0 - 2.5 * nv, 0.0, 1.0);
+  } else if (u_fresnel == 2) {
+    float r0 = (u_index - 1.0) / (u_index + 1.0);
+    F = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - nv, 5.0);
+  }
+  vec3 col = mix(refr, u_sky, F);
+  if (u_glint != 0) {
+    vec3 h = normalize(v + normalize(u_sun_dir));
+    col += clamp(100.0 * dot(n, h) - 98.95, 0.0, 1.0) * u_sun_colour;
+  }
+  o_color = vec4(col, 1.0);
+}

@@ -1,0 +1,171 @@
+// Refraction texture coordinates of paper 004 section 4 (viz/refraction.hpp): Snell's law,
+// the weighted-average mesh, and the linearised coordinates against the exact per-pixel
+// Snell path, for the default scene and for synthetic waves.
+#include "refraction.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "camera.hpp"
+#include "huygens/scene.hpp"
+#include "huygens/solver.hpp"
+
+using namespace huygens;
+
+TEST(Refraction, SnellsLawInVectorForm) {
+  const double n = 1.333;
+  for (double deg : {0.0, 10.0, 30.0, 60.0, 85.0}) {
+    const double ti = deg * M_PI / 180.0;
+    const glm::dvec3 d(std::sin(ti), 0.0, -std::cos(ti));
+    const glm::dvec3 t = refract_dir(d, {0.0, 0.0, 1.0}, 1.0 / n);
+    EXPECT_NEAR(glm::length(t), 1.0, 1e-12);
+    EXPECT_NEAR(t.x, std::sin(ti) / n, 1e-12) << deg;  // sin(theta_t) = sin(theta_i) / n
+    EXPECT_NEAR(t.y, 0.0, 1e-15);
+    EXPECT_LT(t.z, 0.0);
+  }
+  // from water to air beyond the critical angle: total internal reflection
+  EXPECT_EQ(refract_dir(glm::normalize(glm::dvec3(1.0, 0.0, 0.5)), {0.0, 0.0, -1.0}, 1.333), glm::dvec3(0.0));
+}
+
+TEST(Refraction, IndexOneFollowsTheStraightRay) {
+  ViewRays v;
+  v.eye = {1.0, 2.0, 5.0};
+  RefractionParams p;
+  p.index = 1.0;
+  p.ground_z = -2.0;
+  const glm::dvec3 P(3.0, 1.0, 0.1);
+  const glm::dvec2 g = snell_ground_point(v, P, normal_from_differences(0.3, -0.2, 0.1), p);
+  const glm::dvec3 d = glm::normalize(P - v.eye);
+  const double s = (p.ground_z - P.z) / d.z;
+  EXPECT_NEAR(g.x, P.x + s * d.x, 1e-12);
+  EXPECT_NEAR(g.y, P.y + s * d.y, 1e-12);
+}
+
+TEST(Refraction, WeightedAverageKeepsLinearFields) {
+  const std::size_t rows = 37, cols = 41, f = 4;
+  std::vector<float> eta(rows * cols);
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t j = 0; j < cols; ++j) eta[i * cols + j] = 0.01f * i - 0.02f * j + 0.5f;
+  const SurfaceMeshLayout L = make_mesh_layout(rows, cols, f);
+  EXPECT_EQ(L.col_idx.front(), 0u);
+  EXPECT_EQ(L.col_idx.back(), cols - 1);
+  EXPECT_EQ(L.row_idx.back(), rows - 1);
+  std::vector<float> mesh(L.vertex_rows() * L.vertex_cols());
+  subsample_heights(eta, rows, cols, f, L, mesh);
+  for (std::size_t l = 0; l < L.vertex_rows(); ++l)
+    for (std::size_t k = 0; k < L.vertex_cols(); ++k) {
+      const std::size_t i = L.row_idx[l], j = L.col_idx[k];
+      if (i < f || j < f || i + f > rows - 1 || j + f > cols - 1) continue;  // tent cut by the border
+      EXPECT_NEAR(mesh[l * L.vertex_cols() + k], eta[i * cols + j], 1e-5);
+    }
+  // a plane wave of exactly the mesh spacing averages to (nearly) nothing: small waves only
+  // reach the shading through the normals, as the paper intends
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t j = 0; j < cols; ++j) eta[i * cols + j] = std::cos(2.0 * M_PI * j / f);
+  subsample_heights(eta, rows, cols, f, L, mesh);
+  EXPECT_NEAR(mesh[2 * L.vertex_cols() + 3], 0.0, 1e-5);
+}
+
+namespace {
+// Synthetic sea of a few progressive waves (amplitudes in metres) on a grid like the default scene's.
+std::vector<float> synthetic_sea(const GridPlacement& g, double amp) {
+  std::vector<float> eta(g.rows * g.cols);
+  const double k1 = 2 * M_PI / 1.7, k2 = 2 * M_PI / 0.6, k3 = 2 * M_PI / 0.25;
+  for (std::size_t i = 0; i < g.rows; ++i)
+    for (std::size_t j = 0; j < g.cols; ++j) {
+      const double x = g.x(j), y = g.y(i);
+      eta[i * g.cols + j] = static_cast<float>(amp * (std::cos(k1 * (0.8 * x + 0.6 * y)) +
+                                                      0.4 * std::cos(k2 * (0.3 * x - 0.95 * y) + 1.0) +
+                                                      0.15 * std::cos(k3 * (-0.7 * x + 0.71 * y) + 2.0)));
+    }
+  return eta;
+}
+}  // namespace
+
+// The linearisation is first order in height and slope: halving the waves divides the
+// error between the linearised and the exact coordinates by about 4.
+TEST(Refraction, LinearisationErrorIsSecondOrder) {
+  GridPlacement g;
+  g.rows = g.cols = 192;
+  g.dx = 15.0 / 512 * 2;
+  g.x0 = g.y0 = 64 * 15.0 / 512;
+  const OrbitCamera cam = default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
+  RefractionParams p;
+  p.ground_z = -3.0;
+  const double texel = g.cols * g.dx / 512;
+  const RefractionError e1 = compare_refraction(g, 4, synthetic_sea(g, 0.02), cam.rays(), p, texel);
+  const RefractionError e2 = compare_refraction(g, 4, synthetic_sea(g, 0.01), cam.rays(), p, texel);
+  std::printf("synthetic sea: max %.4f / %.4f texels, mean %.4f / %.4f texels (amplitude 2 cm / 1 cm)\n", e1.max_texels,
+              e2.max_texels, e1.mean_texels, e2.mean_texels);
+  EXPECT_GT(e1.mean_texels, 0.0);
+  // 2 cm waves with slopes up to about 0.2 still stay within one texel
+  EXPECT_LT(e1.max_texels, 1.0);
+  EXPECT_GT(e1.mean_texels / e2.mean_texels, 3.0);
+  EXPECT_LT(e1.mean_texels / e2.mean_texels, 5.0);
+  // still water: only the linear interpolation of the base coordinate (u0, v0) across a mesh
+  // triangle remains (it is not affine in x, y for index != 1): far below a texel
+  const RefractionError e0 = compare_refraction(g, 4, std::vector<float>(g.rows * g.cols, 0.0f), cam.rays(), p, texel);
+  std::printf("still water: max %.5f texels\n", e0.max_texels);
+  EXPECT_LT(e0.max_texels, 0.05);
+}
+
+// Issue 5, test 3: for the default scene (its field after 1.5 s, the start-up camera) the
+// linearised coordinates are within one ground-texture texel (visible width / 512) of the
+// exact Snell path at every grid point; the maximum and the mean are printed.
+TEST(Refraction, DefaultSceneLinearisedWithinOneTexel) {
+  const std::string file = std::string(HUYGENS_SCENES_DIR) + "/default.json";
+  ASSERT_TRUE(std::filesystem::exists(file)) << file;
+  const Scene scene = load_scene(file);
+  RunOptions ro;
+  ro.measure_plans = false;
+  auto solver = make_solver(scene, ro);
+  const nlohmann::json& doc = *scene.doc;
+  const double n = doc["grid"]["n"].get<double>(), len = doc["grid"]["length_m"].get<double>();
+  const double margin = doc["grid"].value("margin", 0.0);
+  GridPlacement g;
+  g.rows = solver->height_rows();
+  g.cols = solver->height_cols();
+  g.dx = len / n;
+  g.x0 = g.y0 = margin * g.dx;
+  RefractionParams p;
+  p.ground_z = doc["water"].contains("depth_m") && doc["water"]["depth_m"].is_number()
+                   ? -doc["water"]["depth_m"].get<double>()
+                   : -3.0;  // SceneGeometry::kDeepGround
+  while (solver->time() < 1.5) solver->step();
+  const auto h = solver->height();
+  const std::vector<float> eta(h.begin(), h.end());
+  const OrbitCamera cam = default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
+  const double texel = g.cols * g.dx / 512;
+  const RefractionError e = compare_refraction(g, 4, eta, cam.rays(), p, texel);
+  float lo = 0, hi = 0;
+  for (float v : eta) lo = std::min(lo, v), hi = std::max(hi, v);
+  std::printf(
+      "default scene at t = %.2f s (eta in [%.4f, %.4f] m): linearised vs exact max %.4f texels, "
+      "mean %.5f texels (texel %.4f m)\n",
+      solver->time(), lo, hi, e.max_texels, e.mean_texels, texel);
+  EXPECT_LT(e.max_texels, 1.0);
+}
+
+// The camera ray through a pixel (used to drop stones under the cursor) passes through the
+// world point that the view-projection matrix maps to that pixel; the centre ray hits the target.
+TEST(Refraction, CameraRayThroughPixelInvertsTheProjection) {
+  OrbitCamera cam = default_camera(1.0, 2.0, 10.0, 8.0);
+  cam.yaw = 0.7;
+  const double aspect = 16.0 / 9.0;
+  glm::dvec3 o, d;
+  cam.ray_through(0.0, 0.0, aspect, o, d);
+  const double s = (cam.target.z - o.z) / d.z;
+  EXPECT_NEAR(glm::length(o + s * d - cam.target), 0.0, 1e-9);
+  const glm::dvec3 p(3.0, 7.0, 0.0);
+  glm::dvec4 c = cam.projection(aspect) * cam.view() * glm::dvec4(p, 1.0);
+  c /= c.w;
+  cam.ray_through(c.x, c.y, aspect, o, d);
+  const double s2 = (p.z - o.z) / d.z;
+  EXPECT_NEAR(glm::length(o + s2 * d - p), 0.0, 1e-9);
+}

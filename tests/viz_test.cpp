@@ -1,0 +1,406 @@
+// Render tests of the visualizer's water surface (issue 5; paper 004 section 4), headless
+// through EGL's surfaceless platform (Mesa llvmpipe). Synthetic heightfields with closed-form
+// optics: a flat surface at index 1 shows the ground unchanged (the paper's Figure 4 check),
+// looking straight down through still water magnifies by the apparent-depth factor, the sky
+// reflection at the centre pixel equals the Fresnel formula, a tilted surface shifts the
+// ground image as Snell's law says. Then golden images of the shipped scenes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera.hpp"
+#include "gl.hpp"
+#include "headless.hpp"
+#include "renderer.hpp"
+#include "scene_view.hpp"
+
+using namespace huygens;
+
+namespace {
+
+gl::HeadlessContext& context() {
+  static gl::HeadlessContext ctx;  // one context for the whole suite
+  return ctx;
+}
+
+// A quiet setting for optical checks: no caustics, no absorption, no reflections.
+RenderSettings plain_settings() {
+  RenderSettings s;
+  s.caustics = false;
+  s.absorption = false;
+  s.fresnel = FresnelModel::off;
+  s.sun_glint = false;
+  s.draw_ship = false;
+  s.ambient = 1.0f;
+  s.sun_light = 0.0f;
+  return s;
+}
+
+// Visible region of kN x kN points, 4 m wide, corner at (1, 1) m; ground 2 m down.
+constexpr std::size_t kN = 128;
+constexpr double kWidth = 4.0, kDepth = 2.0;
+GridPlacement test_grid() {
+  GridPlacement g;
+  g.rows = g.cols = kN;
+  g.dx = kWidth / kN;
+  g.x0 = g.y0 = 1.0;
+  return g;
+}
+
+double channel(const gl::Image8& img, int x, int y, int c) {
+  return img.pixels[4 * (static_cast<std::size_t>(y) * img.width + x) + c] / 255.0;
+}
+double lum(const gl::Image8& img, int x, int y) {
+  return (channel(img, x, y, 0) + channel(img, x, y, 1) + channel(img, x, y, 2)) / 3.0;
+}
+
+// Sub-pixel position (pixel-centre units) where the row y crosses `level`, searching from
+// x_start in direction dir (+1/-1); NaN if none.
+double crossing(const gl::Image8& img, int y, int x_start, int dir, double level) {
+  for (int x = x_start; x + dir >= 0 && x + dir < img.width; x += dir) {
+    const double a = lum(img, x, y), b = lum(img, x + dir, y);
+    if ((a - level) * (b - level) <= 0.0 && a != b) return x + dir * (a - level) / (a - b);
+  }
+  return std::nan("");
+}
+
+gl::Image8 render(WaterRenderer& r, const OrbitCamera& cam, const RenderSettings& s, int w, int h) {
+  RenderTarget target(w, h);
+  r.render(cam, s, target);
+  return target.read();
+}
+
+void write_debug(const std::string& name, const gl::Image8& img) {
+  gl::write_png(::testing::TempDir() + "/" + name, img);
+}
+
+}  // namespace
+
+class VizRender : public ::testing::Test {
+ protected:
+  void SetUp() override { context().make_current(); }
+};
+
+// Paper 004 Figure 4: at index 1 the refracted ground equals the ground seen with no water.
+// Border: pixels within 2 px of the water mesh's outline are left out (the ground quad and
+// the water mesh rasterise their common edge differently).
+TEST_F(VizRender, FlatSurfaceAtIndexOneShowsTheGroundUnchanged) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam = default_camera(g.x0, g.y0, kWidth, kWidth);
+  cam.pitch = 1.0;
+  cam.distance = 5.0;  // the water fills most of the view, the ground shows around it
+  RenderSettings s = plain_settings();
+  s.index = 1.0f;
+  s.ground = GroundPattern::tiles;
+  const int W = 256, H = 256;
+  RenderSettings dry = s;
+  dry.draw_water = false;
+  const gl::Image8 ground = render(r, cam, dry, W, H);
+  // coverage mask of the water mesh: black ground, white water
+  RenderSettings m = s;
+  m.ground = GroundPattern::uniform;
+  m.ground_uniform = glm::vec3(0.0f);
+  m.absorption = true;
+  m.absorb_rgb = glm::vec3(1e4f);
+  m.water_colour = glm::vec3(1.0f);
+  const gl::Image8 mask = render(r, cam, m, W, H);
+  auto wet = [&](int x, int y) { return channel(mask, x, y, 0) > 0.5; };
+  for (bool exact : {false, true}) {
+    s.exact_refraction = exact;
+    const gl::Image8 water = render(r, cam, s, W, H);
+    double max_diff = 0.0;
+    long wet_pixels = 0;
+    for (int y = 2; y < H - 2; ++y)
+      for (int x = 2; x < W - 2; ++x) {
+        bool border = false;
+        for (int dy = -2; dy <= 2 && !border; ++dy)
+          for (int dx = -2; dx <= 2; ++dx)
+            if (wet(x + dx, y + dy) != wet(x, y)) border = true;
+        if (border) continue;
+        wet_pixels += wet(x, y);
+        for (int c = 0; c < 3; ++c)
+          max_diff = std::max(max_diff, std::abs(channel(water, x, y, c) - channel(ground, x, y, c)));
+      }
+    if (max_diff > 2.0 / 255.0) {
+      write_debug("index1_water.png", water);
+      write_debug("index1_ground.png", ground);
+    }
+    std::printf("index 1 (%s): max-abs difference %.1f/255 over %ld water pixels\n", exact ? "exact" : "linearised",
+                max_diff * 255.0, wet_pixels);
+    EXPECT_GT(wet_pixels, W * H / 4) << "the water must cover a good part of the image";
+    EXPECT_LE(max_diff * 255.0, 2.0) << (exact ? "exact" : "linearised") << " path, max-abs difference in 1/255";
+  }
+}
+
+// Looking straight down through still water of depth d from height H, the ground appears
+// at depth d/n: a square of the ground is magnified by M = (H + d) / (H + d/n) (paraxial;
+// the square subtends < 4 degrees, where the exact value differs by < 0.1 %).
+TEST_F(VizRender, StillWaterMagnifiesByTheApparentDepthFactor) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  const double Hc = 2.0, n = 1.333;
+  OrbitCamera cam;
+  // the centre of the checker square spanning [1.5, 2.0] m of the region in x and y
+  cam.target = glm::dvec3(g.x0 + 1.75, g.y0 + 1.75, 0.0);
+  cam.distance = Hc;
+  cam.pitch = 1.5707963267948966;
+  cam.fov_y = 20.0 * 3.14159265358979 / 180.0;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::checker;
+  s.ground_squares = 8;
+  s.index = static_cast<float>(n);
+  const int W = 257, H = 257, cy = H / 2, cx = W / 2;
+  RenderSettings dry = s;
+  dry.draw_water = false;
+  const gl::Image8 ground = render(r, cam, dry, W, H);
+  auto width_of_square = [&](const gl::Image8& img) {
+    const double level = 0.5 * (0.1 + 0.9);
+    const double l = crossing(img, cy, cx, -1, level), rr = crossing(img, cy, cx, +1, level);
+    return rr - l;
+  };
+  const double w_dry = width_of_square(ground);
+  ASSERT_TRUE(std::isfinite(w_dry));
+  ASSERT_GT(w_dry, 40.0);
+  const double M = (Hc + kDepth) / (Hc + kDepth / n);
+  for (bool exact : {false, true}) {
+    s.exact_refraction = exact;
+    const gl::Image8 wet = render(r, cam, s, W, H);
+    const double w_wet = width_of_square(wet);
+    ASSERT_TRUE(std::isfinite(w_wet));
+    const double measured = w_wet / w_dry;
+    std::printf("apparent depth (%s): square %.2f px dry, %.2f px wet, magnification %.4f, analytic %.4f\n",
+                exact ? "exact" : "linearised", w_dry, w_wet, measured, M);
+    EXPECT_NEAR(measured / M, 1.0, 0.01) << (exact ? "exact" : "linearised");
+  }
+}
+
+// Centre pixel of an oblique view of still water: C = (1 - F) G + F S with n.v = sin(pitch),
+// F = clamp(1 - 2.5 n.v) (paper) or F0 + (1 - F0)(1 - n.v)^5 (Schlick).
+TEST_F(VizRender, SkyReflectionAtTheCentreEqualsFresnel) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam = default_camera(g.x0, g.y0, kWidth, kWidth);
+  const double nv = 0.3;
+  cam.pitch = std::asin(nv);
+  cam.distance = 3.0;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::uniform;
+  s.ground_uniform = glm::vec3(0.8f, 0.6f, 0.2f);
+  const int W = 129, H = 129;
+  const double n = s.index, f0 = std::pow((n - 1) / (n + 1), 2);
+  for (FresnelModel model : {FresnelModel::paper, FresnelModel::schlick}) {
+    s.fresnel = model;
+    const gl::Image8 img = render(r, cam, s, W, H);
+    const double F =
+        model == FresnelModel::paper ? std::clamp(1.0 - 2.5 * nv, 0.0, 1.0) : f0 + (1 - f0) * std::pow(1 - nv, 5);
+    for (int c = 0; c < 3; ++c) {
+      const double expected = (1 - F) * s.ground_uniform[c] + F * s.sky_colour[c];
+      EXPECT_NEAR(channel(img, W / 2, H / 2, c), expected, 1.5 / 255.0)
+          << (model == FresnelModel::paper ? "paper" : "Schlick") << " channel " << c << ", F = " << F;
+    }
+  }
+}
+
+// A tilted surface eta = s (x - xc) seen from straight above with parallel rays: every ray
+// meets the surface at incidence atan(s), is bent by delta = theta_i - asin(sin theta_i / n)
+// toward +x, and reaches the ground (eta + d) tan(delta) further on, so a ground edge at xe
+// appears at xa = (xe - (d - s xc) tan(delta)) / (1 + s tan(delta)). The exact path must
+// match that; the linearised path must match its own first-order model, in which the
+// parallel rays (a = b = 0) are displaced by c eta_u = d (1 - 1/n) s, xa = xe - d (1 - 1/n) s
+// (the two differ by the second-order terms the paper neglects, here 0.25 px).
+TEST_F(VizRender, TiltedSurfaceShiftsTheGroundAsSnellPredicts) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  const double slope = 0.2, n = 1.333;
+  const double xc = g.x0 + 2.0;  // a checker edge (squares of 0.5 m), eta = 0 there
+  std::vector<float> eta(kN * kN);
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j) eta[i * kN + j] = static_cast<float>(slope * (g.x(j) - xc));
+  r.set_heights(eta);
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = 2.0;
+  cam.target = glm::dvec3(xc, g.y0 + 1.75, 0.0);
+  cam.distance = 10.0;
+  cam.pitch = 1.5707963267948966;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::checker;
+  s.index = static_cast<float>(n);
+  const int W = 256, H = 256;
+  const double m_per_px = cam.ortho_height / H;
+  auto x_of = [&](double px) { return xc + (px + 0.5 - 0.5 * W) * m_per_px; };
+  RenderSettings dry = s;
+  dry.draw_water = false;
+  const double level = 0.5;
+  const double e_dry = crossing(render(r, cam, dry, W, H), H / 2, W / 2 - 20, +1, level);
+  ASSERT_TRUE(std::isfinite(e_dry));
+  EXPECT_NEAR(x_of(e_dry), xc, 0.25 * m_per_px) << "the edge without water is where the checker puts it";
+  const double ti = std::atan(slope), tt = std::asin(std::sin(ti) / n), td = std::tan(ti - tt);
+  const double xa = (xc - (kDepth - slope * xc) * td) / (1.0 + slope * td);
+  for (bool exact : {false, true}) {
+    s.exact_refraction = exact;
+    const gl::Image8 img = render(r, cam, s, W, H);
+    const double e = crossing(img, H / 2, W / 2 - 20, +1, level);
+    ASSERT_TRUE(std::isfinite(e));
+    const double shift_px = (x_of(e) - xc) / m_per_px, snell_px = (xa - xc) / m_per_px;
+    const double first_order_px = -kDepth * (1.0 - 1.0 / n) * slope / m_per_px;
+    std::printf("tilted surface (%s): edge shift %.3f px, Snell %.3f px, first order %.3f px\n",
+                exact ? "exact" : "linearised", shift_px, snell_px, first_order_px);
+    EXPECT_NEAR(shift_px, exact ? snell_px : first_order_px, 0.2) << (exact ? "exact" : "linearised");
+    EXPECT_NEAR(shift_px, snell_px, 0.1 * std::abs(snell_px)) << "within 10 % of Snell's shift";
+  }
+}
+
+// The same options give the same image (fixed time step, no wall clock, no threads racing).
+TEST_F(VizRender, HeadlessRenderIsDeterministic) {
+  const std::string scene = std::string(HUYGENS_SCENES_DIR) + "/default.json";
+  ASSERT_TRUE(std::filesystem::exists(scene)) << scene;
+  HeadlessOptions o;
+  o.scene_file = scene;
+  o.frames = 4;
+  o.width = o.height = 96;
+  const gl::Image8 a = render_headless(o).image, b = render_headless(o).image;
+  EXPECT_EQ(a.pixels, b.pixels);
+}
+
+// Golden images of the shipped scenes at 256 x 256. Generated once (see tests/golden/README.md):
+//   huygens-viz scenes/NAME.json --headless --time 1 --frames 3 --screenshot tests/golden/NAME.png
+// Tolerance: max-abs difference <= 24/255 on any channel, and at most 0.5 % of the pixels
+// differing by more than 4/255 (room for a different LLVM/Mesa rounding, not for a changed
+// picture). On failure actual/expected/diff PNGs are written next to the test's temp dir.
+TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
+  const std::filesystem::path golden_dir = std::filesystem::path(HUYGENS_SOURCE_DIR) / "tests" / "golden";
+  int compared = 0;
+  for (const char* name : {"default", "ring", "ocean", "kelvin", "pond"}) {
+    const std::filesystem::path scene = std::filesystem::path(HUYGENS_SCENES_DIR) / (std::string(name) + ".json");
+    const std::filesystem::path golden = golden_dir / (std::string(name) + ".png");
+    if (!std::filesystem::exists(scene)) continue;  // scenes arrive with their solvers
+    ASSERT_TRUE(std::filesystem::exists(golden)) << "missing golden " << golden << "; generate it with\n  huygens-viz "
+                                                 << scene << " --headless --time 1 --frames 3 --screenshot " << golden;
+    HeadlessOptions o;
+    o.scene_file = scene.string();
+    o.time = 1.0;
+    o.frames = 3;
+    apply_scene_render_block(o.scene_file, o.settings);  // as huygens-viz does
+    const gl::Image8 actual = render_headless(o).image;
+    const gl::Image8 expected = gl::read_png(golden.string(), 4);
+    ASSERT_EQ(actual.width, expected.width);
+    ASSERT_EQ(actual.height, expected.height);
+    gl::Image8 diff = actual;
+    int max_diff = 0;
+    long failing = 0;
+    for (std::size_t p = 0; p < actual.pixels.size() / 4; ++p) {
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(actual.pixels[4 * p + c] - expected.pixels[4 * p + c]));
+      max_diff = std::max(max_diff, d);
+      failing += d > 4;
+      for (int c = 0; c < 3; ++c) diff.pixels[4 * p + c] = static_cast<std::uint8_t>(std::min(255, 8 * d));
+      diff.pixels[4 * p + 3] = 255;
+    }
+    const double frac = static_cast<double>(failing) / (actual.pixels.size() / 4);
+    std::printf("golden %s: max-abs difference %d/255, %.4f %% of pixels over 4/255\n", name, max_diff, 100 * frac);
+    const bool ok = max_diff <= 24 && frac <= 0.005;
+    if (!ok) {
+      const std::string base = ::testing::TempDir() + "/golden_" + name;
+      gl::write_png(base + "_actual.png", actual);
+      gl::write_png(base + "_expected.png", expected);
+      gl::write_png(base + "_diff.png", diff);
+      ADD_FAILURE() << "golden " << name << " differs; wrote " << base << "_{actual,expected,diff}.png";
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 1) << "no shipped scene to compare";
+}
+
+// The real window (GLFW, GLX under Xvfb): 60 frames of a scene, a left click in the middle
+// halfway (through the mouse handler: a stone command reaches the simulation), then the S
+// key's screenshot path and Esc, exit code 0, and a screenshot that is not blank.
+TEST(VizWindow, XvfbRunsSixtyFramesAndTakesAScreenshot) {
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+    FAIL() << "xvfb-run is not installed (apt-get install xvfb)";
+  std::string scene = std::string(HUYGENS_SCENES_DIR) + "/ocean.json";
+  if (!std::filesystem::exists(scene)) scene = std::string(HUYGENS_SCENES_DIR) + "/default.json";
+  const std::string shot = ::testing::TempDir() + "/viz_window_smoke.png";
+  std::filesystem::remove(shot);
+  const std::string cmd = "xvfb-run -a -s '-screen 0 800x600x24' " + std::string(HUYGENS_VIZ) + " " + scene +
+                          " --size 320x240 --auto-frames 60 --screenshot " + shot + " > " + ::testing::TempDir() +
+                          "/viz_window_smoke.log 2>&1";
+  const int rc = std::system(cmd.c_str());
+  ASSERT_EQ(rc, 0) << cmd << "\nlog: " << ::testing::TempDir() << "/viz_window_smoke.log";
+  ASSERT_TRUE(std::filesystem::exists(shot));
+  // the automation clicked the middle of the window halfway: the stone reached the simulation
+  std::ifstream log(::testing::TempDir() + "/viz_window_smoke.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), {});
+  EXPECT_NE(text.find("stone dropped at"), std::string::npos) << text;
+  EXPECT_NE(text.find("commands applied 1,"), std::string::npos) << text;
+  const gl::Image8 img = gl::read_png(shot, 4);
+  EXPECT_EQ(img.width, 320);
+  EXPECT_EQ(img.height, 240);
+  double sum = 0, sum2 = 0;
+  const std::size_t n = static_cast<std::size_t>(img.width) * img.height;
+  for (std::size_t p = 0; p < n; ++p) {
+    const double l = (img.pixels[4 * p] + img.pixels[4 * p + 1] + img.pixels[4 * p + 2]) / 3.0;
+    sum += l, sum2 += l * l;
+  }
+  const double var = sum2 / n - (sum / n) * (sum / n);
+  std::printf("window screenshot: mean %.1f, variance %.1f (levels^2)\n", sum / n, var);
+  EXPECT_GT(var, 25.0) << "the screenshot looks blank";
+}
+
+// The ship hull is drawn at its position and heading: seen from straight above, the point
+// 0.4 m ahead of the centre along the heading is hull, the point 0.4 m abeam is water.
+TEST_F(VizRender, ShipHullAtItsPositionAndHeading) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = 2.0;
+  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
+  cam.distance = 10.0;
+  cam.pitch = 1.5707963267948966;
+  RenderSettings s = plain_settings();
+  s.draw_ship = true;
+  s.ground = GroundPattern::uniform;
+  const int W = 128, H = 128;
+  const double m_per_px = cam.ortho_height / H;
+  // pixel of world point (x, y): columns along +x, rows top-down along -y
+  auto px = [&](double x, double y, int& i, int& j) {
+    j = static_cast<int>(std::floor((x - cam.target.x) / m_per_px + 0.5 * W));
+    i = static_cast<int>(std::floor(0.5 * H - (y - cam.target.y) / m_per_px));
+  };
+  const gl::Image8 none = render(r, cam, s, W, H);
+  for (double heading : {0.0, 1.5707963267948966}) {
+    ShipPose ship;
+    ship.x = cam.target.x, ship.y = cam.target.y, ship.heading = heading;
+    ship.length = 1.0, ship.beam = 0.3;
+    r.set_ships(std::span<const ShipPose>(&ship, 1));
+    const gl::Image8 img = render(r, cam, s, W, H);
+    r.set_ships({});
+    auto differs = [&](double x, double y) {
+      int i, j;
+      px(x, y, i, j);
+      double d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(channel(img, j, i, c) - channel(none, j, i, c)));
+      return d > 0.05;
+    };
+    const double c = std::cos(heading), sn = std::sin(heading);
+    EXPECT_TRUE(differs(ship.x + 0.4 * c, ship.y + 0.4 * sn)) << "ahead, heading " << heading;
+    EXPECT_TRUE(differs(ship.x - 0.4 * c, ship.y - 0.4 * sn)) << "astern, heading " << heading;
+    EXPECT_FALSE(differs(ship.x - 0.4 * sn, ship.y + 0.4 * c)) << "abeam, heading " << heading;
+    EXPECT_FALSE(differs(ship.x + 0.7 * c, ship.y + 0.7 * sn)) << "beyond the bow, heading " << heading;
+  }
+}

@@ -1,0 +1,28 @@
+#pragma once
+// Entry points of huygens-viz besides the headless capture: the interactive window
+// (window_app.cpp) and the render benchmark.
+#include <string>
+
+#include "headless.hpp"
+#include "scene_view.hpp"
+
+namespace huygens {
+
+struct WindowOptions {
+  std::string scene_file;
+  int width = 1280, height = 720;
+  int subsample = 4;
+  RenderSettings settings;
+  /// Smoke-test automation: after this many frames press S (screenshot) and then quit
+  /// through the same key path a user takes; 0 = run until the window is closed.
+  int auto_frames = 0;
+  /// Where S saves screenshots ("" = huygens-viz-NNNN.png in the working directory).
+  std::string screenshot;
+  /// Start with the simulation paused.
+  bool paused = false;
+};
+
+/// Runs the window until it is closed; returns the process exit code.
+int run_window(const WindowOptions& opt);
+
+}  // namespace huygens

@@ -1,0 +1,51 @@
+#pragma once
+// What the renderer needs to know about a scene besides the heights: where the visible
+// region sits in the world, how deep the ground is, the display rate, and where the ships
+// are at a given time (their scene paths, piecewise linear; heading along the path).
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "huygens/scene.hpp"
+#include "huygens/solver.hpp"
+#include "refraction.hpp"
+#include "renderer.hpp"
+
+namespace huygens {
+
+struct ShipPath {
+  /// Hull size (unit: m).
+  double length = 1.0, beam = 0.3, draft = 0.05;
+  /// Waypoints: time (unit: s) and position (unit: m).
+  std::vector<double> t, x, y;
+  /// Pose at time `time` (holds the end points outside the path).
+  ShipPose pose(double time) const;
+};
+
+struct SceneGeometry {
+  GridPlacement grid;
+  /// Ground plane height (unit: m): -depth_m of the scene, or -kDeepGround for deep water.
+  double ground_z = -2.0;
+  /// Full step (unit: s) and displayed frames per step.
+  double dt = 0.05;
+  int display_per_step = 3;
+  std::vector<ShipPath> ships;
+  /// Level of the water at rest in the solver's height() (unit: m): 0 for elevation fields
+  /// (Huygens); the mean initial height for solvers whose height is a depth or a level
+  /// above the floor (LBM, SPH). The renderer draws height() - height_offset.
+  double height_offset = 0.0;
+  /// Depth at which deep-water scenes draw their ground (unit: m).
+  static constexpr double kDeepGround = 3.0;
+};
+
+/// Reads the geometry of `scene` for the solver (before its first step). Uses grid.n,
+/// grid.length_m, grid.margin (DESIGN.md 6); other solvers are placed at the origin with
+/// the spacing their meta() reports ("dx"), else 1 cm, and the ground at their mean
+/// initial height below the rest level.
+SceneGeometry scene_geometry(const Scene& scene, Solver& solver);
+
+/// Applies a scene file's "render" block (caustics: bool, blur: "accumulation" | "float" | "none").
+void apply_scene_render_block(const std::string& scene_file, RenderSettings& s);
+
+}  // namespace huygens

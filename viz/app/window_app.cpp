@@ -1,0 +1,508 @@
+// The interactive window of huygens-viz: GLFW (GL 3.3 core, loaded by libepoxy), the
+// simulation on its own thread (Runner, DESIGN.md 2), the renderer drawing the newest
+// frames interpolated to the display time, Dear ImGui for the panel, mouse and keys.
+#include "gl.hpp"  // epoxy before any other GL header
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "app.hpp"
+#include "gl.hpp"
+#include "huygens/command.hpp"
+#include "huygens/runner.hpp"
+#include "huygens/scene.hpp"
+#include "scene_view.hpp"
+
+namespace huygens {
+
+namespace {
+
+struct App {
+  GLFWwindow* window = nullptr;
+  Runner* runner = nullptr;
+  WindowOptions opt;
+  SceneGeometry geo;
+  OrbitCamera camera;
+  RenderSettings settings;
+  std::vector<float> field;
+  bool show_panel = true;
+  bool interpolate = true;
+  bool stokes = true, wind = true;
+  bool screenshot_requested = false;
+  int screenshot_count = 0;
+  std::string last_screenshot;
+  bool quit = false;
+  double time_scale = 1.0;
+  // stones
+  float stone_radius = 0.05f, stone_depth = 0.01f;
+  /// Mesh subsampling factor (the renderer is rebuilt when it changes).
+  int subsample = 4;
+  // mouse state
+  bool orbiting = false, panning = false, left_down = false, dragged_far = false;
+  int drag_ship = -1;
+  double press_x = 0, press_y = 0, last_x = 0, last_y = 0;
+  double drag_last_t = 0;
+  glm::dvec2 drag_last_pos{0.0};
+  // ship poses overridden by dragging (index = ship); NaN x = follow the scene path
+  std::vector<ShipPose> ship_override;
+  std::string message;
+};
+
+App* app_of(GLFWwindow* w) { return static_cast<App*>(glfwGetWindowUserPointer(w)); }
+
+// Water point under the cursor: the view ray meets z = eta(x, y) (plane z = 0, then one
+// correction with the height there). False when the ray misses the visible region.
+bool cursor_hit(const App& a, double cx, double cy, glm::dvec2& hit) {
+  int w, h;
+  glfwGetWindowSize(a.window, &w, &h);
+  if (w <= 0 || h <= 0) return false;
+  const double ndc_x = 2.0 * cx / w - 1.0, ndc_y = 1.0 - 2.0 * cy / h;
+  glm::dvec3 o, d;
+  a.camera.ray_through(ndc_x, ndc_y, static_cast<double>(w) / h, o, d);
+  if (std::abs(d.z) < 1e-9) return false;
+  double z = 0.0;
+  glm::dvec3 p;
+  for (int it = 0; it < 3; ++it) {
+    const double s = (z - o.z) / d.z;
+    if (s <= 0) return false;
+    p = o + s * d;
+    const GridPlacement& g = a.geo.grid;
+    const double fj = (p.x - g.x0) / g.dx, fi = (p.y - g.y0) / g.dx;
+    if (fj < 0 || fi < 0 || fj > g.cols - 1 || fi > g.rows - 1) return false;
+    z = a.field[static_cast<std::size_t>(std::lround(fi)) * g.cols + static_cast<std::size_t>(std::lround(fj))] -
+        a.geo.height_offset;
+  }
+  hit = {p.x, p.y};
+  return true;
+}
+
+ShipPose ship_pose(const App& a, std::size_t i, double t) {
+  const ShipPose& o = a.ship_override[i];
+  if (!std::isnan(o.x)) return o;
+  return a.geo.ships[i].pose(t);
+}
+
+int ship_under(const App& a, glm::dvec2 p, double t) {
+  for (std::size_t i = 0; i < a.geo.ships.size(); ++i) {
+    const ShipPose s = ship_pose(a, i, t);
+    const double c = std::cos(s.heading), sn = std::sin(s.heading);
+    const double lx = c * (p.x - s.x) + sn * (p.y - s.y), ly = -sn * (p.x - s.x) + c * (p.y - s.y);
+    if (std::abs(lx) <= 0.6 * s.length && std::abs(ly) <= 0.5 * s.beam + 0.1 * s.length) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+// Reads the window's back buffer (after the panel is drawn, before the swap).
+void save_screenshot(App& a, int width, int height) {
+  std::string path = a.opt.screenshot;
+  if (path.empty()) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "huygens-viz-%04d.png", a.screenshot_count);
+    path = buf;
+  }
+  ++a.screenshot_count;
+  gl::Image8 img;
+  img.width = width;
+  img.height = height;
+  img.channels = 4;
+  img.pixels.resize(static_cast<std::size_t>(width) * height * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, img.pixels.data());
+  for (std::size_t p = 0; p < img.pixels.size(); p += 4) img.pixels[p + 3] = 255;
+  gl::flip_rows(img);
+  gl::write_png(path, img);
+  a.last_screenshot = path;
+  std::printf("huygens-viz: screenshot written to %s\n", path.c_str());
+  std::fflush(stdout);
+}
+
+// The key bindings; the window's key callback and the --auto-frames automation both call this.
+void on_key(App& a, int key) {
+  switch (key) {
+    case GLFW_KEY_SPACE:
+      a.runner->send(a.runner->paused() ? Command{cmd::Resume{}} : Command{cmd::Pause{}});
+      break;
+    case GLFW_KEY_R:
+      a.runner->send(cmd::Reset{});
+      std::fill(a.ship_override.begin(), a.ship_override.end(), ShipPose{std::numeric_limits<double>::quiet_NaN()});
+      break;
+    case GLFW_KEY_F1:
+      a.show_panel = !a.show_panel;
+      break;
+    case GLFW_KEY_S:
+      a.screenshot_requested = true;
+      break;
+    case GLFW_KEY_E:
+      a.settings.exact_refraction = !a.settings.exact_refraction;
+      break;
+    case GLFW_KEY_F:
+      a.settings.fresnel = a.settings.fresnel == FresnelModel::paper ? FresnelModel::schlick : FresnelModel::paper;
+      break;
+    case GLFW_KEY_ESCAPE:
+      a.quit = true;
+      break;
+    default:
+      break;
+  }
+}
+
+void key_callback(GLFWwindow* w, int key, int, int action, int) {
+  App& a = *app_of(w);
+  if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+  on_key(a, key);
+}
+
+// The mouse bindings at cursor (x, y) in window coordinates; the window's callback and the
+// --auto-frames automation both call this.
+void on_mouse_button(App& a, int button, int action, int mods, double x, double y) {
+  const bool shift = (mods & GLFW_MOD_SHIFT) != 0;
+  if (button == GLFW_MOUSE_BUTTON_LEFT) {
+    if (action == GLFW_PRESS) {
+      a.left_down = true;
+      a.dragged_far = false;
+      a.press_x = x, a.press_y = y;
+      glm::dvec2 p;
+      a.drag_ship = -1;
+      if (cursor_hit(a, x, y, p)) {
+        const double t = a.runner->display_time();
+        a.drag_ship = ship_under(a, p, std::isfinite(t) ? t : 0.0);
+        if (a.drag_ship >= 0) {
+          a.ship_override[a.drag_ship] = ship_pose(a, a.drag_ship, std::isfinite(t) ? t : 0.0);
+          a.drag_last_pos = p;
+          a.drag_last_t = glfwGetTime();
+        }
+      }
+    } else if (action == GLFW_RELEASE && a.left_down) {
+      a.left_down = false;
+      glm::dvec2 p;
+      if (a.drag_ship >= 0) {
+        // release: the ship keeps its position and stops
+        const ShipPose& s = a.ship_override[a.drag_ship];
+        a.runner->send(cmd::ShipTarget{a.drag_ship, static_cast<float>(s.x), static_cast<float>(s.y), 0.0f, 0.0f});
+      } else if (!a.dragged_far && cursor_hit(a, x, y, p)) {
+        a.runner->send(cmd::Drop{static_cast<float>(p.x), static_cast<float>(p.y), a.stone_radius, a.stone_depth});
+        std::printf("huygens-viz: stone dropped at (%.3f, %.3f) m\n", p.x, p.y);
+      }
+      a.drag_ship = -1;
+    }
+  } else if (button == GLFW_MOUSE_BUTTON_RIGHT) {
+    a.orbiting = action == GLFW_PRESS && !shift;
+    a.panning = action == GLFW_PRESS && shift;
+  } else if (button == GLFW_MOUSE_BUTTON_MIDDLE) {
+    a.panning = action == GLFW_PRESS;
+  }
+  a.last_x = x, a.last_y = y;
+}
+
+void mouse_button_callback(GLFWwindow* w, int button, int action, int mods) {
+  App& a = *app_of(w);
+  double x, y;
+  glfwGetCursorPos(w, &x, &y);
+  if (action == GLFW_PRESS && ImGui::GetIO().WantCaptureMouse) return;
+  on_mouse_button(a, button, action, mods, x, y);
+}
+
+void cursor_callback(GLFWwindow* w, double x, double y) {
+  App& a = *app_of(w);
+  const double dx = x - a.last_x, dy = y - a.last_y;
+  a.last_x = x, a.last_y = y;
+  if (a.left_down && std::hypot(x - a.press_x, y - a.press_y) > 4.0) a.dragged_far = true;
+  if (a.left_down && a.drag_ship >= 0) {
+    glm::dvec2 p;
+    if (!cursor_hit(a, x, y, p)) return;
+    ShipPose& s = a.ship_override[a.drag_ship];
+    const double now = glfwGetTime(), dt = std::max(now - a.drag_last_t, 1e-3);
+    const glm::dvec2 delta = p - glm::dvec2(s.x, s.y);
+    const glm::dvec2 v = (p - a.drag_last_pos) / dt;
+    if (glm::length(delta) > 1e-4) s.heading = std::atan2(delta.y, delta.x);
+    s.x = p.x, s.y = p.y;
+    a.drag_last_pos = p;
+    a.drag_last_t = now;
+    a.runner->send(cmd::ShipTarget{a.drag_ship, static_cast<float>(p.x), static_cast<float>(p.y),
+                                   static_cast<float>(v.x), static_cast<float>(v.y)});
+    return;
+  }
+  if (a.orbiting) {
+    a.camera.yaw -= 0.005 * dx;
+    a.camera.pitch = std::clamp(a.camera.pitch + 0.005 * dy, 0.05, 1.5706);
+  } else if (a.panning) {
+    const double scale = a.camera.distance * 0.0015;
+    const double c = std::cos(a.camera.yaw), s = std::sin(a.camera.yaw);
+    // the ground follows the cursor: screen right is (-sin yaw, cos yaw), screen up is the
+    // horizontal view direction (-cos yaw, -sin yaw)
+    a.camera.target += glm::dvec3(s * dx * scale - c * dy * scale, -c * dx * scale - s * dy * scale, 0.0);
+  }
+}
+
+void scroll_callback(GLFWwindow* w, double, double yoff) {
+  App& a = *app_of(w);
+  if (ImGui::GetIO().WantCaptureMouse) return;
+  a.camera.distance = std::clamp(a.camera.distance * std::pow(0.9, yoff), 0.2, 500.0);
+}
+
+void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("huygens-viz");
+  ImGui::Text("%s", a.opt.scene_file.c_str());
+  ImGui::Text("t = %.3f s, step %lld, %.1f fps", fp ? fp.newest->info.time_s : 0.0,
+              fp ? static_cast<long long>(fp.newest->info.step) : 0LL, fps);
+  ImGui::Text("commands applied %llu, refused %llu", static_cast<unsigned long long>(a.runner->commands_applied()),
+              static_cast<unsigned long long>(a.runner->commands_rejected()));
+  if (a.runner->failed()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", a.runner->error().message.c_str());
+  bool paused = a.runner->paused();
+  if (ImGui::Checkbox("pause (space)", &paused)) on_key(a, GLFW_KEY_SPACE);
+  ImGui::SameLine();
+  if (ImGui::Button("reset (R)")) on_key(a, GLFW_KEY_R);
+  ImGui::SameLine();
+  if (ImGui::Button("screenshot (S)")) on_key(a, GLFW_KEY_S);
+
+  if (ImGui::CollapsingHeader("features", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::Checkbox("Stokes (2nd order)", &a.stokes)) a.runner->send(cmd::Toggle{CommandName{"stokes"}, a.stokes});
+    ImGui::SameLine();
+    if (ImGui::Checkbox("wind", &a.wind)) a.runner->send(cmd::Toggle{CommandName{"wind"}, a.wind});
+    ImGui::Checkbox("time interpolation", &a.interpolate);
+    ImGui::SameLine();
+    ImGui::Checkbox("caustics", &a.settings.caustics);
+    ImGui::SameLine();
+    ImGui::Checkbox("blur", &a.settings.blur);
+    ImGui::SameLine();
+    ImGui::Checkbox("float blur", &a.settings.blur_float);
+    ImGui::Checkbox("exact Snell (E)", &a.settings.exact_refraction);
+    ImGui::SameLine();
+    ImGui::Checkbox("sun glint", &a.settings.sun_glint);
+    ImGui::SameLine();
+    ImGui::Checkbox("absorption", &a.settings.absorption);
+    int fres = static_cast<int>(a.settings.fresnel);
+    ImGui::Combo("Fresnel (F)", &fres, "off\0paper clamp(1-2.5 n.v)\0Schlick\0");
+    a.settings.fresnel = static_cast<FresnelModel>(fres);
+    ImGui::Checkbox("water", &a.settings.draw_water);
+    ImGui::SameLine();
+    ImGui::Checkbox("ships", &a.settings.draw_ship);
+  }
+  if (ImGui::CollapsingHeader("parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::SliderFloat("refractive index", &a.settings.index, 1.0f, 2.0f, "%.3f");
+    ImGui::SliderInt("mesh subsampling", &a.subsample, 1, 16);
+    ImGui::SliderFloat3("absorption 1/m", &a.settings.absorb_rgb.x, 0.0f, 2.0f, "%.3f");
+    if (ImGui::SliderFloat3("sun direction", &a.settings.sun_dir.x, -1.0f, 1.0f, "%.2f"))
+      a.settings.sun_dir.z = std::max(a.settings.sun_dir.z, 0.05f);
+    float ts = static_cast<float>(a.time_scale);
+    if (ImGui::SliderFloat("time scale", &ts, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) {
+      a.time_scale = ts;
+      a.runner->send(cmd::SetParam{CommandName{"time_scale"}, a.time_scale});
+    }
+    ImGui::SliderFloat("stone radius m", &a.stone_radius, 0.01f, 0.5f, "%.3f", ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("stone depth m", &a.stone_depth, 0.001f, 0.1f, "%.3f", ImGuiSliderFlags_Logarithmic);
+  }
+  if (ImGui::CollapsingHeader("timing (ms)", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::BeginTable("timing", 3, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
+      ImGui::TableSetupColumn("stage");
+      ImGui::TableSetupColumn("ms/call");
+      ImGui::TableSetupColumn("calls");
+      ImGui::TableHeadersRow();
+      auto row = [](const char* name, double ms, unsigned long long calls) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(name);
+        ImGui::TableNextColumn();
+        ImGui::Text("%.3f", ms);
+        ImGui::TableNextColumn();
+        ImGui::Text("%llu", calls);
+      };
+      if (fp) {
+        const auto& names = a.runner->stage_names();
+        for (std::size_t i = 0; i < fp.newest->stages.size() && i < names.size(); ++i) {
+          const StageCounter& c = fp.newest->stages[i];
+          if (c.calls == 0) continue;  // a stage the scene does not use costs nothing
+          row(("sim: " + names[i]).c_str(), 1e-6 * static_cast<double>(c.ns) / static_cast<double>(c.calls),
+              static_cast<unsigned long long>(c.calls));
+        }
+      }
+      const RenderTimes& t = r.times;
+      row("render: mesh+normals (CPU)", t.prepare, 0);
+      row("render: upload", t.upload, 0);
+      row("render: caustics", t.caustics, 0);
+      row("render: ground", t.ground, 0);
+      row("render: surface", t.surface, 0);
+      row("render: ship", t.ship, 0);
+      ImGui::EndTable();
+    }
+  }
+  if (!a.last_screenshot.empty()) ImGui::Text("last screenshot: %s", a.last_screenshot.c_str());
+  ImGui::TextWrapped(
+      "left click: stone; left drag on a ship: move it; right drag: orbit; shift+right or "
+      "middle drag: pan; wheel: zoom; F1: hide this panel");
+  ImGui::End();
+}
+
+}  // namespace
+
+int run_window(const WindowOptions& opt) {
+  glfwSetErrorCallback([](int code, const char* msg) { std::fprintf(stderr, "GLFW error %d: %s\n", code, msg); });
+  if (!glfwInit()) {
+    std::fprintf(stderr,
+                 "huygens-viz: no display (GLFW could not initialise). Without a display server use\n"
+                 "  huygens-viz %s --headless --frames 60 --screenshot out.png\n",
+                 opt.scene_file.c_str());
+    return 1;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(opt.width, opt.height, "huygens-viz", nullptr, nullptr);
+  if (!window) {
+    glfwTerminate();
+    std::fprintf(stderr, "huygens-viz: could not create a GL 3.3 core window\n");
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(opt.auto_frames > 0 ? 0 : 1);
+
+  int code = 0;
+  {
+    App a;
+    a.window = window;
+    a.opt = opt;
+    a.settings = opt.settings;
+    const Scene scene = load_scene(opt.scene_file);
+    RunOptions ro;
+    ro.measure_plans = false;
+    std::unique_ptr<Solver> solver = make_solver(scene, ro);
+    a.geo = scene_geometry(scene, *solver);
+    // the panel's solver toggles start as the scene has them
+    a.stokes =
+        scene.doc->contains("stokes") && (*scene.doc)["stokes"].is_boolean() && (*scene.doc)["stokes"].get<bool>();
+    a.wind = scene.doc->contains("wind") && (*scene.doc)["wind"].is_object();
+    const GridPlacement& g = a.geo.grid;
+    a.field.assign(g.rows * g.cols, 0.0f);
+    {
+      auto h = solver->height();
+      std::copy(h.begin(), h.end(), a.field.begin());
+    }
+    a.ship_override.assign(a.geo.ships.size(), ShipPose{std::numeric_limits<double>::quiet_NaN()});
+    a.camera = default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
+    RunnerParams rp;
+    rp.realtime = true;
+    rp.start_paused = opt.paused;
+    Runner runner(std::move(solver), rp, [scene, ro] { return make_solver(scene, ro); });
+    a.runner = &runner;
+    glfwSetWindowUserPointer(window, &a);
+    glfwSetKeyCallback(window, key_callback);
+    glfwSetMouseButtonCallback(window, mouse_button_callback);
+    glfwSetCursorPosCallback(window, cursor_callback);
+    glfwSetScrollCallback(window, scroll_callback);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains the callbacks installed above
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+
+    {
+      auto make_renderer = [&](int subsample) {
+        auto r = std::make_unique<WaterRenderer>(g, a.geo.ground_z, subsample);
+        r->set_height_offset(a.geo.height_offset);
+        r->times.enabled = true;
+        r->set_heights(a.field);
+        return r;
+      };
+      a.subsample = opt.subsample;
+      std::unique_ptr<WaterRenderer> renderer_ptr = make_renderer(a.subsample);
+      RenderTarget target;
+      runner.start();
+      long frame = 0;
+      auto t_last = std::chrono::steady_clock::now();
+      double fps = 0.0;
+      while (!glfwWindowShouldClose(window) && !a.quit) {
+        glfwPollEvents();
+        if (a.subsample != renderer_ptr->subsample()) {
+          renderer_ptr.reset();  // free the old GL objects first
+          renderer_ptr = make_renderer(a.subsample);
+        }
+        WaterRenderer& renderer = *renderer_ptr;
+        FramePair fp = runner.frames();
+        if (fp) {
+          const double t = a.interpolate ? runner.display_time() : std::numeric_limits<double>::infinity();
+          fp.sample(t, a.field);
+          renderer.set_heights(a.field);
+        }
+        const double tshow = fp ? fp.newest->info.time_s : 0.0;
+        std::vector<ShipPose> poses;
+        for (std::size_t i = 0; i < a.geo.ships.size(); ++i) poses.push_back(ship_pose(a, i, tshow));
+        renderer.set_ships(poses);
+
+        int fw, fh;
+        glfwGetFramebufferSize(window, &fw, &fh);
+        if (fw > 0 && fh > 0) {
+          if (target.width() != fw || target.height() != fh) target = RenderTarget(fw, fh);
+          renderer.render(a.camera, a.settings, target);
+          glBindFramebuffer(GL_READ_FRAMEBUFFER, target.fbo());
+          glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+          glBlitFramebuffer(0, 0, fw, fh, 0, 0, fw, fh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+          glBindFramebuffer(GL_FRAMEBUFFER, 0);
+          glViewport(0, 0, fw, fh);
+        }
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        if (a.show_panel) panel(a, renderer, fp, fps);
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (a.screenshot_requested && fw > 0 && fh > 0) {
+          a.screenshot_requested = false;
+          save_screenshot(a, fw, fh);  // what the window shows, panel included (F1 hides it)
+        }
+        glfwSwapBuffers(window);
+
+        const auto now = std::chrono::steady_clock::now();
+        const double dt = std::chrono::duration<double>(now - t_last).count();
+        t_last = now;
+        fps = 0.9 * fps + 0.1 * (dt > 0 ? 1.0 / dt : 0.0);
+        ++frame;
+        if (opt.auto_frames > 0 && frame == opt.auto_frames / 2) {
+          // a left click in the middle of the window, through the mouse handler
+          int ww, wh;
+          glfwGetWindowSize(window, &ww, &wh);
+          on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0, 0.5 * ww, 0.5 * wh);
+          on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0, 0.5 * ww, 0.5 * wh);
+        }
+        if (opt.auto_frames > 0 && frame == opt.auto_frames) on_key(a, GLFW_KEY_S);  // same path as the S key
+        if (opt.auto_frames > 0 && frame == opt.auto_frames + 1) on_key(a, GLFW_KEY_ESCAPE);
+      }
+      runner.stop();
+      std::printf("huygens-viz: %ld frames, commands applied %llu, refused %llu\n", frame,
+                  static_cast<unsigned long long>(runner.commands_applied()),
+                  static_cast<unsigned long long>(runner.commands_rejected()));
+      if (runner.failed()) {
+        std::fprintf(stderr, "huygens-viz: simulation stopped: %s\n", runner.error().message.c_str());
+        code = 3;
+      }
+      if (opt.auto_frames > 0 && a.screenshot_count == 0) code = 1;
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return code;
+}
+
+}  // namespace huygens
