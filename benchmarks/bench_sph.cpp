@@ -1,0 +1,170 @@
+// Section "sph": particle-steps per second of the SPH step (paper 000 / MCG03) for 3 000,
+// 30 000 and 300 000 particles and each thread count, split into neighbour search, density,
+// forces and integration; the same physics with an O(n^2) all-pairs neighbour search measured in
+// the same run (speed-up and agreement); run time against error (density error and dam-break
+// front error against particle spacing and time step).
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include "bench.hpp"
+#include "huygens/sph.hpp"
+#include "huygens/sph_validation.hpp"
+
+namespace huygens::bench {
+
+namespace {
+
+// a pool-like block: n particles in a box whose floor is square and depth is 1/4 of its side
+SphParams pool_params(std::size_t n) {
+  SphParams p;
+  p.spacing = 0.01f;
+  const int side = std::max(4, static_cast<int>(std::round(std::cbrt(4.0 * n))));
+  const int depth = std::max(2, static_cast<int>(std::round(double(n) / (side * side))));
+  p.container = {side * p.spacing, side * p.spacing, 3.f * depth * p.spacing};
+  p.fluid.push_back({{0, 0, 0}, {side * p.spacing, side * p.spacing, depth * p.spacing}});
+  return p;
+}
+
+struct Measured {
+  std::vector<double> T, Z;
+  double max_comp = 0, wall = 0;
+  std::int64_t steps = 0;
+};
+
+Measured dam(int na, float cfl, double T_end) {
+  const float a = 0.05715f, dx = a / na;
+  SphParams p;
+  p.spacing = dx;
+  p.cfl = cfl;
+  p.container = {8 * a, 4 * dx, 4 * a};
+  p.fluid.push_back({{0, 0, 0}, {a, 4 * dx, 2 * a}});
+  SphSystem s(p);
+  Measured m;
+  const double Ts = std::sqrt(2 * 9.81 / a);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (s.time() * Ts < T_end) {
+    s.step();
+    float fx = 0.f;
+    for (float x : s.x()) fx = std::max(fx, x);
+    m.T.push_back(s.time() * Ts);
+    m.Z.push_back((fx + 0.5f * dx) / a);
+    for (float r : s.density()) m.max_comp = std::max(m.max_comp, double(r / p.rest_density - 1.f));
+  }
+  m.wall = seconds_since(t0);
+  m.steps = s.steps();
+  return m;
+}
+
+}  // namespace
+
+void bench_sph(Context& ctx) {
+  // --- throughput and stage split
+  {
+    // wall-clock rates, and the rate per CPU-second of the process (on a shared, loaded machine the wall
+    // rate understates what the cores deliver; both are printed)
+    Table t({"particles", "threads", "steps", "steps/s", "Mparticle-steps/s", "per core", "per CPU-s", "neighbour %",
+             "density %", "forces %", "integration %"});
+    const std::vector<std::size_t> sizes = {3000, 30000, 300000};
+    for (std::size_t n : sizes) {
+      for (int th : ctx.threads) {
+        omp_set_num_threads(th);
+        SphSystem s(pool_params(n));
+        const int warm = 3;
+        for (int k = 0; k < warm; ++k) s.step();
+        s.stats().reset_counts();
+        const int steps = n <= 3000    ? (ctx.quick ? 200 : 1000)
+                          : n <= 30000 ? (ctx.quick ? 20 : 100)
+                                       : (ctx.quick ? 2 : 10);
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::clock_t c0 = std::clock();
+        for (int k = 0; k < steps; ++k) s.step();
+        const double sec = seconds_since(t0);
+        const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+        double tot = 0;
+        for (const auto& st : s.stats().all()) tot += double(st.ns);
+        auto pct = [&](int id) { return fmt("%.1f", 100.0 * double(s.stats()[id].ns) / tot); };
+        const double rate = double(s.count()) * steps / sec;
+        t.add({std::to_string(s.count()), std::to_string(th), std::to_string(steps), num(steps / sec, 4),
+               num(rate * 1e-6, 4), num(rate * 1e-6 / th, 4), num(double(s.count()) * steps / cpu * 1e-6, 4),
+               pct(s.stage_ids().neighbours), pct(s.stage_ids().density), pct(s.stage_ids().forces),
+               pct(s.stage_ids().integration)});
+      }
+    }
+    omp_set_num_threads(ctx.threads.back());
+    ctx.report(
+        "sph",
+        "step throughput (targets: 3000-particle pool >= 1000 steps/s; >= 1.5 M particle-steps/s per core at 300 000)",
+        t);
+  }
+  // --- grid neighbour search against all pairs, same physics, same state
+  {
+    Table t({"particles", "grid step ms", "all-pairs step ms", "speed-up", "max |d rho|/rho0", "max |d a|/max|a|"});
+    for (std::size_t n : {1000ul, 3000ul}) {
+      SphSystem s(pool_params(n));
+      for (int k = 0; k < 20; ++k) s.step();
+      const std::size_t m = s.count();
+      std::vector<float> a1(m), b1(m), c1(m), r1(m), a2(m), b2(m), c2(m), r2(m);
+      const double tg = median_seconds(ctx.quick ? 3 : 7, [&] { s.grid_accelerations(a1, b1, c1, r1); });
+      const double tb = median_seconds(ctx.quick ? 1 : 3, [&] { s.brute_force_accelerations(a2, b2, c2, r2); });
+      double amax = 0, da = 0, dr = 0;
+      for (std::size_t i = 0; i < m; ++i) amax = std::max(amax, double(std::hypot(a1[i], b1[i], c1[i])));
+      for (std::size_t i = 0; i < m; ++i) {
+        da = std::max(da, double(std::hypot(a1[i] - a2[i], b1[i] - b2[i], c1[i] - c2[i])));
+        dr = std::max(dr, double(std::fabs(r1[i] - r2[i])));
+      }
+      dr /= s.params().rest_density;
+      da /= amax;
+      t.add({std::to_string(m), num(tg * 1e3, 4), num(tb * 1e3, 4), num(tb / tg, 3), num(dr, 3), num(da, 3)});
+      ctx.expect(
+          dr < 1e-5 && da < 1e-3,
+          "sph grid and all-pairs neighbour search give the same densities (and forces to float summation order)");
+    }
+    ctx.report("sph", "uniform grid (counting sort, 27 cells) vs O(n^2) all pairs, density + forces of one step", t);
+  }
+  // --- run time against error: dam-break front and density error vs spacing and time step
+  {
+    std::ifstream f(sph_martin_moyce_path());
+    std::vector<std::pair<double, double>> pts;
+    std::string line;
+    while (std::getline(f, line)) {
+      if (line.empty() || line[0] == '#' || line.rfind("a_in", 0) == 0) continue;
+      std::stringstream ss(line);
+      std::string a, tt, z;
+      std::getline(ss, a, ',');
+      std::getline(ss, tt, ',');
+      std::getline(ss, z, ',');
+      pts.emplace_back(std::stod(tt), std::stod(z));
+    }
+    const double T_end = ctx.quick ? 2.5 : 5.0;
+    Table t({"particles across a", "spacing mm", "cfl", "steps", "wall s", "max density error %",
+             "mean front error % (T <= " + num(T_end, 2) + ")", "max front error %"});
+    const std::vector<int> nas = ctx.quick ? std::vector<int>{6, 8} : std::vector<int>{8, 12, 16};
+    const std::vector<float> cfls = ctx.quick ? std::vector<float>{0.15f} : std::vector<float>{0.075f, 0.15f, 0.3f};
+    for (int na : nas)
+      for (float cfl : cfls) {
+        const Measured m = dam(na, cfl, T_end);
+        double sum = 0, mx = 0;
+        int cnt = 0;
+        for (const auto& [T, Z] : pts) {
+          if (T > T_end) continue;
+          auto it = std::lower_bound(m.T.begin(), m.T.end(), T);
+          if (it == m.T.end() || it == m.T.begin()) continue;
+          const double zs = m.Z[static_cast<std::size_t>(it - m.T.begin())];
+          const double e = std::fabs(zs - Z) / Z;
+          sum += e;
+          mx = std::max(mx, e);
+          ++cnt;
+        }
+        t.add({std::to_string(na), num(57.15 / na, 3), num(cfl, 3), std::to_string(m.steps), num(m.wall, 3),
+               num(100 * m.max_comp, 3), num(100 * sum / std::max(cnt, 1), 3), num(100 * mx, 3)});
+      }
+    ctx.report("sph", "run time against error: Martin & Moyce dam break (both series)", t);
+  }
+}
+
+}  // namespace huygens::bench
