@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "huygens/command.hpp"
 #include "huygens/scene.hpp"
 #include "huygens/stats.hpp"
 
@@ -62,6 +63,17 @@ class Solver {
   virtual std::span<const float> height() = 0;
   virtual std::size_t height_rows() const = 0;
   virtual std::size_t height_cols() const = 0;
+  /// Time derivative of height() (unit: m/s), same shape, for the renderer's cubic time
+  /// interpolation; empty when the solver has none (the default).
+  virtual std::span<const float> height_rate() { return {}; }
+  /// Applies a UI command (drop, ship target, parameter, feature) between steps, never inside
+  /// step(); returns false when the solver does not support it (the default: none).
+  virtual bool apply(const Command&) { return false; }
+  /// Displayed frames per full step D (unit: 1); 1 when the solver does not interpolate.
+  virtual int display_per_step() const { return 1; }
+  /// The fields of displayed frame j of D of the last full step (time (steps() - 1 + j/D) dt for
+  /// j >= 1, interpolated; j = 0 is outputs()). May allocate: not called inside a step.
+  virtual std::vector<OutputField> display_outputs(int j) { return j == 0 ? outputs() : std::vector<OutputField>{}; }
 };
 
 /// Builds the solver the scene names. Throws SceneError (JSON path) for a bad scene.

@@ -1,0 +1,387 @@
+// The scene pipeline on the Huygens solver (issue 4): determinism across thread counts,
+// proof that absent stages cost nothing, and failure containment (a non-finite value is
+// reported with the stage that produced it; dumps up to the last good step stay valid).
+#include <gtest/gtest.h>
+#include <omp.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "huygens/fft.hpp"
+#include "huygens/finite.hpp"
+#include "huygens/huygens_solver.hpp"
+#include "huygens/npy.hpp"
+#include "huygens/runner.hpp"
+#include "huygens/scene.hpp"
+#include "huygens/solver.hpp"
+
+using namespace huygens;
+using nlohmann::json;
+
+namespace {
+
+/// A Huygens scene: n x n grid, 10 m side, margin n/8, a Gaussian hump, optional drops.
+std::string scene_text(int n, bool cutoff, bool initial, bool drops, double dt = 0.02) {
+  json s = {{"solver", "huygens"},
+            {"grid", {{"n", n}, {"length_m", 10.0}, {"margin", n / 8}, {"cutoff", cutoff}}},
+            {"time", {{"dt", dt}}}};
+  if (initial)
+    s["initial"] =
+        json::array({{{"type", "gaussian"}, {"x_m", 4.0}, {"y_m", 5.5}, {"sigma_m", 0.15}, {"amplitude_m", 0.01}}});
+  if (drops)
+    s["drops"] = json::array({{{"t", 0.1}, {"x_m", 6.0}, {"y_m", 4.0}, {"radius_m", 0.1}, {"depth_m", 0.005}}});
+  return s.dump();
+}
+
+std::uint64_t fnv1a(std::span<const float> v, std::uint64_t h = 1469598103934665603ull) {
+  const auto* b = reinterpret_cast<const unsigned char*>(v.data());
+  for (std::size_t i = 0; i < v.size_bytes(); ++i) h = (h ^ b[i]) * 1099511628211ull;
+  return h;
+}
+
+struct ThreadScope {
+  explicit ThreadScope(int t) {
+    fft_set_threads(t);
+    omp_set_num_threads(t);
+  }
+  ~ThreadScope() {
+    fft_set_threads(2);
+    omp_set_num_threads(2);
+  }
+};
+
+struct RunResult {
+  std::uint64_t hash = 0;
+  std::vector<float> eta, etadot;
+};
+
+RunResult run_steps(const std::string& text, int threads, bool measure, int steps) {
+  ThreadScope scope(threads);
+  RunOptions o;
+  o.measure_plans = measure;
+  auto s = make_solver(parse_scene_text(text), o);
+  for (int i = 0; i < steps; ++i) s->step();
+  RunResult r;
+  r.eta.assign(s->height().begin(), s->height().end());
+  r.etadot.assign(s->height_rate().begin(), s->height_rate().end());
+  r.hash = fnv1a(r.etadot, fnv1a(r.eta));
+  return r;
+}
+
+const StageStat* stage(const StageStats& st, const std::string& name) {
+  const int i = st.find(name);
+  return i < 0 ? nullptr : &st[i];
+}
+
+std::uint64_t total_transforms(const StageStats& st) {
+  std::uint64_t t = 0;
+  for (const auto& s : st.all()) t += s.transforms;
+  return t;
+}
+
+}  // namespace
+
+// ---- 3. determinism ------------------------------------------------------------------------
+
+TEST(Pipeline, SameSceneSameHashWithOneAndTwoThreads) {
+  // FFTW_ESTIMATE picks its algorithm from the sizes alone, and every OpenMP loop of the step
+  // is element-wise with schedule(static): the result must not depend on the thread count.
+  // 500 steps on a 128 grid (FFTW's threaded transforms differ between 1 and 2 threads; the
+  // propagator's OpenMP loops start at n = 256), then 60 steps on a 256 grid, where both do.
+  for (const auto [n, steps] : {std::pair{128, 500}, std::pair{256, 60}}) {
+    SCOPED_TRACE(::testing::Message() << "n = " << n << ", " << steps << " steps");
+    const std::string text = scene_text(n, true, true, true);
+    const RunResult one = run_steps(text, 1, false, steps);
+    const RunResult two = run_steps(text, 2, false, steps);
+    ASSERT_TRUE(all_finite(one.eta));
+    double peak = 0;
+    for (float x : one.eta) peak = std::max(peak, std::abs(static_cast<double>(x)));
+    ASSERT_GT(peak, 1e-5) << "the scene must still have waves for the hash to mean anything";
+    EXPECT_EQ(one.hash, two.hash) << "bitwise determinism across thread counts with FFTW_ESTIMATE plans";
+  }
+}
+
+TEST(Pipeline, MeasuredPlansAgreeAcrossThreadsWithinRounding) {
+  // FFTW_MEASURE times candidate algorithms and may pick different ones for 1 and 2 threads
+  // (or between runs): sums are then rounded in another order. Each transform's relative
+  // error is ~eps log2(N) (eps = 6e-8, N = 256: ~5e-7); 500 steps of 3 transforms add such
+  // independent errors as a random walk, sqrt(1500) * 5e-7 = 2e-5 of the field's scale
+  // (fewer steps and a smaller N below make the estimate smaller still).
+  // Tolerance: 1e-4 of the peak height (5x that estimate); a wrong result is O(1).
+  // 200 steps on a 128 grid here (planning with FFTW_MEASURE costs seconds).
+  const std::string text = scene_text(128, true, true, true);
+  const RunResult one = run_steps(text, 1, true, 200);
+  const RunResult two = run_steps(text, 2, true, 200);
+  double peak = 0, diff = 0;
+  for (std::size_t i = 0; i < one.eta.size(); ++i) {
+    peak = std::max(peak, std::abs(static_cast<double>(one.eta[i])));
+    diff = std::max(diff, std::abs(static_cast<double>(one.eta[i]) - two.eta[i]));
+  }
+  ASSERT_GT(peak, 1e-5);
+  EXPECT_LE(diff, 1e-4 * peak);
+  RecordProperty("max_rel_diff", std::to_string(diff / peak));
+  RecordProperty("bitwise", one.hash == two.hash ? "yes" : "no");
+}
+
+// ---- 4. skip proof -------------------------------------------------------------------------
+
+TEST(Pipeline, AbsentStagesRunNothingAndTransformsMatchTheFeatures) {
+  struct Case {
+    bool cutoff, drops;
+    int transforms_per_step;
+  };
+  const int steps = 20;
+  for (const Case c : {Case{true, false, 3}, Case{true, true, 3}, Case{false, false, 1}, Case{false, true, 1}}) {
+    SCOPED_TRACE(::testing::Message() << "cutoff " << c.cutoff << ", drops " << c.drops);
+    RunOptions o;
+    o.measure_plans = false;
+    auto s = make_solver(parse_scene_text(scene_text(64, c.cutoff, true, c.drops)), o);
+    for (int i = 0; i < steps; ++i) s->step();
+    const StageStats& st = s->stats();
+    // features this build's scenes can name but these do not: no stage, or zero calls and bytes
+    for (const char* absent : {"ships", "ship", "wind", "stokes"}) {
+      const StageStat* a = stage(st, absent);
+      if (a) {
+        EXPECT_EQ(a->calls, 0u) << absent;
+        EXPECT_EQ(a->bytes, 0u) << absent;
+        EXPECT_EQ(a->transforms, 0u) << absent;
+      }
+    }
+    // the absorber: without the cutoff there is no cutoff stage and no spatial round trip
+    const StageStat* cut = stage(st, "cutoff");
+    const StageStat* spec = stage(st, "spectrum");
+    if (c.cutoff) {
+      ASSERT_NE(cut, nullptr);
+      EXPECT_EQ(cut->calls, static_cast<std::uint64_t>(steps));
+    } else {
+      if (cut) {
+        EXPECT_EQ(cut->calls, 0u);
+        EXPECT_EQ(cut->bytes, 0u);
+      }
+      if (spec) {
+        EXPECT_EQ(spec->calls, 0u);
+        EXPECT_EQ(spec->transforms, 0u);
+      }
+    }
+    // drops run only in the step a scene drop falls into (analytic spectrum: no transform)
+    if (const StageStat* d = stage(st, "drops")) {
+      EXPECT_EQ(d->calls, c.drops ? 1u : 0u);
+      EXPECT_EQ(d->transforms, 0u);
+    } else {
+      EXPECT_FALSE(c.drops) << "a scene with drops needs the drops stage";
+    }
+    EXPECT_EQ(total_transforms(st), static_cast<std::uint64_t>(steps * c.transforms_per_step))
+        << "N x N transforms per step";
+  }
+}
+
+TEST(Pipeline, ShipsWindAndStokesCostOnlyWhenNamed) {
+  // the same 64-cell pool with each feature alone, and with all three; every feature not
+  // named has no stage (or zero calls, bytes and transforms), every named one runs each step
+  struct Case {
+    bool ships, wind, stokes;
+    int transforms_per_step;  // N x N transforms: 3 for the step with the cutoff, the height
+                              // transform replaced by Stokes' 3 (eta1, eta1_dot, chi) when on
+  };
+  const int steps = 12;
+  for (const Case c : {Case{false, false, false, 3}, Case{true, false, false, 3}, Case{false, true, false, 3},
+                       Case{false, false, true, 5}, Case{true, true, true, 5}}) {
+    SCOPED_TRACE(::testing::Message() << "ships " << c.ships << ", wind " << c.wind << ", stokes " << c.stokes);
+    json sc = json::parse(scene_text(64, true, true, false));
+    if (c.ships)
+      sc["ships"] = json::array({{{"length_m", 1.0},
+                                  {"beam_m", 0.3},
+                                  {"draft_m", 0.05},
+                                  {"path", json::array({{{"t", 0.0}, {"x_m", 3.0}, {"y_m", 5.0}},
+                                                        {{"t", 10.0}, {"x_m", 7.0}, {"y_m", 5.0}}})}}});
+    if (c.wind) sc["wind"] = {{"speed_mps", 5.0}, {"direction_deg", 30.0}, {"seed", 1}};
+    sc["stokes"] = c.stokes;
+    RunOptions o;
+    o.measure_plans = false;
+    std::unique_ptr<Solver> s;
+    ASSERT_NO_THROW(s = make_solver(parse_scene_text(sc.dump()), o));
+    for (int i = 0; i < steps; ++i) s->step();
+    const StageStats& st = s->stats();
+    auto check = [&](const char* name, bool present) {
+      const StageStat* a = stage(st, name);
+      if (present) {
+        ASSERT_NE(a, nullptr) << name;
+        EXPECT_EQ(a->calls, static_cast<std::uint64_t>(steps)) << name;
+      } else if (a) {
+        EXPECT_EQ(a->calls, 0u) << name;
+        EXPECT_EQ(a->bytes, 0u) << name;
+        EXPECT_EQ(a->transforms, 0u) << name;
+      }
+    };
+    check("ships", c.ships);
+    check("wind", c.wind);
+    check("height_stokes", c.stokes);
+    if (!c.stokes && !c.wind) check("height_wind", false);
+    EXPECT_EQ(total_transforms(st), static_cast<std::uint64_t>(steps * c.transforms_per_step))
+        << "N x N transforms per step";
+    if (auto* h = dynamic_cast<HuygensSolver*>(s.get())) {
+      EXPECT_EQ(h->transforms_per_step(), c.transforms_per_step);
+    }
+  }
+}
+
+// ---- 5. NaN containment --------------------------------------------------------------------
+
+namespace {
+
+/// Test hook (not reachable from a scene): the Huygens step, stage by stage through the
+/// propagator's public stage API, with a NaN put into the INPUT of the named stage at one
+/// step, so that the named stage is the first whose output is non-finite:
+///   "propagate": the spectrum it reads (last written, and checked, by the previous step);
+///   "spectrum":  the spatial field it reads (written, and checked, by cutoff).
+/// Per-stage checks run every step (check_every = 1) so the stage's own check fires.
+class FaultyHuygens : public Solver {
+ public:
+  FaultyHuygens(HuygensScene scene, std::string stage, std::int64_t at)
+      : inner_(with_checks(std::move(scene))), stage_(std::move(stage)), at_(at) {}
+
+  void step() override {
+    auto& p = inner_.propagator();
+    const bool now = p.steps() + 1 == at_;
+    if (now && stage_ == "propagate") p.spectrum_data()[17] = std::numeric_limits<float>::quiet_NaN();
+    p.propagate();
+    p.cutoff();
+    if (now && stage_ == "spectrum") p.field()[p.n() * 40 + 40] = std::numeric_limits<float>::infinity();
+    p.spectrum();
+    p.height();
+    p.end_step();
+  }
+  double time() const override { return inner_.time(); }
+  std::int64_t steps() const override { return inner_.steps(); }
+  std::vector<OutputField> outputs() override { return inner_.outputs(); }
+  json meta() const override { return inner_.meta(); }
+  const StageStats& stats() const override { return inner_.stats(); }
+  std::span<const float> height() override { return inner_.height(); }
+  std::size_t height_rows() const override { return inner_.height_rows(); }
+  std::size_t height_cols() const override { return inner_.height_cols(); }
+  std::span<const float> height_rate() override { return inner_.height_rate(); }
+
+ private:
+  static HuygensScene with_checks(HuygensScene s) {
+    s.params.check_every = 1;
+    return s;
+  }
+  HuygensSolver inner_;
+  std::string stage_;
+  std::int64_t at_;
+};
+
+HuygensScene small_scene() {
+  RunOptions o;
+  o.measure_plans = false;
+  return parse_huygens_scene(parse_scene_text(scene_text(64, true, true, false)), o);
+}
+
+/// The dump loop of `huygens run --dump DIR` (cli/huygens.cpp): meta.json rewritten
+/// atomically after every dump, "stopped" added on a NonFiniteError.
+void run_with_dumps(Solver& s, int steps, const std::string& dir) {
+  std::filesystem::create_directories(dir);
+  json meta = s.meta();
+  meta["dumps"] = json::array();
+  meta["complete"] = false;
+  auto dump = [&] {
+    json entry = {{"index", meta["dumps"].size()}, {"step", s.steps()}, {"time_s", s.time()}, {"files", json::array()}};
+    for (const auto& f : s.outputs()) {
+      char name[64];
+      std::snprintf(name, sizeof name, "%s_%06lld.npy", f.name.c_str(), static_cast<long long>(s.steps()));
+      write_npy(dir + "/" + name, f.data, f.shape);
+      entry["files"].push_back(name);
+    }
+    meta["dumps"].push_back(entry);
+    write_file_atomic(dir + "/meta.json", meta.dump(2));
+  };
+  try {
+    dump();
+    for (int i = 0; i < steps; ++i) {
+      s.step();
+      dump();
+    }
+    meta["complete"] = true;
+  } catch (const NonFiniteError& e) {
+    meta["stopped"] = {{"stage", e.stage()}, {"step", e.step()}, {"reason", e.what()}};
+  }
+  write_file_atomic(dir + "/meta.json", meta.dump(2));
+}
+
+}  // namespace
+
+TEST(Pipeline, NonFiniteValueIsNamedByItsStage) {
+  for (const char* st : {"propagate", "spectrum"}) {
+    for (std::int64_t at : {1, 5, 16, 17}) {
+      SCOPED_TRACE(::testing::Message() << st << " at step " << at);
+      FaultyHuygens s(small_scene(), st, at);
+      for (std::int64_t k = 1; k < at; ++k) ASSERT_NO_THROW(s.step());
+      try {
+        s.step();
+        ADD_FAILURE() << "no NonFiniteError";
+      } catch (const NonFiniteError& e) {
+        EXPECT_EQ(e.stage(), st);
+        EXPECT_EQ(e.step(), at);
+        EXPECT_NE(std::string(e.what()).find(st), std::string::npos);
+      }
+    }
+  }
+}
+
+TEST(Pipeline, DumpsStayValidUpToTheLastGoodStep) {
+  const std::int64_t at = 7;
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("huygens_nan_" + std::to_string(::getpid()))).string();
+  std::filesystem::remove_all(dir);
+  FaultyHuygens faulty(small_scene(), "spectrum", at);
+  run_with_dumps(faulty, 20, dir);
+
+  // the same scene without the fault gives the reference heights of the good steps
+  FaultyHuygens clean(small_scene(), "none", 0);
+  std::ifstream f(dir + "/meta.json");
+  const json meta = json::parse(f);
+  EXPECT_EQ(meta["complete"], false);
+  EXPECT_EQ(meta["stopped"]["stage"], "spectrum");
+  EXPECT_EQ(meta["stopped"]["step"], at);
+  ASSERT_EQ(meta["dumps"].size(), static_cast<std::size_t>(at)) << "steps 0 .. at-1";
+  for (std::size_t i = 0; i < meta["dumps"].size(); ++i) {
+    const json& d = meta["dumps"][i];
+    EXPECT_EQ(d["step"], static_cast<std::int64_t>(i));
+    const NpyArray a = read_npy(dir + "/" + d["files"][0].get<std::string>());
+    EXPECT_TRUE(all_finite(a.data));
+    ASSERT_EQ(a.data.size(), clean.height().size());
+    EXPECT_EQ(0, std::memcmp(a.data.data(), clean.height().data(), a.data.size() * sizeof(float)))
+        << "dump of step " << i << " differs from the fault-free run";
+    clean.step();
+  }
+  char bad[64];
+  std::snprintf(bad, sizeof bad, "/eta_%06lld.npy", static_cast<long long>(at));
+  EXPECT_FALSE(std::filesystem::exists(dir + bad)) << "nothing of the failed step is written";
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Pipeline, RunnerReportsTheStageAndKeepsTheLastGoodFrame) {
+  RunnerParams p;
+  p.realtime = false;
+  Runner r(std::make_unique<FaultyHuygens>(small_scene(), "propagate", 9), p);
+  r.start();
+  while (!r.finished()) std::this_thread::yield();
+  ASSERT_TRUE(r.failed());
+  EXPECT_EQ(r.error().stage, "propagate");
+  EXPECT_EQ(r.error().step, 9);
+  const FramePair f = r.frames();
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f.newest->info.step, 8);
+  EXPECT_TRUE(all_finite(f.newest->eta.span()));
+  r.stop();
+}
