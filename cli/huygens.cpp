@@ -2,7 +2,8 @@
 //   huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--stats-json FILE] [--fast-plans]
 //   huygens validate [CASE...] [--list]
 // Exit codes: 0 success, 1 a validation case failed or an I/O error, 2 bad scene or usage,
-// 3 the run stopped on a non-finite value (the stage is named; earlier dumps stay valid).
+// 3 the run stopped on a non-finite value (the stage is named; earlier dumps stay valid) or, in
+//   the LBM solver, on a cell running dry (LbmDryError names the step and cell).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "huygens/lbm_shallow.hpp"
 #include "huygens/npy.hpp"
 #include "huygens/report.hpp"
 #include "huygens/scene.hpp"
@@ -30,14 +32,19 @@ const char* kUsage =
     "\n"
     "run       runs SCENE (a JSON scene file) without graphics for N full steps (default 100),\n"
     "          prints the per-stage timing table, and with --dump writes DIR/<field>_NNNNNN.npy\n"
-    "          (float32, C order, metres) every K steps (default 1) plus DIR/meta.json.\n"
+    "          (float32, C order, metres) every K steps (default 1) plus DIR/meta.json. With\n"
+    "          time.display_per_step = D > 1 it also writes the D - 1 displayed frames\n"
+    "          interpolated inside the step before each dumped step as <field>_NNNNNN_J.npy\n"
+    "          (NNNNNN = the step they follow, J = 1..D-1, time (NNNNNN + J/D) dt); meta.json\n"
+    "          marks them \"interpolated\": true with \"s\": J/D.\n"
     "          --stats-json FILE writes the stage table as JSON. --fast-plans plans FFTs with\n"
     "          FFTW_ESTIMATE instead of FFTW_MEASURE (quicker start, slower steps).\n"
     "validate  runs the analytic validation cases (all, or the named ones) and prints\n"
     "          case, quantity, measured, expected, error, tolerance, pass/fail.\n"
     "          --list prints the case names.\n"
     "\n"
-    "exit codes: 0 ok; 1 a case failed or I/O error; 2 bad scene or usage; 3 non-finite value.\n";
+    "exit codes: 0 ok; 1 a case failed or I/O error; 2 bad scene or usage; 3 non-finite value\n"
+    "            (or an LBM cell ran dry).\n";
 
 [[noreturn]] void usage_error(const std::string& msg) {
   std::fprintf(stderr, "huygens: %s\n\n%s", msg.c_str(), kUsage);
@@ -108,15 +115,33 @@ int cmd_run(int argc, char** argv) {
     meta["dumps"] = json::array();
     meta["complete"] = false;
   }
-  auto dump = [&]() {
-    const long long index = static_cast<long long>(meta["dumps"].size());
-    json entry = {{"index", index}, {"step", solver->steps()}, {"time_s", solver->time()}, {"files", json::array()}};
-    for (const auto& f : solver->outputs()) {
-      const std::string name = fmt("%s_%06lld.npy", f.name.c_str(), static_cast<long long>(solver->steps()));
+  const int per_step = solver->display_per_step();
+  auto write_entry = [&](json entry, const std::vector<OutputField>& fields, const std::string& suffix) {
+    entry["files"] = json::array();
+    for (const auto& f : fields) {
+      const std::string name = fmt("%s_%06lld%s.npy", f.name.c_str(), static_cast<long long>(entry["step"].get<long long>()),
+                                   suffix.c_str());
       write_npy(dump_dir + "/" + name, f.data, f.shape);
       entry["files"].push_back(name);
     }
+    entry["index"] = static_cast<long long>(meta["dumps"].size());
     meta["dumps"].push_back(entry);
+  };
+  auto dump = [&]() {
+    const long long s = solver->steps();
+    // displayed frames interpolated inside the last step (s - 1, s): written before the full step
+    if (per_step > 1 && s >= 1) {
+      const double dt = meta.value("dt", 0.0);
+      for (int j = 1; j < per_step; ++j) {
+        const double sj = static_cast<double>(j) / per_step;
+        json entry = {{"step", s - 1}, {"time_s", (static_cast<double>(s - 1) + sj) * dt}, {"interpolated", true},
+                      {"s", sj}, {"display_frame", (s - 1) * per_step + j}};
+        write_entry(entry, solver->display_outputs(j), fmt("_%d", j));
+      }
+    }
+    json entry = {{"step", s}, {"time_s", solver->time()}, {"interpolated", false}, {"s", 0.0},
+                  {"display_frame", s * per_step}};
+    write_entry(entry, solver->outputs(), "");
     write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
   };
 
@@ -135,6 +160,15 @@ int cmd_run(int argc, char** argv) {
                  dump_dir.empty() ? "(no dump directory)" : dump_dir.c_str());
     if (!dump_dir.empty()) {
       meta["stopped"] = {{"stage", e.stage()}, {"step", e.step()}, {"reason", e.what()}};
+      write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
+    }
+    rc = 3;
+  } catch (const LbmDryError& e) {
+    // not a non-finite value but the same kind of stop: a named step and cell, earlier dumps valid
+    std::fprintf(stderr, "huygens: run stopped: a cell ran dry: %s; dumps up to the last good step are in %s\n",
+                 e.what(), dump_dir.empty() ? "(no dump directory)" : dump_dir.c_str());
+    if (!dump_dir.empty()) {
+      meta["stopped"] = {{"stage", "dry_cell"}, {"step", solver->steps()}, {"reason", e.what()}};
       write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
     }
     rc = 3;

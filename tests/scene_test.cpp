@@ -139,11 +139,19 @@ TEST(HuygensScene, OutOfRangeValues) {
             "$.initial[0].type");
 }
 
-TEST(HuygensScene, NotYetSupportedFeaturesAreRefusedAtTheirPath) {
+TEST(HuygensScene, Issue3FeatureErrorsNameTheirPath) {
+  // stokes, ships, wind and render are parsed (issue 3); bad values name their JSON path
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
-      "time": {"dt": 0.1}, "stokes": true})"), "$.stokes");
-  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 1}])")), "$.ships");
-  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "wind": {"speed_mps": 5})")), "$.wind");
+      "time": {"dt": 0.1}, "stokes": "yes"})"), "$.stokes");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
+      "time": {"dt": 0.1}, "stokes": true})"), "<no error>");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 1}])")), "$.ships[0].beam_m");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": {"length_m": 1})")), "$.ships");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "wind": {"speed_mps": 5})")), "$.wind.direction_deg");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "render": 3)")), "$.render");
+  // a ship moving more than a quarter of its patch per step is refused before the run
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 0.1, "beam_m": 0.03, "draft_m": 0.01,
+      "path": [{"t": 0, "x_m": 0.5, "y_m": 1}, {"t": 0.1, "x_m": 1.9, "y_m": 1}]}])")), "$.ships");
 }
 
 // The real program: a bad scene file gives exit code 2 and the JSON path on stderr.

@@ -46,32 +46,37 @@ HuygensPropagator::HuygensPropagator(const HuygensParams& p)
   const std::size_t vv = static_cast<std::size_t>(visible_size()) * visible_size();
   z_ = AlignedBuffer<cfloat>(nn);
   s_ = AlignedBuffer<cfloat>(nn);
-  h_ = AlignedBuffer<cfloat>(nn);
+  const bool own_height = !p.external_height;
+  if (own_height) h_ = AlignedBuffer<cfloat>(nn);
   // per-mode tables depend on |k_x|, |k_y| only: one quadrant of (N/2+1)^2 values
   const std::size_t qq = static_cast<std::size_t>(p.n / 2 + 1) * (p.n / 2 + 1);
   rot_a_ = AlignedBuffer<float>(qq);
   rot_b_ = AlignedBuffer<float>(qq);
   if (p.rotation == Rotation::lifting) rot_c_ = AlignedBuffer<float>(qq);
-  alpha_ = AlignedBuffer<float>(qq);
-  beta_ = AlignedBuffer<float>(qq);
+  if (own_height) {
+    alpha_ = AlignedBuffer<float>(qq);
+    beta_ = AlignedBuffer<float>(qq);
+  }
   cut_ = AlignedBuffer<float>(static_cast<std::size_t>(2 * p.n));
   src_x_ = AlignedBuffer<cfloat>(static_cast<std::size_t>(p.n));
   src_y_ = AlignedBuffer<cfloat>(static_cast<std::size_t>(p.n));
-  eta_ = AlignedBuffer<float>(vv);
-  etadot_ = AlignedBuffer<float>(vv);
+  if (own_height) {
+    eta_ = AlignedBuffer<float>(vv);
+    etadot_ = AlignedBuffer<float>(vv);
+  }
   if (p.runtime_sources) ensure_source_tables();
   build_tables();
   if (spatial_) inv_prop_ = std::make_unique<Fft2D>(p.n, p.n, z_.data(), z_.data(), Fft2D::backward, p.effort);
   // the forward plan is part of the step only with the spatial round trip; otherwise it is
   // made on demand by the construction-time sources that need it (plane waves, set_field)
   if (spatial_) fwd_ = std::make_unique<Fft2D>(p.n, p.n, z_.data(), s_.data(), Fft2D::forward, p.effort);
-  inv_height_ = std::make_unique<Fft2D>(p.n, p.n, h_.data(), h_.data(), Fft2D::backward, p.effort);
+  if (own_height) inv_height_ = std::make_unique<Fft2D>(p.n, p.n, h_.data(), h_.data(), Fft2D::backward, p.effort);
 
   const std::uint64_t field = nn * sizeof(cfloat), table = qq * sizeof(float);
   st_propagate_ = stats_.add("propagate", 2 * field + (p.rotation == Rotation::lifting ? 3 : 2) * table);
   if (p.absorber != Absorber::off) st_cutoff_ = stats_.add("cutoff", 2 * p.n * sizeof(float));
   if (spatial_) st_spectrum_ = stats_.add("spectrum", 0);
-  st_height_ = stats_.add("height", field + 2 * table + 2 * vv * sizeof(float));
+  if (own_height) st_height_ = stats_.add("height", field + 2 * table + 2 * vv * sizeof(float));
 }
 
 HuygensPropagator::~HuygensPropagator() = default;
@@ -114,7 +119,9 @@ void HuygensPropagator::build_tables() {
         rot_c_[i] = static_cast<float>(sign * rot_scale);
       }
       // height packing: P = i (alpha Z^(k) + beta conj Z^(-k)), 1/N^2 folded in
-      if (k > 0 && w > 0) {
+      if (alpha_.size() == 0) {
+        // external height: no packing tables
+      } else if (k > 0 && w > 0) {
         const double kow = k / w;
         alpha_[i] = static_cast<float>(0.5 * (kow + k) * inv_nn);
         beta_[i] = static_cast<float>(0.5 * (k - kow) * inv_nn);
@@ -223,14 +230,19 @@ void HuygensPropagator::add_plane_wave(double wavelength_m, double amplitude_m, 
   const double kx = k0 * std::cos(th), ky = k0 * std::sin(th);
   const double a = omega(p_.water, k0) / k0 * amplitude_m;  // Z = -i a e^{i k.x}
   const double d = dx();
+  // scratch for the plane wave: the packed-height buffer, or a temporary one without it
+  // (construction time only, never inside a step)
+  AlignedBuffer<cfloat> tmp;
+  if (h_.size() == 0) tmp = AlignedBuffer<cfloat>(z_.size());
+  cfloat* hb = h_.size() ? h_.data() : tmp.data();
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
       const double ph = kx * c * d + ky * r * d;
-      h_[static_cast<std::size_t>(r) * n + c] =
+      hb[static_cast<std::size_t>(r) * n + c] =
           cfloat(static_cast<float>(a * std::sin(ph)), static_cast<float>(-a * std::cos(ph)));
     }
   if (!fwd_) fwd_ = std::make_unique<Fft2D>(n, n, z_.data(), s_.data(), Fft2D::forward, p_.effort);
-  fwd_->execute(h_.data(), z_.data());
+  fwd_->execute(hb, z_.data());
   for (std::size_t i = 0; i < s_.size(); ++i) s_[i] += z_[i];
 }
 
@@ -239,6 +251,7 @@ void HuygensPropagator::set_field(std::span<const cfloat> z) {
   for (std::size_t i = 0; i < z.size(); ++i) z_[i] = z[i];
   if (!fwd_) fwd_ = std::make_unique<Fft2D>(p_.n, p_.n, z_.data(), s_.data(), Fft2D::forward, p_.effort);
   fwd_->execute();
+  if (p_.external_height) return;
   const bool c = check_now_;
   check_now_ = false;
   height();
@@ -356,6 +369,7 @@ void HuygensPropagator::spectrum() {
 }
 
 void HuygensPropagator::height() {
+  if (p_.external_height) throw std::logic_error("HuygensPropagator::height: external_height is set");
   bool finite = true;
   {
     StageTimer timer(stats_[st_height_]);
@@ -451,7 +465,7 @@ void HuygensPropagator::raw_transforms() {
     inv_prop_->execute();
     fwd_->execute();
   }
-  inv_height_->execute();
+  if (inv_height_) inv_height_->execute();
 }
 
 double HuygensPropagator::energy() const {

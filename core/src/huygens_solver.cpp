@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <variant>
 
 #include "huygens/finite.hpp"
+#include "huygens/time_interp.hpp"
 #include "huygens/validation.hpp"
 
 namespace huygens {
@@ -13,17 +16,6 @@ namespace huygens {
 namespace {
 
 constexpr double kBig = 1e6;
-
-void refuse_unsupported(const JsonIn& root) {
-  if (root.has("stokes") && root.boolean("stokes", false))
-    root.fail("stokes", "second-order Stokes height is not yet supported by this build (use false)");
-  if (root.has("ships")) {
-    if (!root.raw()["ships"].is_null() && !root.raw()["ships"].is_array()) root.fail("ships", "expected an array");
-    if (!root.array("ships").empty()) root.fail("ships", "ships are not yet supported by this build");
-  }
-  if (root.optional_object("wind")) root.fail("wind", "wind is not yet supported by this build");
-  if (root.optional_object("render")) root.fail("render", "render settings are not yet supported by this build");
-}
 
 }  // namespace
 
@@ -72,7 +64,17 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
   if (p.dt <= 0) time.fail("dt", "dt must be > 0");
   out.display_per_step = static_cast<int>(time.integer("display_per_step", 1, 1, 1000));
 
-  refuse_unsupported(root);
+  // issue 3 features: each one the scene does not name costs nothing
+  out.stokes = root.boolean("stokes", false);
+  if (root.has("ships") && !root.raw()["ships"].is_null() && !root.raw()["ships"].is_array())
+    root.fail("ships", "expected an array of ships");
+  out.ships = parse_ships(root);
+  if (auto w = root.optional_object("wind")) {
+    out.wind = parse_wind(*w);
+    out.has_wind = true;
+  }
+  // the visualizer reads `render` (caustics, blur, ...); the solver only checks it is an object
+  (void)root.optional_object("render");
 
   const double len = p.length_m;
   auto position = [&](const JsonIn& o, const char* key) { return o.number(key, 0.0, len); };
@@ -114,11 +116,55 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
                    [](const GaussianSource& a, const GaussianSource& b) { return a.t < b.t; });
   // source tables (2 N^2 floats) always: UI drops may arrive at any step and must not allocate
   p.runtime_sources = true;
+  // Stokes or wind: the StokesHeight stage makes the height; the propagator makes none
+  p.external_height = out.stokes || out.has_wind;
+  if (!out.ships.empty()) {
+    // ships add to the spatial field: force the FFT round trip even without the cutoff
+    p.spatial = true;
+    const double dx = p.length_m / p.n;
+    int patch = std::max(2, 2 * p.margin);
+    for (const Ship& sh : out.ships)
+      while (patch < p.n && 0.25 * patch * dx < 0.5 * std::max(sh.hull.length_m, sh.hull.beam_m) + 3.0 * sh.hull.blur())
+        patch += 2;
+    out.ship_patch = std::min(patch, p.n);
+    for (std::size_t i = 0; i < out.ships.size(); ++i) {
+      const HullParams& h = out.ships[i].hull;
+      if (0.25 * out.ship_patch * dx < 0.5 * std::max(h.length_m, h.beam_m) + 3.0 * h.blur())
+        root.fail("ships",
+                  "ship " + std::to_string(i) + ": the hull (with its blur) does not fit a quarter of the grid");
+    }
+  }
   if (auto e = huygens_params_error(p); !e.empty()) root.fail_here(e);
+  if (!out.ships.empty()) {
+    // an unstable step (a ship moving more than a quarter of its patch per step) is refused here
+    try {
+      ShipWaves probe(p.water, p.n, p.length_m, out.ship_patch, out.ships, PlanEffort::estimate);
+      probe.check_step(p.dt);
+    } catch (const std::invalid_argument& e) {
+      root.fail("ships", e.what());
+    }
+  }
   return out;
 }
 
 HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(scene_.params) {
+  const auto& p = scene_.params;
+  const std::size_t vv = static_cast<std::size_t>(prop_.visible_size()) * prop_.visible_size();
+  if (!scene_.ships.empty()) {
+    ships_ = std::make_unique<ShipWaves>(p.water, p.n, p.length_m, scene_.ship_patch, scene_.ships, p.effort);
+    ships_->check_step(p.dt);
+  }
+  if (scene_.has_wind) wind_ = std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt);
+  if (scene_.stokes || wind_) {
+    stokes_ = std::make_unique<StokesHeight>(p.water, p.n, p.length_m, scene_.stokes, p.effort, p.margin);
+    eta_ = AlignedBuffer<float>(vv);
+    etadot_ = AlignedBuffer<float>(vv);
+  }
+  if (scene_.display_per_step > 1) {
+    eta0_ = AlignedBuffer<float>(vv);
+    etadot0_ = AlignedBuffer<float>(vv);
+    frame_ = AlignedBuffer<float>(vv);
+  }
   for (const auto& w : scene_.initial_plane_waves) prop_.add_plane_wave(w.wavelength_m, w.amplitude_m, w.direction_deg);
   for (const auto& g : scene_.initial_gaussians) prop_.add_gaussian(g.x_m, g.y_m, g.sigma_m, g.amplitude_m);
   // drops at t <= 0 are part of the initial state
@@ -128,14 +174,48 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
   }
   // the drops stage exists when the scene has drops or the UI sends one (registered here)
   st_drops_ = prop_.stats().add("drops", 2 * static_cast<std::uint64_t>(prop_.n()) * prop_.n() * sizeof(float));
-  prop_.height();
-  if (!all_finite(prop_.eta())) throw NonFiniteError("initial", 0);
+  if (ships_) st_ships_ = prop_.stats().add("ships", ships_->bytes());
+  if (wind_) st_wind_ = prop_.stats().add("wind", wind_->bytes());
+  if (stokes_) st_stokes_ = prop_.stats().add(scene_.stokes ? "height_stokes" : "height_wind", stokes_->bytes());
+  make_height(0);
+  if (!all_finite(eta_view())) throw NonFiniteError("initial", 0);
   prop_.stats().reset_counts();
 }
 
+void HuygensSolver::make_height(std::int64_t step) {
+  if (!stokes_) {
+    prop_.height();
+    return;
+  }
+  const int n = prop_.n();
+  bool ok = true;
+  {
+    StageTimer timer(prop_.stats()[st_stokes_]);
+    ok = stokes_->compute(prop_.spectrum_view().data(), 1.0f / (static_cast<float>(n) * static_cast<float>(n)),
+                          wind_ ? wind_->spectrum() : nullptr, eta_.data(), etadot_.data());
+    prop_.stats()[st_stokes_].transforms += static_cast<std::uint64_t>(stokes_->transforms_per_call());
+  }
+  if (!ok) throw NonFiniteError(prop_.stats()[st_stokes_].name, step);
+}
+
+int HuygensSolver::transforms_per_step() const {
+  return prop_.transforms_per_step() + (stokes_ ? stokes_->transforms_per_call() : 0);
+}
+
 void HuygensSolver::step() {
+  if (scene_.display_per_step > 1) {
+    // keep the previous full step for the displayed frames in between
+    const auto e = eta_view(), d = etadot_view();
+    std::memcpy(eta0_.data(), e.data(), e.size() * sizeof(float));
+    std::memcpy(etadot0_.data(), d.data(), d.size() * sizeof(float));
+  }
+  const double t0 = prop_.time(), dt = scene_.params.dt;
   prop_.propagate();
   prop_.cutoff();
+  if (ships_) {
+    StageTimer timer(prop_.stats()[st_ships_]);
+    ships_->add(prop_.field().data(), t0, dt);
+  }
   prop_.spectrum();
   if (next_drop_ < scene_.drops.size()) {
     // drops released in (t, t + dt] enter with the phase they have gained by t + dt
@@ -151,8 +231,23 @@ void HuygensSolver::step() {
       if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps() + 1);
     }
   }
-  prop_.height();
+  if (wind_) {
+    StageTimer timer(prop_.stats()[st_wind_]);
+    wind_->advance();
+  }
+  make_height(prop_.steps() + 1);
   prop_.end_step();
+}
+
+std::vector<OutputField> HuygensSolver::display_outputs(int j) {
+  const int d = scene_.display_per_step;
+  if (j == 0 || d <= 1) return outputs();
+  if (j < 0 || j >= d || prop_.steps() < 1) return {};
+  const auto e1 = eta_view(), d1 = etadot_view();
+  hermite_interpolate(eta0_.data(), etadot0_.data(), e1.data(), d1.data(), e1.size(), hermite_weights(j, d),
+                      scene_.params.dt, frame_.data());
+  const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
+  return {OutputField{"eta", {v, v}, frame_.span()}};
 }
 
 bool HuygensSolver::apply(const Command& c) {
@@ -164,13 +259,13 @@ bool HuygensSolver::apply(const Command& c) {
   StageTimer timer(prop_.stats()[st_drops_]);
   prop_.add_gaussian(d->x_m, d->y_m, d->radius_m, -static_cast<double>(d->depth_m));
   if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps());
-  prop_.height();
+  make_height(prop_.steps());
   return true;
 }
 
 std::vector<OutputField> HuygensSolver::outputs() {
   const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
-  return {OutputField{"eta", {v, v}, prop_.eta()}};
+  return {OutputField{"eta", {v, v}, eta_view()}};
 }
 
 nlohmann::json HuygensSolver::meta() const {
@@ -201,8 +296,23 @@ nlohmann::json HuygensSolver::meta() const {
         {"origin_m", {m * dx, m * dx}},
         {"note",
          "index ranges are half-open [start, end) into the full N x N grid; origin_m is (x, y) of cell (0, 0)"}}},
-      {"fields", {{"eta", "first-order elevation Re IFFT[i k/omega Z^] (m), rows = y, cols = x"}}},
-      {"transforms_per_step", prop_.transforms_per_step()},
+      {"fields",
+       {{"eta", scene_.stokes ? "elevation to second order (paper 004 eq. 3: Re IFFT[i k/omega Z^] + Re chi^2) (m), "
+                                "rows = y, cols = x"
+                              : "first-order elevation Re IFFT[i k/omega Z^] (m), rows = y, cols = x"}}},
+      {"stokes", scene_.stokes},
+      {"ships", static_cast<int>(scene_.ships.size())},
+      {"ship_patch", scene_.ships.empty() ? 0 : scene_.ship_patch},
+      {"wind", scene_.has_wind ? nlohmann::json{{"speed_mps", scene_.wind.speed_mps},
+                                                {"direction_deg", scene_.wind.direction_deg},
+                                                {"seed", scene_.wind.seed},
+                                                {"fetch_m", scene_.wind.fetch_m},
+                                                {"gamma", scene_.wind.gamma},
+                                                {"spectrum", "JONSWAP"}}
+                               : nlohmann::json(nullptr)},
+      {"transforms_per_step", transforms_per_step()},
+      {"transforms_per_displayed_frame",
+       static_cast<double>(transforms_per_step()) / static_cast<double>(scene_.display_per_step)},
   };
 }
 

@@ -1,6 +1,8 @@
 // Analytic validation of the Huygens propagator (issue 2; paper 004 section 3):
 // FFT round trip and Parseval, phase speed, Cauchy-Poisson ring, group velocity, energy
-// conservation and absorption by the margin. `huygens validate` prints these rows and
+// conservation and absorption by the margin; issue 3 (paper 004 eq. 2, eq. 3, wind, cubic time
+// interpolation): Kelvin wake, Froude trend, capillary threshold, ship step consistency, Stokes
+// profile, interpolation order. `huygens validate` prints these rows and
 // tests/validation_huygens_test.cpp asserts them.
 #include <algorithm>
 #include <cmath>
@@ -12,6 +14,8 @@
 
 #include "huygens/cauchy_poisson.hpp"
 #include "huygens/huygens_propagator.hpp"
+#include "huygens/huygens_solver.hpp"
+#include "huygens/kelvin.hpp"
 #include "huygens/report.hpp"
 #include "huygens/validation.hpp"
 
@@ -287,7 +291,271 @@ std::vector<ValidationRow> absorption_case(double cutoff_time_s) {
   return rows;
 }
 
+// ==== issue 3 ===================================================================================
+
+// Kelvin runs: a 1 m x 0.3 m x 0.05 m hull at Fr = U / sqrt(g L) on an n x n grid of
+// dx = min(lambda_t, L_hull) / cells (lambda_t = 2 pi U^2 / g), gravity only (surface tension 0:
+// the theory is the deep gravity-wave one), started from rest at full speed, measured by
+// kelvin.hpp (analytic signal; the outer Airy lobe's 0.6628 level on lateral profiles, line fit
+// = outer half-angle; median angle of the largest envelope = max-amplitude angle; phase slope
+// along the track = transverse wavelength) between 3 wavelengths and half the distance travelled.
+KelvinRunResult kelvin_run(double froude, int n, double cells) {
+  KelvinCase c;
+  c.water.surface_tension = 0.0;
+  c.speed_mps = froude * std::sqrt(c.water.gravity * c.hull.length_m);
+  const double lam = kelvin_transverse_wavelength(c.water, c.speed_mps);
+  c.n = n;
+  c.dx_m = std::min(lam, c.hull.length_m) / cells;
+  c.margin = n / 10;
+  c.dt = 0.05;
+  WakeOptions o;
+  // the default nearest distance is 3 transverse wavelengths; at Fr >= 1 that is beyond half the
+  // distance travelled (the steady part), so measure between a quarter and half of it
+  const double travelled = (c.n - 2 * c.margin) * c.dx_m - 4 * c.hull.length_m;
+  if (3 * lam > 0.25 * travelled) o.s_min_m = 0.25 * travelled;
+  return run_kelvin_case(c, o);
+}
+
+constexpr double kKelvinDeg = 19.471220634490691;  // arcsin(1/3)
+
+std::vector<ValidationRow> kelvin_rows(const std::string& name, int n, double cells, std::vector<double> froudes) {
+  std::vector<ValidationRow> rows;
+  for (double fr : froudes) {
+    const KelvinRunResult r = kelvin_run(fr, n, cells);
+    const double u = fr * std::sqrt(9.81);
+    const double lam = 2 * kPi * u * u / 9.81;
+    rows.push_back(check(name, fmt("Fr %.1f n=%d: outer envelope half-angle (deg), |error| deg", fr, n),
+                         r.wake.envelope_angle_deg, kKelvinDeg, std::abs(r.wake.envelope_angle_deg - kKelvinDeg), 0.5));
+    rows.push_back(check(name, fmt("Fr %.1f n=%d: transverse wavelength (m), rel. error vs 2 pi U^2/g", fr, n),
+                         r.wake.transverse_wavelength_m, lam, std::abs(r.wake.transverse_wavelength_m / lam - 1),
+                         0.02));
+  }
+  return rows;
+}
+
+std::vector<ValidationRow> kelvin_case() { return kelvin_rows("kelvin", 512, 10, {0.3, 0.4, 0.5}); }
+
+// Froude trend (Rabaud and Moisy 2013): for Fr >= 1 the angle of maximum amplitude falls as 1/Fr
+// (checked as Fr * angle against the Fr = 1 value, within 15 %), while the outer envelope stays
+// at 19.47 deg. At Fr 2 and 3 the transverse wavelength (25 m, 57 m) exceeds the 51 m grid that
+// resolves the 1 m hull, so the envelope cannot be measured there: those rows say so and FAIL.
+// At Fr >= 1 the profiles lie between a quarter and half of the distance travelled.
+std::vector<ValidationRow> froude_rows(int n, std::vector<double> froudes) {
+  std::vector<ValidationRow> rows;
+  double ref = 0;
+  for (double fr : froudes) {
+    const KelvinRunResult r = kelvin_run(fr, n, 10);
+    const double env = r.wake.envelope_angle_deg, amax = r.wake.max_amplitude_angle_deg;
+    const double lam = 2 * kPi * fr * fr;
+    // the envelope needs the grid to hold >= 8 transverse wavelengths: Fr 1 reads 19.87 deg on
+    // n = 512 (8.2 wavelengths) but 16.6 deg on n = 256 (4.1 wavelengths)
+    const bool measurable = 8 * lam <= n * 0.1;
+    rows.push_back(check("froude_trend",
+                         measurable ? fmt("Fr %.1f: outer envelope half-angle (deg), |error| deg", fr)
+                                    : fmt("Fr %.1f: outer envelope (deg) NOT MEASURABLE: lambda %.0f m vs %.0f m grid",
+                                          fr, lam, n * 0.1),
+                         env, kKelvinDeg, measurable ? std::abs(env - kKelvinDeg) : std::nan(""), 0.5));
+    if (fr < 1.0) {
+      rows.push_back(check("froude_trend", fmt("Fr %.1f: max-amplitude angle (deg), below the envelope", fr), amax,
+                           kKelvinDeg, amax < kKelvinDeg ? 0.0 : amax - kKelvinDeg, 0.0));
+    } else if (fr == 1.0) {
+      ref = amax;
+      rows.push_back(check("froude_trend", "Fr 1.0: max-amplitude angle (deg), below the envelope", amax, kKelvinDeg,
+                           amax < kKelvinDeg ? 0.0 : amax - kKelvinDeg, 0.0));
+    } else {
+      rows.push_back(check("froude_trend",
+                           fmt("Fr %.1f: Fr * max-amplitude angle (deg) vs Fr 1 value, rel. (1/Fr trend)", fr),
+                           fr * amax, ref, std::abs(fr * amax / ref - 1), 0.15));
+    }
+  }
+  return rows;
+}
+
+std::vector<ValidationRow> froude_case() { return froude_rows(512, {0.3, 0.5, 1.0, 2.0, 3.0}); }
+
+// Capillary-gravity threshold: a 1 cm x 1 cm x 1 mm source on a 1 mm grid (n = 512) brought to
+// speed with a 0.5 s linear ramp; far-field (> 3 cm from the source) max |eta| at 0.20 m/s
+// (below c_min = 0.231 m/s) over the same at 0.35 m/s. An abrupt start gives 0.092 (the start
+// transient radiates), so the ramp is part of the case.
+KelvinRunResult capillary_run(double speed, int n) {
+  KelvinCase c;
+  c.hull.length_m = 0.01;
+  c.hull.beam_m = 0.01;
+  c.hull.draft_m = 0.001;
+  c.speed_mps = speed;
+  c.n = n;
+  c.dx_m = 0.001;
+  c.margin = n / 10;
+  c.dt = 0.05;
+  c.ramp_s = 0.5;
+  c.far_radius_m = 0.03;
+  return run_kelvin_case(c);
+}
+
+std::vector<ValidationRow> capillary_rows(int n) {
+  const KelvinRunResult slow = capillary_run(0.20, n), fast = capillary_run(0.35, n);
+  const double ratio = slow.far_max_m / fast.far_max_m;
+  return {check("capillary",
+                fmt("n=%d: far max|eta| at 0.20 m/s / at 0.35 m/s (0.5 s ramp; %.3g / %.3g m)", n, slow.far_max_m,
+                    fast.far_max_m),
+                ratio, 0, ratio, 0.05)};
+}
+
+std::vector<ValidationRow> capillary_case() { return capillary_rows(512); }
+
+// Ship steps through the integrated solver (HuygensSolver): the default hull at 1.2 m/s on a
+// 32 m periodic grid; 8 steps of dt = 0.1 s against 16 of dt/2: relative L2 of the heights.
+// A stationary hull: the wave energy after 40 steps relative to the moving hull's (float
+// rounding only), and its spread over the run (bounded and constant).
+std::string ship_scene(double dt, double x1, double t1, bool stokes) {
+  return fmt(R"({"solver": "huygens", "grid": {"n": 256, "length_m": 32.0, "margin": 0, "cutoff": false},
+  "time": {"dt": %.17g}, "stokes": %s,
+  "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
+             "path": [{"t": 0, "x_m": 6.0, "y_m": 16.2}, {"t": %.17g, "x_m": %.17g, "y_m": 16.2}]}]})",
+             dt, stokes ? "true" : "false", t1, x1);
+}
+
+std::unique_ptr<HuygensSolver> solver_from(const std::string& text) {
+  RunOptions o;
+  o.measure_plans = false;
+  return std::make_unique<HuygensSolver>(parse_huygens_scene(parse_scene_text(text), o));
+}
+
+std::vector<ValidationRow> ship_steps_case() {
+  std::vector<ValidationRow> rows;
+  const double dt = 0.1;
+  auto a = solver_from(ship_scene(dt, 6.0 + 1.2 * 20, 20, false));
+  auto b = solver_from(ship_scene(dt / 2, 6.0 + 1.2 * 20, 20, false));
+  for (int s = 0; s < 8; ++s) {
+    a->step();
+    b->step();
+    b->step();
+  }
+  double d2 = 0, r2 = 0;
+  const auto ea = a->height(), eb = b->height();
+  for (std::size_t i = 0; i < ea.size(); ++i) {
+    d2 += double(ea[i] - eb[i]) * (ea[i] - eb[i]);
+    r2 += double(ea[i]) * ea[i];
+  }
+  rows.push_back(check("ship_steps", "8 steps of dt=0.1 s vs 16 of dt/2 (solver, 1.2 m/s): rel. L2 of eta",
+                       std::sqrt(d2 / r2), 0, std::sqrt(d2 / r2), 0.01));
+  // stationary: a path with one point; moving reference as above
+  auto still = solver_from(ship_scene(dt, 6.0, 20, false));
+  auto moving = solver_from(ship_scene(dt, 6.0 + 1.2 * 20, 20, false));
+  double emin = 1e300, emax = 0;
+  for (int s = 0; s < 40; ++s) {
+    still->step();
+    moving->step();
+    const double e = still->propagator().energy();
+    emin = std::min(emin, e), emax = std::max(emax, e);
+  }
+  const double em = moving->propagator().energy();
+  rows.push_back(
+      check("ship_steps", "stationary hull, 40 steps: max wave energy / moving hull's", emax / em, 0, emax / em, 1e-8));
+  rows.push_back(check("ship_steps", "stationary hull: (max - min) energy / moving hull's (constant)",
+                       (emax - emin) / em, 0, (emax - emin) / em, 1e-8));
+  return rows;
+}
+
+// Stokes through the solver: a plane wave k a = 0.1 (lambda = 1 m, on grid mode 8 of an 8 m
+// periodic grid), 30 steps of dt = 0.05 s. Crest a(1 + ka/2), trough a(1 - ka/2) and the second
+// harmonic k a^2 / 2 (the DFT of each row at 2 k0) within 2 %; first order symmetric.
+std::vector<ValidationRow> stokes_case() {
+  std::vector<ValidationRow> rows;
+  const double lam = 1.0, k = 2 * kPi / lam, ka = 0.1, a = ka / k;
+  for (bool stokes : {true, false}) {
+    auto s = solver_from(fmt(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 8.0, "margin": 0, "cutoff": false},
+      "time": {"dt": 0.05}, "stokes": %s,
+      "initial": [{"type": "plane_wave", "wavelength_m": 1.0, "amplitude_m": %.17g, "direction_deg": 0}]})",
+                             stokes ? "true" : "false", a));
+    for (int i = 0; i < 30; ++i) s->step();
+    const auto e = s->height();
+    const int n = 64;
+    double hi = -1e9, lo = 1e9, h2 = 0;
+    for (float v : e) hi = std::max(hi, double(v)), lo = std::min(lo, double(v));
+    for (int r = 0; r < n; ++r) {
+      std::complex<double> acc = 0;
+      for (int c = 0; c < n; ++c)
+        acc += double(e[static_cast<std::size_t>(r) * n + c]) * std::polar(1.0, -2 * kPi * 16 * c / n);
+      h2 += 2 * std::abs(acc) / n / n;
+    }
+    if (stokes) {
+      rows.push_back(check("stokes", "ka=0.1 (stokes on): crest height / a, rel. vs 1 + ka/2", hi / a, 1 + ka / 2,
+                           std::abs(hi / a / (1 + ka / 2) - 1), 0.02));
+      rows.push_back(check("stokes", "ka=0.1 (stokes on): trough depth / a, rel. vs 1 - ka/2", -lo / a, 1 - ka / 2,
+                           std::abs(-lo / a / (1 - ka / 2) - 1), 0.02));
+      rows.push_back(check("stokes", "ka=0.1 (stokes on): 2nd harmonic (m), rel. vs k a^2/2", h2, k * a * a / 2,
+                           std::abs(h2 / (k * a * a / 2) - 1), 0.02));
+    } else {
+      rows.push_back(check("stokes", "stokes off: |crest - trough| / a (symmetric)", std::abs(hi + lo) / a, 0,
+                           std::abs(hi + lo) / a, 1e-4));
+      rows.push_back(
+          check("stokes", "stokes off: 2nd harmonic / (k a^2/2)", h2 / (k * a * a / 2), 0, h2 / (k * a * a / 2), 1e-3));
+    }
+  }
+  return rows;
+}
+
+// Interpolation through the solver: a wind sea (JONSWAP, 5 m/s, seed 1, 30 m, n = 64, Stokes on).
+// Displayed frames j = 1, 2 of D = 3 after one full step of dt against a solver stepping dt/3;
+// RMS error over the sweep dt = 0.16, 0.08, 0.04, 0.02 s, least-squares slope of log error vs
+// log dt in [3.5, 4.5]; at the default dt = 3/60 s the RMS error is below 1 % of the RMS height.
+std::string wind_scene(double dt, int per_step) {
+  return fmt(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 30.0, "margin": 0, "cutoff": false},
+    "time": {"dt": %.17g, "display_per_step": %d}, "stokes": true,
+    "wind": {"speed_mps": 5.0, "direction_deg": 0.0, "seed": 1}})",
+             dt, per_step);
+}
+
+double interp_error(double dt, double& rms) {
+  auto a = solver_from(wind_scene(dt, 3));
+  auto b = solver_from(wind_scene(dt / 3, 1));
+  a->step();
+  double e2 = 0, h2 = 0;
+  std::size_t cnt = 0;
+  for (int j = 1; j <= 2; ++j) {
+    b->step();
+    const auto f = a->display_outputs(j);
+    const auto t = b->height();
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      e2 += double(f[0].data[i] - t[i]) * (f[0].data[i] - t[i]);
+      h2 += double(t[i]) * t[i];
+    }
+    cnt += t.size();
+  }
+  rms = std::sqrt(h2 / cnt);
+  return std::sqrt(e2 / cnt);
+}
+
+std::vector<ValidationRow> interpolation_case() {
+  std::vector<ValidationRow> rows;
+  std::vector<double> dts = {0.16, 0.08, 0.04, 0.02}, errs;
+  double rms = 0;
+  for (double dt : dts) errs.push_back(interp_error(dt, rms));
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < dts.size(); ++i) {
+    const double x = std::log(dts[i]), y = std::log(errs[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double m = double(dts.size());
+  const double slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+  rows.push_back(check("interpolation",
+                       fmt("wind sea: slope of log rms error vs log dt (dt 0.16..0.02 s; errors %.2g..%.2g m)",
+                           errs.front(), errs.back()),
+                       slope, 4.0, std::abs(slope - 4.0), 0.5));
+  const double e = interp_error(0.05, rms);
+  rows.push_back(
+      check("interpolation", "wind sea, dt=0.05 s (3 x 1/60): rms error / rms height", e / rms, 0, e / rms, 0.01));
+  return rows;
+}
+
 }  // namespace
+
+std::vector<ValidationRow> kelvin_validation_rows(int n, double cells) {
+  return kelvin_rows("kelvin", n, cells, {0.4});
+}
+std::vector<ValidationRow> capillary_validation_rows(int n) { return capillary_rows(n); }
+std::vector<ValidationRow> froude_validation_rows(int n) { return froude_rows(n, {1.0, 2.0, 3.0}); }
 
 std::vector<ValidationCase> huygens_validation_cases() {
   return {
@@ -302,6 +570,16 @@ std::vector<ValidationCase> huygens_validation_cases() {
        [] { return absorption_case(0.0); }},
       {"absorption_tau", "huygens", "the same with the cutoff applied as (h h)^(dt/tau), tau = 1 s (dt-independent)",
        [] { return absorption_case(1.0); }},
+      {"kelvin", "huygens", "Kelvin wake, Fr 0.3/0.4/0.5 (n=512): outer half-angle 19.47 deg, transverse 2 pi U^2/g",
+       kelvin_case},
+      {"froude_trend", "huygens", "Fr 0.3, 0.5, 1, 2, 3: envelope and max-amplitude angles; max angle ~ 1/Fr",
+       froude_case},
+      {"capillary", "huygens", "1 cm source below c_min (0.20 m/s) vs 0.35 m/s: far-field ratio < 5 %", capillary_case},
+      {"ship_steps", "huygens", "ship: one step of dt = two of dt/2 (solver); stationary hull makes no waves",
+       ship_steps_case},
+      {"stokes", "huygens", "plane wave ka = 0.1 through the solver: Stokes crest, trough, 2nd harmonic", stokes_case},
+      {"interpolation", "huygens", "wind sea: interpolated frames vs true steps, error ~ dt^4, < 1 % at dt 0.05 s",
+       interpolation_case},
   };
 }
 

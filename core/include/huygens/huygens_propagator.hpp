@@ -80,6 +80,10 @@ struct HuygensParams {
   /// when spatial sources (ships) are added. Without cutoff and spatial sources the step is the
   /// spectral rotation alone plus the height transform (1 transform per step instead of 3).
   bool spatial = false;
+  /// The caller makes the height from spectrum_view() (e.g. the StokesHeight stage): height(),
+  /// eta() and etadot() are unavailable, and the packed-height plan, tables, visible buffers and
+  /// "height" stage are not made (transforms_per_step() counts the propagation only).
+  bool external_height = false;
 };
 
 /// Human-readable reason why `p` cannot be used, or empty when it can.
@@ -148,8 +152,9 @@ class HuygensPropagator {
   const StageStats& stats() const { return stats_; }
   /// True when the step goes through the spatial domain (cutoff on or `spatial` set).
   bool spatial_round_trip() const { return spatial_; }
-  /// N x N transforms per full step: 3 with the spatial round trip, 1 without.
-  int transforms_per_step() const { return spatial_ ? 3 : 1; }
+  /// N x N transforms per full step: 3 with the spatial round trip, 1 without (one less each
+  /// with external_height).
+  int transforms_per_step() const { return (spatial_ ? 3 : 1) - (p_.external_height ? 1 : 0); }
 
   /// Wall time spent inside FFTW executions by the step's stages, summed (unit: ns).
   std::uint64_t fft_ns() const { return fft_ns_; }

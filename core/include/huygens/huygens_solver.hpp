@@ -2,14 +2,22 @@
 // The "solver": "huygens" scene (DESIGN.md section 6) on the Huygens propagator of paper 004
 // section 3. Pipeline per full step (stages are timed and counted separately):
 //   propagate -> cutoff -> spectrum -> drops (only when the scene has drops) -> height
-// Ships (spatial sources) belong between cutoff and spectrum, wind and Stokes height after it.
+// With the issue 3 features (each costs nothing when the scene does not name it):
+//   propagate -> cutoff -> ships (paper eq. 2, spatial) -> spectrum -> drops -> wind (ambient
+//   sea advanced in the spectral domain) -> height (StokesHeight: first order 1 transform, or
+//   eq. 3's second order 3 transforms, with the wind sea superposed) .
+// Displayed frames j = 1 .. D-1 of D per step are the cubic Hermite interpolants of eta and
+// etadot at the two ends of the last step (time_interp.hpp), with no transform.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "huygens/huygens_propagator.hpp"
 #include "huygens/scene.hpp"
+#include "huygens/ship_waves.hpp"
 #include "huygens/solver.hpp"
+#include "huygens/stokes.hpp"
+#include "huygens/wind.hpp"
 
 namespace huygens {
 
@@ -44,6 +52,15 @@ struct HuygensScene {
   std::vector<PlaneWaveSource> initial_plane_waves;
   /// Timed drops, sorted by time.
   std::vector<GaussianSource> drops;
+  /// Second-order Stokes height (paper 004 eq. 3); false = first order.
+  bool stokes = false;
+  /// Ships (paper 004 eq. 2); empty = none (no patch, no plan, no stage).
+  std::vector<Ship> ships;
+  /// Ship patch side P (unit: cells): 2M, enlarged until the hull fits a quarter of it.
+  int ship_patch = 0;
+  /// Ambient JONSWAP wind sea; absent = calm.
+  bool has_wind = false;
+  WindParams wind;
 };
 
 /// Parses and checks a "huygens" scene; every error is a SceneError naming the JSON path.
@@ -58,10 +75,17 @@ class HuygensSolver : public Solver {
   std::vector<OutputField> outputs() override;
   nlohmann::json meta() const override;
   const StageStats& stats() const override { return prop_.stats(); }
-  std::span<const float> height() override { return prop_.eta(); }
+  std::span<const float> height() override { return eta_view(); }
   std::size_t height_rows() const override { return static_cast<std::size_t>(prop_.visible_size()); }
   std::size_t height_cols() const override { return static_cast<std::size_t>(prop_.visible_size()); }
-  std::span<const float> height_rate() override { return prop_.etadot(); }
+  std::span<const float> height_rate() override { return etadot_view(); }
+  int display_per_step() const override { return scene_.display_per_step; }
+  /// Frame j (1 <= j < D) of the last step: the cubic Hermite interpolant at s = j / D between
+  /// the previous full step and the current one (needs steps() >= 1); j = 0 gives outputs().
+  std::vector<OutputField> display_outputs(int j) override;
+  /// N x N transforms per full step for the scene's features: the propagation (2 with the
+  /// round trip, 0 without) + the height (1 first order, 3 second order).
+  int transforms_per_step() const;
   /// Supports cmd::Drop (a Gaussian depression released now; the height is refreshed).
   bool apply(const Command& c) override;
 
@@ -69,10 +93,22 @@ class HuygensSolver : public Solver {
   const HuygensScene& scene() const { return scene_; }
 
  private:
+  std::span<const float> eta_view() const { return stokes_ ? std::span<const float>(eta_.span()) : prop_.eta(); }
+  std::span<const float> etadot_view() const {
+    return stokes_ ? std::span<const float>(etadot_.span()) : prop_.etadot();
+  }
+  /// The height of the current state (prop_.height() or the StokesHeight stage).
+  void make_height(std::int64_t step);
+
   HuygensScene scene_;
   HuygensPropagator prop_;
+  std::unique_ptr<ShipWaves> ships_;             // only with ships
+  std::unique_ptr<WindSea> wind_;                // only with wind
+  std::unique_ptr<StokesHeight> stokes_;         // only with stokes or wind (else the propagator's packed height)
+  AlignedBuffer<float> eta_, etadot_;            // StokesHeight outputs (only with stokes_)
+  AlignedBuffer<float> eta0_, etadot0_, frame_;  // previous full step + one displayed frame (only D > 1)
   std::size_t next_drop_ = 0;
-  int st_drops_ = -1;
+  int st_drops_ = -1, st_ships_ = -1, st_wind_ = -1, st_stokes_ = -1;
 };
 
 }  // namespace huygens

@@ -22,6 +22,7 @@
 
 #include "huygens/dispersion.hpp"
 #include "huygens/ship_waves.hpp"
+#include "huygens/validation.hpp"
 
 namespace huygens {
 
@@ -134,5 +135,15 @@ struct KelvinRunResult {
 
 /// Runs the case (allocates; seconds at n = 512) and measures the wake with s_max = D / 2.
 KelvinRunResult run_kelvin_case(const KelvinCase& c, const WakeOptions& opt = {});
+
+/// The `kelvin` validation rows at one Froude number (0.4) on a smaller grid: n cells, dx =
+/// min(2 pi U^2/g, hull length) / cells (cheaper variant for the test suite; `huygens validate
+/// kelvin` runs Fr 0.3, 0.4, 0.5 at n = 512, 10 cells). Defined in validation_huygens.cpp.
+std::vector<ValidationRow> kelvin_validation_rows(int n, double cells);
+/// The `capillary` validation row on an n x n grid of 1 mm cells (the validation uses n = 512).
+std::vector<ValidationRow> capillary_validation_rows(int n);
+/// The `froude_trend` rows for Fr 1, 2, 3 on n x n cells of 0.1 m (the validation uses n = 512 and
+/// adds Fr 0.3 and 0.5). Rows whose envelope is not measurable on the grid say so in `quantity`.
+std::vector<ValidationRow> froude_validation_rows(int n);
 
 }  // namespace huygens
