@@ -115,6 +115,14 @@ int cmd_run(int argc, char** argv) {
     meta["dumps"] = json::array();
     meta["complete"] = false;
   }
+  // meta.json is rewritten (atomically) after every dump, with the solver's meta refreshed
+  // (step counts, adaptive dt history), so it always describes the dumps that exist
+  auto save_meta = [&]() {
+    if (dump_dir.empty()) return;
+    const json now = solver->meta();
+    for (const auto& [key, value] : now.items()) meta[key] = value;
+    write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
+  };
   const int per_step = solver->display_per_step();
   auto write_entry = [&](json entry, const std::vector<OutputField>& fields, const std::string& suffix) {
     entry["files"] = json::array();
@@ -142,7 +150,15 @@ int cmd_run(int argc, char** argv) {
     json entry = {{"step", s}, {"time_s", solver->time()}, {"interpolated", false}, {"s", 0.0},
                   {"display_frame", s * per_step}};
     write_entry(entry, solver->outputs(), "");
-    write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
+    save_meta();
+  };
+  // a run that stops keeps its dumps and says in meta.json where and why it stopped
+  auto stopped = [&](const std::string& stage, long long step, const std::string& reason, const char* what) {
+    std::fprintf(stderr, "huygens: run stopped: %s%s; dumps up to the last good step are in %s\n", what,
+                 reason.c_str(), dump_dir.empty() ? "(no dump directory)" : dump_dir.c_str());
+    meta["stopped"] = {{"stage", stage}, {"step", step}, {"reason", reason}};
+    save_meta();
+    return 3;
   };
 
   const auto t0 = std::chrono::steady_clock::now();
@@ -156,22 +172,10 @@ int cmd_run(int argc, char** argv) {
       bar.update(s);
     }
   } catch (const NonFiniteError& e) {
-    std::fprintf(stderr, "huygens: run stopped: %s; dumps up to the last good step are in %s\n", e.what(),
-                 dump_dir.empty() ? "(no dump directory)" : dump_dir.c_str());
-    if (!dump_dir.empty()) {
-      meta["stopped"] = {{"stage", e.stage()}, {"step", e.step()}, {"reason", e.what()}};
-      write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
-    }
-    rc = 3;
+    rc = stopped(e.stage(), e.step(), e.what(), "");
   } catch (const LbmDryError& e) {
     // not a non-finite value but the same kind of stop: a named step and cell, earlier dumps valid
-    std::fprintf(stderr, "huygens: run stopped: a cell ran dry: %s; dumps up to the last good step are in %s\n",
-                 e.what(), dump_dir.empty() ? "(no dump directory)" : dump_dir.c_str());
-    if (!dump_dir.empty()) {
-      meta["stopped"] = {{"stage", "dry_cell"}, {"step", solver->steps()}, {"reason", e.what()}};
-      write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
-    }
-    rc = 3;
+    rc = stopped("dry_cell", solver->steps(), e.what(), "a cell ran dry: ");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "huygens: run failed: %s\n", e.what());
     return 1;
@@ -179,7 +183,7 @@ int cmd_run(int argc, char** argv) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (rc == 0 && !dump_dir.empty()) {
     meta["complete"] = true;
-    write_file_atomic(dump_dir + "/meta.json", meta.dump(2) + "\n");
+    save_meta();
   }
 
   std::printf("scene %s (solver %s): %lld steps to t = %.4g s in %.3f s wall\n", scene_file.c_str(),
