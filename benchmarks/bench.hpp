@@ -31,11 +31,22 @@ using Section = std::function<void(Context&)>;
 /// Runs fn `reps` times (after one warm-up) and returns the median wall time in seconds.
 double median_seconds(int reps, const std::function<void()>& fn);
 
+/// Pareto-optimal rows of a (time, error) set: true where no other row is at least as fast and
+/// at least as accurate, and better in one of the two. Non-finite values are never optimal.
+std::vector<bool> pareto_front(const std::vector<double>& time, const std::vector<double>& error);
+
 inline double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // Sections, one per file (bench_<name>.cpp).
 void bench_huygens(Context&);
+void bench_pipeline(Context&);
+void bench_ships(Context&);
+void bench_lbm(Context&);
+void bench_sph(Context&);
+void bench_accuracy(Context&);
+void bench_skip(Context&);
+void bench_stress(Context&);
 
 }  // namespace huygens::bench

@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -38,6 +39,20 @@ double median_seconds(int reps, const std::function<void()>& fn) {
   return t[t.size() / 2];
 }
 
+std::vector<bool> pareto_front(const std::vector<double>& time, const std::vector<double>& error) {
+  const std::size_t n = time.size();
+  std::vector<bool> front(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(time[i]) || !std::isfinite(error[i])) continue;
+    bool dominated = false;
+    for (std::size_t j = 0; j < n && !dominated; ++j)
+      dominated = j != i && std::isfinite(time[j]) && std::isfinite(error[j]) && time[j] <= time[i] &&
+                  error[j] <= error[i] && (time[j] < time[i] || error[j] < error[i]);
+    front[i] = !dominated;
+  }
+  return front;
+}
+
 }  // namespace huygens::bench
 
 namespace {
@@ -60,6 +75,13 @@ int main(int argc, char** argv) {
   using namespace huygens::bench;
   const std::map<std::string, Section> sections = {
       {"huygens", bench_huygens},
+      {"pipeline", bench_pipeline},
+      {"ships", bench_ships},
+      {"lbm", bench_lbm},
+      {"sph", bench_sph},
+      {"accuracy", bench_accuracy},
+      {"skip", bench_skip},
+      {"stress", bench_stress},
   };
   Context ctx;
   std::string csv;

@@ -11,6 +11,9 @@
 #include "bench.hpp"
 #include "huygens/fft.hpp"
 #include "huygens/huygens_propagator.hpp"
+#include "huygens/huygens_solver.hpp"
+#include "huygens/report.hpp"
+#include "huygens/scene.hpp"
 #include "huygens/ship_waves.hpp"
 #include "huygens/stokes.hpp"
 #include "huygens/time_interp.hpp"
@@ -134,6 +137,23 @@ void bench_ships(Context& ctx) {
       step.add({std::to_string(n), second ? "ship + wind + 2nd-order Stokes" : "ship + wind + 1st order",
                 num(1e3 * t_step, 3), std::to_string(tr), num(1e3 * per_frame, 3), num(tr / 3.0, 3),
                 num(t_step / (tr * t_fft), 3)});
+    }
+    {
+      // the same through the integrated solver (HuygensSolver from a scene: ship + wind +
+      // Stokes, display_per_step = 3): Solver::step and Solver::display_outputs(j)
+      const std::string text = fmt(R"({"solver": "huygens", "grid": {"n": %d, "length_m": %.17g, "margin": %d},
+          "time": {"dt": %.17g, "display_per_step": 3}, "stokes": true,
+          "wind": {"speed_mps": 6, "direction_deg": 20, "seed": 42},
+          "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
+                     "path": [{"t": 0, "x_m": %.17g, "y_m": %.17g}, {"t": 10000, "x_m": %.17g, "y_m": %.17g}]}]})",
+                                   n, len, margin, dt, 0.3 * len, 0.5 * len, 0.3 * len + 1.2e4, 0.5 * len);
+      HuygensSolver solver(parse_huygens_scene(parse_scene_text(text)));
+      const double t_step = median_cpu_seconds(reps, [&] { solver.step(); });
+      const double t_disp = median_cpu_seconds(reps, [&] { (void)solver.display_outputs(1); });
+      const int tr = solver.transforms_per_step();
+      const double per_frame = (t_step + 2.0 * t_disp) / 3.0;
+      step.add({std::to_string(n), "HuygensSolver: ship + wind + 2nd-order Stokes", num(1e3 * t_step, 3),
+                std::to_string(tr), num(1e3 * per_frame, 3), num(tr / 3.0, 3), num(t_step / (tr * t_fft), 3)});
     }
   }
   ctx.report("ships", "stages of issue 3 against one raw N x N inverse c2c transform (median process CPU ms)", stages);

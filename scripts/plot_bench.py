@@ -1,0 +1,152 @@
+#!/usr/bin/python3
+"""Plot run time against error from huygens-bench --csv output.
+
+Reads the CSV written by `huygens-bench --csv FILE` (blocks of `# section: title` followed by a
+header line and rows) and writes one PNG per table that has a time column ("time/sim s") and an
+error column ("error"): error against wall seconds per simulated second, log-log, one marker
+style per method, the Pareto front (rows no other row beats in both time and error) drawn as a
+step line with the optimal points ringed.
+
+Uses Debian's python3-matplotlib and python3-numpy (scripts/install-deps.sh installs them).
+Example:
+    build/benchmarks/huygens-bench accuracy --csv bench.csv
+    scripts/plot_bench.py bench.csv --out docs/plots
+"""
+import argparse
+import csv
+import io
+import math
+import os
+import re
+import sys
+import textwrap
+
+TIME_COLUMNS = ("time/sim s",)
+ERROR_COLUMNS = ("error",)
+
+
+def read_blocks(path):
+    """Returns [(title, header, rows)] from a huygens-bench CSV file."""
+    blocks, title, lines = [], None, []
+
+    def flush():
+        if title is not None and lines:
+            rows = list(csv.reader(io.StringIO("".join(lines))))
+            rows = [r for r in rows if r]
+            if rows:
+                blocks.append((title, rows[0], rows[1:]))
+
+    with open(path, newline="") as f:
+        for line in f:
+            if line.startswith("# "):
+                flush()
+                title, lines = line[2:].strip(), []
+            elif line.strip():
+                lines.append(line)
+    flush()
+    return blocks
+
+
+def number(s):
+    try:
+        v = float(s)
+    except ValueError:
+        return math.nan
+    return v if math.isfinite(v) and v > 0 else math.nan
+
+
+def pareto(points):
+    """Indices of the points no other point beats in both coordinates (finite points only)."""
+    idx = []
+    for i, (t, e) in enumerate(points):
+        if math.isnan(t) or math.isnan(e):
+            continue
+        dominated = any(
+            j != i and not math.isnan(t2) and not math.isnan(e2) and t2 <= t and e2 <= e and (t2 < t or e2 < e)
+            for j, (t2, e2) in enumerate(points))
+        if not dominated:
+            idx.append(i)
+    return sorted(idx, key=lambda i: points[i][0])
+
+
+def slug(title):
+    s = re.sub(r"\(.*", "", title).strip().lower()
+    return re.sub(r"[^a-z0-9]+", "_", s).strip("_")[:80] or "table"
+
+
+def plot_block(plt, title, header, rows, out_dir):
+    col = {name: i for i, name in enumerate(header)}
+    tcol = next((col[c] for c in TIME_COLUMNS if c in col), None)
+    ecol = next((col[c] for c in ERROR_COLUMNS if c in col), None)
+    if tcol is None or ecol is None:
+        return None
+    mcol = col.get("method")
+    ncol = col.get("n")
+    points = [(number(r[tcol]), number(r[ecol])) for r in rows]
+    if not any(not math.isnan(t) and not math.isnan(e) for t, e in points):
+        return None
+    fig, ax = plt.subplots(figsize=(8, 5.5), dpi=110)
+    methods = []
+    for r in rows:
+        m = r[mcol] if mcol is not None else "rows"
+        if m not in methods:
+            methods.append(m)
+    markers = ["o", "s", "^", "D", "v", "P", "X", "*"]
+    for k, m in enumerate(methods):
+        sel = [i for i, r in enumerate(rows) if (r[mcol] if mcol is not None else "rows") == m]
+        xs = [points[i][0] for i in sel if not math.isnan(points[i][0]) and not math.isnan(points[i][1])]
+        ys = [points[i][1] for i in sel if not math.isnan(points[i][0]) and not math.isnan(points[i][1])]
+        if not xs:
+            continue
+        ax.scatter(xs, ys, marker=markers[k % len(markers)], s=36, label=m, zorder=3)
+        if ncol is not None:
+            for i in sel:
+                t, e = points[i]
+                if not math.isnan(t) and not math.isnan(e):
+                    ax.annotate(rows[i][ncol], (t, e), textcoords="offset points", xytext=(4, 3), fontsize=6,
+                                color="0.35")
+    front = pareto(points)
+    if front:
+        fx = [points[i][0] for i in front]
+        fy = [points[i][1] for i in front]
+        ax.step(fx, fy, where="post", color="k", lw=1.0, ls="--", label="Pareto front", zorder=2)
+        ax.scatter(fx, fy, s=130, facecolors="none", edgecolors="k", lw=1.0, zorder=4)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time per simulated second (s)")
+    ax.set_ylabel("max error / amplitude")
+    ax.set_title(textwrap.fill(title, 110), fontsize=7)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(out_dir, slug(title) + ".png")
+    fig.savefig(path)
+    plt.close(fig)
+    return path
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Plot error against time per simulated second (log-log, Pareto front "
+                                 "marked) from the CSV of `huygens-bench --csv FILE`.")
+    ap.add_argument("csv", help="CSV file written by huygens-bench --csv")
+    ap.add_argument("--out", default="bench-plots", help="folder for the PNG files (default: bench-plots)")
+    args = ap.parse_args(argv)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    os.makedirs(args.out, exist_ok=True)
+    written = []
+    for title, header, rows in read_blocks(args.csv):
+        p = plot_block(plt, title, header, rows, args.out)
+        if p:
+            written.append(p)
+    for p in written:
+        print(p)
+    if not written:
+        print("plot_bench.py: no table with 'time/sim s' and 'error' columns in " + args.csv, file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
