@@ -11,7 +11,9 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
@@ -98,7 +100,7 @@ TEST(Pipeline, SameSceneSameHashWithOneAndTwoThreads) {
   // is element-wise with schedule(static): the result must not depend on the thread count.
   // 500 steps on a 128 grid (FFTW's threaded transforms differ between 1 and 2 threads; the
   // propagator's OpenMP loops start at n = 256), then 60 steps on a 256 grid, where both do.
-  for (const auto [n, steps] : {std::pair{128, 500}, std::pair{256, 60}}) {
+  for (const auto& [n, steps] : {std::pair{128, 500}, std::pair{256, 60}}) {
     SCOPED_TRACE(::testing::Message() << "n = " << n << ", " << steps << " steps");
     const std::string text = scene_text(n, true, true, true);
     const RunResult one = run_steps(text, 1, false, steps);
@@ -235,51 +237,152 @@ TEST(Pipeline, ShipsWindAndStokesCostOnlyWhenNamed) {
   }
 }
 
+namespace {
+
+/// Max |a - b| and max |b|.
+std::pair<double, double> max_diff(std::span<const float> a, std::span<const float> b) {
+  double d = 0, peak = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    d = std::max(d, double(std::abs(a[i] - b[i])));
+    peak = std::max(peak, double(std::abs(b[i])));
+  }
+  return {d, peak};
+}
+
+HuygensScene still_scene(bool initial, double drop_t, bool skip, bool drop = true) {
+  RunOptions o;
+  o.measure_plans = false;
+  json sc = json::parse(scene_text(64, true, initial, false));
+  if (drop)
+    sc["drops"] = json::array({{{"t", drop_t}, {"x_m", 6.0}, {"y_m", 4.0}, {"radius_m", 0.1}, {"depth_m", 0.005}}});
+  HuygensScene h = parse_huygens_scene(parse_scene_text(sc.dump()), o);
+  h.still_skip = skip;
+  // the 1 cm hump's waves need ~18000 steps to fall below the default 1e-7 m threshold (the
+  // longest waves leave the 64-cell pool slowly: the energy's tail decays by e every ~3500
+  // steps); with a 1e-5 m threshold they are below it after ~2900 steps
+  if (initial) h.still_amplitude_m = 1e-5;
+  return h;
+}
+
+}  // namespace
+
+// Issue 4: a still sea (no ships, no wind, energy below the threshold) does no transform
+// after it settles; a timed drop wakes it, and the result equals the run without the skip.
+TEST(Pipeline, StillSeaSkipsPropagationUntilATimedDropWakesIt) {
+  for (const bool initial : {false, true}) {
+    SCOPED_TRACE(initial ? "a hump whose waves leave through the margin" : "an empty sea");
+    // the empty sea settles at the first check (step 16); the hump's waves need longer to leave
+    const double drop_t = initial ? 80.0 : 1.0;  // dt = 0.02 s: step 50 or 4000
+    HuygensSolver skip(still_scene(initial, drop_t, true)), ref(still_scene(initial, drop_t, false));
+    ASSERT_GT(skip.still_energy(), 0.0);
+    EXPECT_EQ(ref.still_energy(), 0.0);
+    const auto drop_step = static_cast<std::int64_t>(std::llround(drop_t / 0.02));
+    std::int64_t settled = -1;
+    for (std::int64_t k = 1; k < drop_step; ++k) {
+      skip.step();
+      ref.step();
+      if (skip.still() && settled < 0) settled = k;
+    }
+    ASSERT_GT(settled, 0) << "never settled";
+    if (!initial) {
+      EXPECT_EQ(settled, 16);
+    }
+    RecordProperty(initial ? "hump_settled_step" : "empty_settled_step", std::to_string(settled));
+    const StageStats& st = skip.stats();
+    const std::int64_t still_steps = drop_step - 1 - settled;
+    // no transform and no propagate/height call after it settled; every skipped step counted
+    EXPECT_EQ(total_transforms(st), static_cast<std::uint64_t>(3 * settled));
+    EXPECT_EQ(stage(st, "propagate")->calls, static_cast<std::uint64_t>(settled));
+    EXPECT_EQ(stage(st, "height")->calls, static_cast<std::uint64_t>(settled));
+    EXPECT_EQ(stage(st, "still")->calls, static_cast<std::uint64_t>(still_steps));
+    EXPECT_EQ(stage(st, "still")->transforms, 0u);
+    EXPECT_DOUBLE_EQ(skip.time(), ref.time());
+    EXPECT_EQ(skip.steps(), ref.steps());
+    for (float v : skip.height()) ASSERT_EQ(v, 0.0f) << "the still sea is flat";
+    // the drop step and 30 more
+    for (int k = 0; k <= 30; ++k) {
+      skip.step();
+      ref.step();
+    }
+    EXPECT_FALSE(skip.still());
+    EXPECT_EQ(stage(st, "drops")->calls, 1u);
+    EXPECT_EQ(stage(st, "propagate")->calls, static_cast<std::uint64_t>(settled + 31));
+    // the reference keeps the residual the skip dropped. The step is linear, so the
+    // reference is the skip run plus that residual alone, i.e. a third run without the skip
+    // and without the drop: skip = ref - residual to float rounding
+    const auto [d, peak] = max_diff(skip.height(), ref.height());
+    ASSERT_GT(peak, 1e-4);
+    const double skip_scene_amp = still_scene(initial, drop_t, true).still_amplitude_m;
+    if (initial) {
+      HuygensSolver residual(still_scene(initial, drop_t, false, false));
+      for (std::int64_t k = 0; k < skip.steps(); ++k) residual.step();
+      std::vector<float> expect(ref.height().begin(), ref.height().end());
+      for (std::size_t i = 0; i < expect.size(); ++i) expect[i] -= residual.height()[i];
+      const auto [e, epeak] = max_diff(skip.height(), expect);
+      EXPECT_LE(e, 1e-5 * epeak);
+      double res = 0;
+      for (float v : residual.height()) res = std::max(res, double(std::abs(v)));
+      RecordProperty("hump_residual_m", std::to_string(res));
+      RecordProperty("hump_settled_bound_m", std::to_string(1.01 * skip_scene_amp * 64));
+      RecordProperty("hump_max_diff_vs_superposition_m", std::to_string(e));
+    } else {
+      EXPECT_EQ(d, 0.0) << "from an exactly flat sea both runs are the same";
+    }
+    RecordProperty(initial ? "hump_max_diff_m" : "empty_max_diff_m", std::to_string(d));
+  }
+}
+
+// A UI drop (cmd::Drop through apply) wakes a still sea at once; the height shows it without
+// a step, and the following steps equal those of the run without the skip.
+TEST(Pipeline, StillSeaWakesOnACommandDrop) {
+  HuygensSolver skip(still_scene(false, 1e6, true)), ref(still_scene(false, 1e6, false));
+  for (int k = 0; k < 20; ++k) {
+    skip.step();
+    ref.step();
+  }
+  ASSERT_TRUE(skip.still());
+  const Command drop{cmd::Drop{5.0f, 5.0f, 0.1f, 0.005f}};
+  ASSERT_TRUE(skip.apply(drop));
+  ASSERT_TRUE(ref.apply(drop));
+  EXPECT_FALSE(skip.still());
+  EXPECT_EQ(max_diff(skip.height(), ref.height()).first, 0.0);
+  double lowest = 0;
+  for (float v : skip.height()) lowest = std::min(lowest, double(v));
+  EXPECT_LT(lowest, -1e-3) << "the depression is in the height before the next step";
+  for (int k = 0; k < 10; ++k) {
+    skip.step();
+    ref.step();
+  }
+  const auto [d, peak] = max_diff(skip.height(), ref.height());
+  ASSERT_GT(peak, 1e-4);
+  EXPECT_EQ(d, 0.0);
+  EXPECT_EQ(stage(skip.stats(), "propagate")->calls, 16u + 10u);
+}
+
+// Ships and wind keep the sea alive: no still stage, no still state.
+TEST(Pipeline, ShipsAndWindNeverGoStill) {
+  json sc = json::parse(scene_text(64, true, false, false));
+  sc["wind"] = {{"speed_mps", 5.0}, {"direction_deg", 30.0}, {"seed", 1}};
+  RunOptions o;
+  o.measure_plans = false;
+  HuygensSolver s(parse_huygens_scene(parse_scene_text(sc.dump()), o));
+  for (int k = 0; k < 20; ++k) s.step();
+  EXPECT_FALSE(s.still());
+  EXPECT_EQ(stage(s.stats(), "still"), nullptr);
+  EXPECT_EQ(s.still_energy(), 0.0);
+}
+
 // ---- 5. NaN containment --------------------------------------------------------------------
 
 namespace {
 
-/// Test hook (not reachable from a scene): the Huygens step, stage by stage through the
-/// propagator's public stage API, with a NaN put into the INPUT of the named stage at one
-/// step, so that the named stage is the first whose output is non-finite:
-///   "propagate": the spectrum it reads (last written, and checked, by the previous step);
-///   "spectrum":  the spatial field it reads (written, and checked, by cutoff).
-/// Per-stage checks run every step (check_every = 1) so the stage's own check fires.
-class FaultyHuygens : public Solver {
- public:
-  FaultyHuygens(HuygensScene scene, std::string stage, std::int64_t at)
-      : inner_(with_checks(std::move(scene))), stage_(std::move(stage)), at_(at) {}
-
-  void step() override {
-    auto& p = inner_.propagator();
-    const bool now = p.steps() + 1 == at_;
-    if (now && stage_ == "propagate") p.spectrum_data()[17] = std::numeric_limits<float>::quiet_NaN();
-    p.propagate();
-    p.cutoff();
-    if (now && stage_ == "spectrum") p.field()[p.n() * 40 + 40] = std::numeric_limits<float>::infinity();
-    p.spectrum();
-    p.height();
-    p.end_step();
-  }
-  double time() const override { return inner_.time(); }
-  std::int64_t steps() const override { return inner_.steps(); }
-  std::vector<OutputField> outputs() override { return inner_.outputs(); }
-  json meta() const override { return inner_.meta(); }
-  const StageStats& stats() const override { return inner_.stats(); }
-  std::span<const float> height() override { return inner_.height(); }
-  std::size_t height_rows() const override { return inner_.height_rows(); }
-  std::size_t height_cols() const override { return inner_.height_cols(); }
-  std::span<const float> height_rate() override { return inner_.height_rate(); }
-
- private:
-  static HuygensScene with_checks(HuygensScene s) {
-    s.params.check_every = 1;
-    return s;
-  }
-  HuygensSolver inner_;
-  std::string stage_;
-  std::int64_t at_;
-};
+/// A Huygens solver whose named stage produces a NaN at step `at`, through the test hook
+/// HuygensSolver::inject_nonfinite_for_test (not reachable from a scene); "none": no fault.
+std::unique_ptr<HuygensSolver> make_faulty(const HuygensScene& scene, const std::string& stage, std::int64_t at) {
+  auto s = std::make_unique<HuygensSolver>(scene);
+  if (stage != "none") s->inject_nonfinite_for_test(stage, at);
+  return s;
+}
 
 HuygensScene small_scene() {
   RunOptions o;
@@ -321,21 +424,51 @@ void run_with_dumps(Solver& s, int steps, const std::string& dir) {
 }  // namespace
 
 TEST(Pipeline, NonFiniteValueIsNamedByItsStage) {
-  for (const char* st : {"propagate", "spectrum"}) {
-    for (std::int64_t at : {1, 5, 16, 17}) {
-      SCOPED_TRACE(::testing::Message() << st << " at step " << at);
-      FaultyHuygens s(small_scene(), st, at);
-      for (std::int64_t k = 1; k < at; ++k) ASSERT_NO_THROW(s.step());
-      try {
-        s.step();
-        ADD_FAILURE() << "no NonFiniteError";
-      } catch (const NonFiniteError& e) {
-        EXPECT_EQ(e.stage(), st);
-        EXPECT_EQ(e.step(), at);
-        EXPECT_NE(std::string(e.what()).find(st), std::string::npos);
-      }
+  // The hook writes one NaN into the named stage's output at step `at`, before that stage's
+  // own check. With the default check_every = 16, steps 16 and 32 run every stage's check;
+  // on the other steps the fused check of the height finds it and the buffers name the stage
+  // (Z: propagate, Z^: spectrum, P: height). The cutoff and the ships write into the same
+  // spatial buffer as propagate, so they are named on check steps only (or with check_every = 1).
+  struct Case {
+    const char* stage;
+    std::int64_t at;
+    int check_every;
+    bool drops, ships;
+  };
+  std::vector<Case> cases;
+  for (const char* st : {"propagate", "spectrum", "height"})
+    for (std::int64_t at : {1, 5, 16, 17}) cases.push_back({st, at, 16, false, false});
+  for (std::int64_t at : {16, 32}) cases.push_back({"cutoff", at, 16, false, false});
+  cases.push_back({"cutoff", 5, 1, false, false});
+  cases.push_back({"drops", 5, 16, true, false});  // the scene drop at t = 0.1 s enters in step 5
+  cases.push_back({"ships", 16, 16, false, true});
+  cases.push_back({"ships", 5, 1, false, true});
+  for (const Case& c : cases) {
+    SCOPED_TRACE(::testing::Message() << c.stage << " at step " << c.at << ", check_every " << c.check_every);
+    json sc = json::parse(scene_text(64, true, true, c.drops));
+    if (c.ships)
+      sc["ships"] = json::array({{{"length_m", 1.0},
+                                  {"beam_m", 0.3},
+                                  {"draft_m", 0.05},
+                                  {"path", json::array({{{"t", 0.0}, {"x_m", 3.0}, {"y_m", 5.0}},
+                                                        {{"t", 10.0}, {"x_m", 7.0}, {"y_m", 5.0}}})}}});
+    RunOptions o;
+    o.measure_plans = false;
+    HuygensScene scene = parse_huygens_scene(parse_scene_text(sc.dump()), o);
+    scene.params.check_every = c.check_every;
+    auto s = make_faulty(scene, c.stage, c.at);
+    for (std::int64_t k = 1; k < c.at; ++k) ASSERT_NO_THROW(s->step());
+    try {
+      s->step();
+      ADD_FAILURE() << "no NonFiniteError";
+    } catch (const NonFiniteError& e) {
+      EXPECT_EQ(e.stage(), c.stage);
+      EXPECT_EQ(e.step(), c.at);
+      EXPECT_NE(std::string(e.what()).find(c.stage), std::string::npos);
     }
   }
+  HuygensSolver s(small_scene());
+  EXPECT_THROW(s.inject_nonfinite_for_test("no_such_stage", 1), std::invalid_argument);
 }
 
 TEST(Pipeline, DumpsStayValidUpToTheLastGoodStep) {
@@ -343,11 +476,11 @@ TEST(Pipeline, DumpsStayValidUpToTheLastGoodStep) {
   const std::string dir =
       (std::filesystem::temp_directory_path() / ("huygens_nan_" + std::to_string(::getpid()))).string();
   std::filesystem::remove_all(dir);
-  FaultyHuygens faulty(small_scene(), "spectrum", at);
-  run_with_dumps(faulty, 20, dir);
+  auto faulty = make_faulty(small_scene(), "spectrum", at);
+  run_with_dumps(*faulty, 20, dir);
 
   // the same scene without the fault gives the reference heights of the good steps
-  FaultyHuygens clean(small_scene(), "none", 0);
+  HuygensSolver clean(small_scene());
   std::ifstream f(dir + "/meta.json");
   const json meta = json::parse(f);
   EXPECT_EQ(meta["complete"], false);
@@ -373,7 +506,7 @@ TEST(Pipeline, DumpsStayValidUpToTheLastGoodStep) {
 TEST(Pipeline, RunnerReportsTheStageAndKeepsTheLastGoodFrame) {
   RunnerParams p;
   p.realtime = false;
-  Runner r(std::make_unique<FaultyHuygens>(small_scene(), "propagate", 9), p);
+  Runner r(make_faulty(small_scene(), "propagate", 9), p);
   r.start();
   while (!r.finished()) std::this_thread::yield();
   ASSERT_TRUE(r.failed());

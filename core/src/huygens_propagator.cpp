@@ -1,7 +1,9 @@
 #include "huygens/huygens_propagator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -246,6 +248,11 @@ void HuygensPropagator::add_plane_wave(double wavelength_m, double amplitude_m, 
   for (std::size_t i = 0; i < s_.size(); ++i) s_[i] += z_[i];
 }
 
+void HuygensPropagator::clear() {
+  for (auto* b : {&z_, &s_, &h_}) std::fill(b->data(), b->data() + b->size(), cfloat(0.0f, 0.0f));
+  for (auto* b : {&eta_, &etadot_}) std::fill(b->data(), b->data() + b->size(), 0.0f);
+}
+
 void HuygensPropagator::set_field(std::span<const cfloat> z) {
   if (z.size() != z_.size()) throw std::invalid_argument("set_field: size is not N*N");
   for (std::size_t i = 0; i < z.size(); ++i) z_[i] = z[i];
@@ -328,6 +335,7 @@ void HuygensPropagator::propagate() {
       stats_[st_propagate_].transforms += 1;
     }
   }
+  if (inject_due_for_test(st_propagate_)) (spatial_ ? z_ : s_)[mid_index()] = std::numeric_limits<float>::quiet_NaN();
   if (check_now_) check_stage(st_propagate_, spatial_ ? z_.span() : s_.span());
 }
 
@@ -353,6 +361,7 @@ void HuygensPropagator::cutoff() {
       }
     }
   }
+  if (inject_due_for_test(st_cutoff_)) z_[mid_index()] = std::numeric_limits<float>::quiet_NaN();
   if (check_now_) check_stage(st_cutoff_, z_.span());
 }
 
@@ -365,6 +374,7 @@ void HuygensPropagator::spectrum() {
     fft_ns_ += elapsed_ns(t0);
     stats_[st_spectrum_].transforms += 1;
   }
+  if (inject_due_for_test(st_spectrum_)) s_[mid_index()] = std::numeric_limits<float>::quiet_NaN();
   if (check_now_) check_stage(st_spectrum_, s_.span());
 }
 
@@ -416,6 +426,7 @@ void HuygensPropagator::height() {
     inv_height_->execute();
     fft_ns_ += elapsed_ns(t0);
     stats_[st_height_].transforms += 1;
+    if (inject_due_for_test(st_height_)) h_[mid_index()] = std::numeric_limits<float>::quiet_NaN();
     // visible region out, with the non-finite test fused (x - x is NaN only for NaN/inf)
     float acc = 0.0f;
     float* eo = eta_.data();
@@ -445,6 +456,25 @@ void HuygensPropagator::diagnose_nonfinite() const {
   if (spatial_ && !all_finite(z_.span())) throw NonFiniteError(stats_[st_propagate_].name, steps_ + 1);
   if (!all_finite(s_.span())) throw NonFiniteError(stats_[spatial_ ? st_spectrum_ : st_propagate_].name, steps_ + 1);
   throw NonFiniteError(stats_[st_height_].name, steps_ + 1);
+}
+
+void HuygensPropagator::inject_nonfinite_for_test(const std::string& stage, std::int64_t step) {
+  const int i = stats_.find(stage);
+  if (i < 0) throw std::invalid_argument("inject_nonfinite_for_test: no stage '" + stage + "'");
+  inject_stage_ = i;
+  inject_step_ = step;
+}
+
+double HuygensPropagator::energy_bound() const {
+  const float* s = reinterpret_cast<const float*>(s_.data());
+  const std::ptrdiff_t m = static_cast<std::ptrdiff_t>(2 * s_.size());
+  double sum = 0.0;
+#pragma omp parallel for simd schedule(static) reduction(+ : sum) if (p_.n >= kParallelMin)
+  for (std::ptrdiff_t i = 0; i < m; ++i) sum += static_cast<double>(s[i]) * static_cast<double>(s[i]);
+  const double nn = static_cast<double>(p_.n) * p_.n;
+  const double kmax = std::sqrt(2.0) * kPi * p_.n / p_.length_m;
+  const double inv_h = p_.water.deep() ? 0.0 : 1.0 / p_.water.depth_m;
+  return 0.5 * p_.water.density * p_.length_m * p_.length_m / (nn * nn) * (kmax + inv_h) * sum;
 }
 
 void HuygensPropagator::end_step() {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <stdexcept>
 #include <variant>
 
@@ -177,6 +178,13 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
   if (ships_) st_ships_ = prop_.stats().add("ships", ships_->bytes());
   if (wind_) st_wind_ = prop_.stats().add("wind", wind_->bytes());
   if (stokes_) st_stokes_ = prop_.stats().add(scene_.stokes ? "height_stokes" : "height_wind", stokes_->bytes());
+  if (scene_.still_skip && !ships_ && !wind_ && scene_.still_check_every > 0) {
+    // ships and wind keep the sea alive: no still state with them
+    const double k1 = 2.0 * std::numbers::pi / p.length_m, a = scene_.still_amplitude_m;
+    still_energy_ =
+        0.5 * (p.water.density * p.water.gravity + p.water.surface_tension * k1 * k1) * a * a * p.length_m * p.length_m;
+    st_still_ = prop_.stats().add("still", 0);
+  }
   make_height(0);
   if (!all_finite(eta_view())) throw NonFiniteError("initial", 0);
   prop_.stats().reset_counts();
@@ -202,7 +210,35 @@ int HuygensSolver::transforms_per_step() const {
   return prop_.transforms_per_step() + (stokes_ ? stokes_->transforms_per_call() : 0);
 }
 
+bool HuygensSolver::drop_due() const {
+  if (next_drop_ >= scene_.drops.size()) return false;
+  const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt;
+  return scene_.drops[next_drop_].t <= t1 + 1e-9 * scene_.params.dt;
+}
+
+void HuygensSolver::check_still() {
+  if (st_still_ < 0 || prop_.steps() % scene_.still_check_every != 0) return;
+  if (!(prop_.energy_bound() < still_energy_)) return;
+  // below the threshold: a flat sea at rest (the residual is dropped, so that waking up later
+  // starts from exactly zero instead of a frozen, unrotated residual)
+  prop_.clear();
+  for (auto* b : {&eta_, &etadot_, &eta0_, &etadot0_}) std::fill(b->data(), b->data() + b->size(), 0.0f);
+  still_ = true;
+}
+
 void HuygensSolver::step() {
+  if (still_) {
+    if (!drop_due()) {
+      // still sea: no transform, no pass over the field; time advances
+      StageTimer timer(prop_.stats()[st_still_]);
+      prop_.end_step();
+      return;
+    }
+    still_ = false;  // a timed drop wakes it: the normal step below releases it
+  }
+  // after a cmd::Drop: eta0_ needs the current height; otherwise the step makes it
+  if (height_dirty_ && scene_.display_per_step > 1) refresh_height();
+  height_dirty_ = false;
   if (scene_.display_per_step > 1) {
     // keep the previous full step for the displayed frames in between
     const auto e = eta_view(), d = etadot_view();
@@ -216,20 +252,24 @@ void HuygensSolver::step() {
     StageTimer timer(prop_.stats()[st_ships_]);
     ships_->add(prop_.field().data(), t0, dt);
   }
+  if (ships_ && prop_.inject_due_for_test(st_ships_)) prop_.field()[prop_.field().size() / 2 + prop_.n() / 2] = NAN;
+  // the ships write into the same buffer as propagate and cutoff: on check steps they check
+  // their own output so that a non-finite value from them is not blamed on the spectrum
+  if (ships_ && prop_.check_step() && !all_finite(prop_.field()))
+    throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
   prop_.spectrum();
-  if (next_drop_ < scene_.drops.size()) {
+  if (drop_due()) {
     // drops released in (t, t + dt] enter with the phase they have gained by t + dt
     const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt;
     const double eps = 1e-9 * scene_.params.dt;
-    if (scene_.drops[next_drop_].t <= t1 + eps) {
-      StageTimer timer(prop_.stats()[st_drops_]);
-      while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t <= t1 + eps) {
-        const auto& d = scene_.drops[next_drop_++];
-        prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, std::max(0.0, t1 - d.t));
-      }
-      // drops are rare: check their output in full
-      if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps() + 1);
+    StageTimer timer(prop_.stats()[st_drops_]);
+    while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t <= t1 + eps) {
+      const auto& d = scene_.drops[next_drop_++];
+      prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, std::max(0.0, t1 - d.t));
     }
+    if (prop_.inject_due_for_test(st_drops_)) prop_.spectrum_data()[1] = NAN;
+    // drops are rare: check their output in full
+    if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps() + 1);
   }
   if (wind_) {
     StageTimer timer(prop_.stats()[st_wind_]);
@@ -237,11 +277,13 @@ void HuygensSolver::step() {
   }
   make_height(prop_.steps() + 1);
   prop_.end_step();
+  check_still();
 }
 
 std::vector<OutputField> HuygensSolver::display_outputs(int j) {
   const int d = scene_.display_per_step;
   if (j == 0 || d <= 1) return outputs();
+  refresh_height();
   if (j < 0 || j >= d || prop_.steps() < 1) return {};
   const auto e1 = eta_view(), d1 = etadot_view();
   hermite_interpolate(eta0_.data(), etadot0_.data(), e1.data(), d1.data(), e1.size(), hermite_weights(j, d),
@@ -259,11 +301,14 @@ bool HuygensSolver::apply(const Command& c) {
   StageTimer timer(prop_.stats()[st_drops_]);
   prop_.add_gaussian(d->x_m, d->y_m, d->radius_m, -static_cast<double>(d->depth_m));
   if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps());
-  make_height(prop_.steps());
+  // the height follows lazily (the next step makes it anyway; see refresh_height)
+  height_dirty_ = true;
+  still_ = false;
   return true;
 }
 
 std::vector<OutputField> HuygensSolver::outputs() {
+  refresh_height();
   const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
   return {OutputField{"eta", {v, v}, eta_view()}};
 }
@@ -311,6 +356,7 @@ nlohmann::json HuygensSolver::meta() const {
                                                 {"spectrum", "JONSWAP"}}
                                : nlohmann::json(nullptr)},
       {"transforms_per_step", transforms_per_step()},
+      {"still_energy_j", still_energy_},
       {"transforms_per_displayed_frame",
        static_cast<double>(transforms_per_step()) / static_cast<double>(scene_.display_per_step)},
   };

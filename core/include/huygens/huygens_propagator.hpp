@@ -115,6 +115,8 @@ class HuygensPropagator {
   /// Exactly one Fourier mode when the wave vector is on the grid. Uses one transform: not
   /// for use inside a step.
   void add_plane_wave(double wavelength_m, double amplitude_m, double direction_deg);
+  /// Sets a flat sea at rest: Z^ = Z = 0 and the heights 0 (time and steps unchanged).
+  void clear();
   /// Replaces the state by the spatial field z (N*N values, rows = y) and recomputes the height.
   void set_field(std::span<const cfloat> z);
 
@@ -148,6 +150,12 @@ class HuygensPropagator {
   ///   E = rho/2 L^2/N^4 sum_k (g + sigma k^2 / rho) (|H_k|^2 + |D_k|^2 / omega_k^2)
   /// with H, D the spectra of eta and etadot (Hermitian parts of i k/omega Z^ and k Z^).
   double energy() const;
+  /// Cheap upper bound of energy() (one vectorised pass, no per-mode tables; unit: J). With
+  /// energy() = rho/2 L^2/N^4 sum_k (k / tanh(k h)) |Z^_k|^2 (the dispersion relation folded
+  /// in: (g + sigma k^2/rho) k^2/omega^2 = k/tanh(kh)) and x/tanh(x) <= 1 + x:
+  ///   energy() <= rho/2 L^2/N^4 (k_max + 1/h) sum_k |Z^_k|^2,  k_max = sqrt(2) pi N / L
+  /// (1/h = 0 in deep water). The k = 0 mode, which carries no energy, is included.
+  double energy_bound() const;
   StageStats& stats() { return stats_; }
   const StageStats& stats() const { return stats_; }
   /// True when the step goes through the spatial domain (cutoff on or `spatial` set).
@@ -159,6 +167,17 @@ class HuygensPropagator {
   /// Wall time spent inside FFTW executions by the step's stages, summed (unit: ns).
   std::uint64_t fft_ns() const { return fft_ns_; }
 
+  // ---- test hook (tests only; no scene, command or option reaches it) ------------------------
+  /// Makes the named stage (any stage registered in stats(), e.g. "propagate", "cutoff",
+  /// "spectrum", "height", or the solver's "drops", "ships") write one NaN into its output at
+  /// step `step` (1-based, the step being computed), before that stage's own check: it then
+  /// behaves as if the stage had produced it. Throws std::invalid_argument for an unknown stage.
+  void inject_nonfinite_for_test(const std::string& stage, std::int64_t step);
+  /// True when the hook asks `stage` (an index in stats()) to inject during the current step.
+  bool inject_due_for_test(int stage) const { return stage == inject_stage_ && steps_ + 1 == inject_step_; }
+  /// True when the current step runs the per-stage checks (every check_every steps).
+  bool check_step() const { return check_now_; }
+
   // ---- raw FFT access for the benchmark (the same plans the step executes) -------------------
   void raw_transforms();
 
@@ -167,6 +186,8 @@ class HuygensPropagator {
   void ensure_source_tables();
   void check_stage(int stage, std::span<const cfloat> v) const;
   void diagnose_nonfinite() const;
+  /// Cell (N/2, N/2): inside the visible region (test hook).
+  std::size_t mid_index() const { return static_cast<std::size_t>(p_.n / 2) * p_.n + p_.n / 2; }
 
   HuygensParams p_;
   double t_ = 0.0;
@@ -185,6 +206,8 @@ class HuygensPropagator {
   StageStats stats_;
   int st_propagate_ = -1, st_cutoff_ = -1, st_spectrum_ = -1, st_height_ = -1;
   bool check_now_ = false;
+  int inject_stage_ = -1;          // test hook only
+  std::int64_t inject_step_ = -1;  // test hook only
   bool spatial_ = true;
   std::uint64_t fft_ns_ = 0;
 };
