@@ -210,7 +210,7 @@ TEST(SphPhysics, HydrostaticColumnShort) {
   // 6 x 6 x 12 column, settled 0.5 s, held 1 s (validate runs 6 x 6 x 16 for 10 s). Only the density
   // rows are asserted: the bottom pressure (~28 % high), the pressure gradient (~30 % high) and the
   // stillness criterion miss the issue's tolerances with the current walls; they stay FAIL in
-  // `huygens validate sph_hydrostatic` and are reported to the lead (issue 7).
+  // `huygens validate sph_hydrostatic` (an open target of issue 7, docs/sph.md).
   expect_rows_pass(sph_hydrostatic_rows(6, 12, 0.5, 1.0), "rho/rho0");
 }
 
