@@ -187,6 +187,18 @@ double interp(const std::vector<double>& X, const std::vector<double>& Y, double
   return Y[i - 1] + f * (Y[i] - Y[i - 1]);
 }
 
+// The heightfield of paper 000 eq. 5-6 on cells of the particle spacing, with the support
+// radius and the iso value that puts a flat lattice's surface half a spacing above its top.
+SphHeightfield default_heightfield(const SphSystem& s, const SphParams& p, float dx, SphSurfaceParams& sp) {
+  sp.cell = dx;
+  sp.radius = s.support();
+  sp.iso = sph_flat_iso(sp.radius, dx);
+  SphHeightfield hf;
+  sph_heightfield_init(sp, p.container[0], p.container[1], hf);
+  sph_extract_heightfield(sp, s.grid(), s.x().data(), s.y().data(), s.z().data(), hf);
+  return hf;
+}
+
 }  // namespace
 
 std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::string& csv) {
@@ -247,12 +259,7 @@ std::vector<ValidationRow> sph_heightfield_rows(int n, int depth, double settle_
     while (s.time() < settle_s) s.step();
     s.refresh();
     SphSurfaceParams sp;
-    sp.cell = dx;
-    sp.radius = s.support();
-    sp.iso = sph_flat_iso(sp.radius, dx);
-    SphHeightfield hf;
-    sph_heightfield_init(sp, p.container[0], p.container[1], hf);
-    sph_extract_heightfield(sp, s.grid(), s.x().data(), s.y().data(), s.z().data(), hf);
+    const SphHeightfield hf = default_heightfield(s, p, dx, sp);
     double mean = 0;
     for (float v : hf.height) mean += v;
     mean /= double(hf.height.size());
@@ -290,12 +297,7 @@ std::vector<ValidationRow> sph_heightfield_rows(int n, int depth, double settle_
         }
     s.set_particles(X, Y, Z);
     SphSurfaceParams sp;
-    sp.cell = dx;
-    sp.radius = s.support();
-    sp.iso = sph_flat_iso(sp.radius, dx);
-    SphHeightfield hf;
-    sph_heightfield_init(sp, p.container[0], p.container[1], hf);
-    sph_extract_heightfield(sp, s.grid(), s.x().data(), s.y().data(), s.z().data(), hf);
+    const SphHeightfield hf = default_heightfield(s, p, dx, sp);
     // least-squares slope over interior columns (two support radii from the x walls)
     double sw = 0, sx = 0, sh = 0, sxx = 0, sxh = 0;
     for (std::size_t r = 0; r < hf.rows; ++r)
