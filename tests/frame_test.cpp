@@ -253,12 +253,20 @@ TEST_P(FrameRingStress, PairsAreConsecutiveIntactAndNewest) {
   EXPECT_EQ(last, static_cast<std::int64_t>(n) - 1) << "the consumer ends on the newest frame";
   EXPECT_EQ(ring.published(), n);
   EXPECT_EQ(fresh + ring.dropped(), n) << "every frame was either seen as newest or counted as dropped";
-  if (pace == Pace::slow_consumer) {
-    EXPECT_GT(ring.dropped(), 0u) << "a slow consumer must see frames dropped";
+  // that a slow consumer sees frames dropped is asserted deterministically in
+  // FrameRing.SlowConsumerGetsTheNewestPairAndCountsDrops; here the schedule decides how many
+  // a producer that has nothing new: the consumer looks again without waiting and keeps its
+  // pair (checked after the join, so it does not depend on how the threads were scheduled)
+  for (int again = 0; again < 3; ++again) {
+    const FramePair p = ring.acquire();
+    ASSERT_TRUE(p);
+    EXPECT_EQ(p.newest->info.step, static_cast<std::int64_t>(n) - 1);
+    ASSERT_TRUE(p.prev);
+    EXPECT_EQ(p.prev->info.step, static_cast<std::int64_t>(n) - 2);
+    EXPECT_TRUE(intact(*p.newest) && intact(*p.prev));
   }
-  if (pace == Pace::slow_producer) {
-    EXPECT_GT(looks, fresh) << "the consumer looked again without waiting and kept its pair";
-  }
+  EXPECT_EQ(ring.published(), n);
+  EXPECT_EQ(fresh + ring.dropped(), n) << "looking again drops nothing";
   RecordProperty("frames", std::to_string(n));
   RecordProperty("dropped", std::to_string(ring.dropped()));
   RecordProperty("looks", std::to_string(looks));
