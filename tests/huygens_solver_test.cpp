@@ -46,6 +46,7 @@ TEST(HuygensSolver, DropsEnterWithExactSubStepTiming) {
   EXPECT_LT(err, 1e-5 * scale);
   const auto& st = solver->stats();
   EXPECT_EQ(st[st.find("drops")].calls, 1u);
+  EXPECT_EQ(st[st.find("drops")].bytes, 2u * 64 * 64 * sizeof(float)) << "timed drops: tables made up front";
 }
 
 TEST(HuygensSolver, UiDropIsAppliedBetweenSteps) {
@@ -54,7 +55,12 @@ TEST(HuygensSolver, UiDropIsAppliedBetweenSteps) {
   double before = 0;
   for (float v : solver->height()) before = std::max(before, double(std::abs(v)));
   EXPECT_EQ(before, 0.0);
+  // a scene without timed drops owns no source tables until the first UI drop
+  const int drops = solver->stats().find("drops");
+  ASSERT_GE(drops, 0);
+  EXPECT_EQ(solver->stats()[drops].bytes, 0u);
   EXPECT_TRUE(solver->apply(Command{cmd::Drop{1.0f, 1.0f, 0.05f, 0.01f}}));
+  EXPECT_EQ(solver->stats()[drops].bytes, 2u * 64 * 64 * sizeof(float)) << "-omega/k and omega per mode";
   double after = 0;
   for (float v : solver->height()) after = std::min(after, double(v));
   EXPECT_NEAR(after, -0.01, 1e-3);  // the depression is in the height at once

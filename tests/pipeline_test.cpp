@@ -427,8 +427,10 @@ TEST(Pipeline, NonFiniteValueIsNamedByItsStage) {
   // The hook writes one NaN into the named stage's output at step `at`, before that stage's
   // own check. With the default check_every = 16, steps 16 and 32 run every stage's check;
   // on the other steps the fused check of the height finds it and the buffers name the stage
-  // (Z: propagate, Z^: spectrum, P: height). The cutoff and the ships write into the same
-  // spatial buffer as propagate, so they are named on check steps only (or with check_every = 1).
+  // (Z: propagate, Z^: spectrum, P: height). The cutoff writes into the same spatial buffer as
+  // propagate, so it is named on check steps only (or with check_every = 1): a multiplication by
+  // h(p)h(q) in [0, 1] cannot make a non-finite value from finite ones. The ships check each
+  // patch before adding it, on every step.
   struct Case {
     const char* stage;
     std::int64_t at;
@@ -441,7 +443,7 @@ TEST(Pipeline, NonFiniteValueIsNamedByItsStage) {
   for (std::int64_t at : {16, 32}) cases.push_back({"cutoff", at, 16, false, false});
   cases.push_back({"cutoff", 5, 1, false, false});
   cases.push_back({"drops", 5, 16, true, false});  // the scene drop at t = 0.1 s enters in step 5
-  cases.push_back({"ships", 16, 16, false, true});
+  for (std::int64_t at : {5, 16, 17}) cases.push_back({"ships", at, 16, false, true});
   cases.push_back({"ships", 5, 1, false, true});
   for (const Case& c : cases) {
     SCOPED_TRACE(::testing::Message() << c.stage << " at step " << c.at << ", check_every " << c.check_every);

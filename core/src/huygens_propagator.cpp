@@ -66,7 +66,7 @@ HuygensPropagator::HuygensPropagator(const HuygensParams& p)
     eta_ = AlignedBuffer<float>(vv);
     etadot_ = AlignedBuffer<float>(vv);
   }
-  if (p.runtime_sources) ensure_source_tables();
+  if (p.runtime_sources) reserve_sources();
   build_tables();
   if (spatial_) inv_prop_ = std::make_unique<Fft2D>(p.n, p.n, z_.data(), z_.data(), Fft2D::backward, p.effort);
   // the forward plan is part of the step only with the spatial round trip; otherwise it is
@@ -150,8 +150,8 @@ void HuygensPropagator::build_tables() {
   }
 }
 
-void HuygensPropagator::ensure_source_tables() {
-  if (src_.size()) return;
+std::uint64_t HuygensPropagator::reserve_sources() {
+  if (src_.size()) return source_bytes();
   const int n = p_.n;
   const std::size_t nn = static_cast<std::size_t>(n) * n;
   src_ = AlignedBuffer<float>(nn);
@@ -167,12 +167,13 @@ void HuygensPropagator::ensure_source_tables() {
       omega_[i] = static_cast<float>(w);
     }
   }
+  return source_bytes();
 }
 
 // ---- sources --------------------------------------------------------------------------------
 
 void HuygensPropagator::add_gaussian(double x_m, double y_m, double sigma_m, double amplitude_m, double age_s) {
-  ensure_source_tables();  // allocates only when runtime_sources was not set (construction time)
+  reserve_sources();  // allocates only on first use (see the header)
   const int n = p_.n;
   const double d = dx();
   const double amp = 2.0 * kPi * sigma_m * sigma_m * amplitude_m / (d * d);

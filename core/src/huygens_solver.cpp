@@ -115,8 +115,9 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
   }
   std::stable_sort(out.drops.begin(), out.drops.end(),
                    [](const GaussianSource& a, const GaussianSource& b) { return a.t < b.t; });
-  // source tables (2 N^2 floats) always: UI drops may arrive at any step and must not allocate
-  p.runtime_sources = true;
+  // source tables (2 N^2 floats) at construction for timed drops, which enter inside a step;
+  // a scene without them makes the tables on the first UI drop (between steps, see apply())
+  p.runtime_sources = !out.drops.empty();
   // Stokes or wind: the StokesHeight stage makes the height; the propagator makes none
   p.external_height = out.stokes || out.has_wind;
   if (!out.ships.empty()) {
@@ -173,8 +174,9 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
     const auto& d = scene_.drops[next_drop_++];
     prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, -d.t);
   }
-  // the drops stage exists when the scene has drops or the UI sends one (registered here)
-  st_drops_ = prop_.stats().add("drops", 2 * static_cast<std::uint64_t>(prop_.n()) * prop_.n() * sizeof(float));
+  // the drops stage exists for the scene's drops and for the UI's (registered here; it owns
+  // the source tables once they exist)
+  st_drops_ = prop_.stats().add("drops", prop_.source_bytes());
   if (ships_) st_ships_ = prop_.stats().add("ships", ships_->bytes());
   if (wind_) st_wind_ = prop_.stats().add("wind", wind_->bytes());
   if (stokes_) st_stokes_ = prop_.stats().add(scene_.stokes ? "height_stokes" : "height_wind", stokes_->bytes());
@@ -249,14 +251,17 @@ void HuygensSolver::step() {
   prop_.propagate();
   prop_.cutoff();
   if (ships_) {
-    StageTimer timer(prop_.stats()[st_ships_]);
-    ships_->add(prop_.field().data(), t0, dt);
+    // the ships write into the same buffer as propagate and cutoff: each patch is checked
+    // before it is added (every step; P^2 per ship), so a non-finite value from the kernels
+    // is named "ships" and never blamed on propagate
+    if (prop_.inject_due_for_test(st_ships_)) ships_->poison_next_add_for_test();
+    bool ok = false;
+    {
+      StageTimer timer(prop_.stats()[st_ships_]);
+      ok = ships_->add(prop_.field().data(), t0, dt);
+    }
+    if (!ok) throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
   }
-  if (ships_ && prop_.inject_due_for_test(st_ships_)) prop_.field()[prop_.field().size() / 2 + prop_.n() / 2] = NAN;
-  // the ships write into the same buffer as propagate and cutoff: on check steps they check
-  // their own output so that a non-finite value from them is not blamed on the spectrum
-  if (ships_ && prop_.check_step() && !all_finite(prop_.field()))
-    throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
   prop_.spectrum();
   if (drop_due()) {
     // drops released in (t, t + dt] enter with the phase they have gained by t + dt
@@ -298,6 +303,9 @@ bool HuygensSolver::apply(const Command& c) {
   const double len = scene_.params.length_m;
   if (!(d->x_m >= 0 && d->x_m <= len && d->y_m >= 0 && d->y_m <= len && d->radius_m > 0 && std::isfinite(d->depth_m)))
     return false;
+  // the first UI drop of a scene without timed drops makes the source tables (2 N^2 floats,
+  // one pass of the dispersion): here, between steps, on the simulation thread
+  prop_.stats()[st_drops_].bytes = prop_.reserve_sources();
   StageTimer timer(prop_.stats()[st_drops_]);
   prop_.add_gaussian(d->x_m, d->y_m, d->radius_m, -static_cast<double>(d->depth_m));
   if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps());

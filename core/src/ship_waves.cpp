@@ -1,5 +1,7 @@
 #include "huygens/ship_waves.hpp"
 
+#include "huygens/finite.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -330,11 +332,16 @@ void ShipWaves::patch_spectrum(int i, double t, double dt, cfloat* out, int& row
   col0 = wrap(cc);
 }
 
-void ShipWaves::add(cfloat* z, double t, double dt) {
+bool ShipWaves::add(cfloat* z, double t, double dt) {
   for (int i = 0; i < ships(); ++i) {
     int r0, c0;
     patch_spectrum(i, t, dt, buf_.data(), r0, c0);
     inverse_.execute();
+    if (poison_) {
+      buf_[0] = cfloat(NAN, 0.0f);
+      poison_ = false;
+    }
+    if (!all_finite(buf_.span())) return false;
     // scatter-add with periodic wrap at the grid edge
     for (int j = 0; j < p_; ++j) cols_[static_cast<std::size_t>(j)] = ((c0 + (j < p_ / 2 ? j : j - p_)) % n_ + n_) % n_;
     for (int r = 0; r < p_; ++r) {
@@ -344,6 +351,7 @@ void ShipWaves::add(cfloat* z, double t, double dt) {
       for (int j = 0; j < p_; ++j) dst[cols_[static_cast<std::size_t>(j)]] += src[j];
     }
   }
+  return true;
 }
 
 }  // namespace huygens

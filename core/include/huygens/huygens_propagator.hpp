@@ -108,13 +108,19 @@ class HuygensPropagator {
   /// Adds an elevation E(x) = amplitude exp(-|x - x0|^2 / (2 sigma^2)) released from rest `age_s`
   /// seconds ago: Z^ += -i omega/k E^ e^{-i omega age} with the analytic periodised spectrum
   /// E^(k) = 2 pi sigma^2 amplitude / dx^2 exp(-k^2 sigma^2 / 2) e^{-i k.x0} (unit of x0: m).
-  /// Inside a run (drops) it needs runtime_sources; it never allocates then.
+  /// Allocates the source tables on first use unless reserve_sources() (or runtime_sources) ran
+  /// before: inside a step, call reserve_sources() at construction.
   void add_gaussian(double x_m, double y_m, double sigma_m, double amplitude_m, double age_s = 0.0);
   /// Adds a progressive plane wave whose elevation is amplitude cos(k.x) at this time,
   /// travelling along direction_deg (0 = +x, 90 = +y): Z = -i omega(k)/k amplitude e^{i k.x}.
   /// Exactly one Fourier mode when the wave vector is on the grid. Uses one transform: not
   /// for use inside a step.
   void add_plane_wave(double wavelength_m, double amplitude_m, double direction_deg);
+  /// Allocates and fills the source tables (-omega/k and omega, 2 N^2 floats) if not yet done;
+  /// returns their size (unit: bytes). Runs between steps, never inside one.
+  std::uint64_t reserve_sources();
+  /// Size of the source tables allocated so far (unit: bytes; 0 before the first source).
+  std::uint64_t source_bytes() const { return (src_.size() + omega_.size()) * sizeof(float); }
   /// Sets a flat sea at rest: Z^ = Z = 0 and the heights 0 (time and steps unchanged).
   void clear();
   /// Replaces the state by the spatial field z (N*N values, rows = y) and recomputes the height.
@@ -183,7 +189,6 @@ class HuygensPropagator {
 
  private:
   void build_tables();
-  void ensure_source_tables();
   void check_stage(int stage, std::span<const cfloat> v) const;
   void diagnose_nonfinite() const;
   /// Cell (N/2, N/2): inside the visible region (test hook).

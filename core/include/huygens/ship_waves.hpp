@@ -124,8 +124,13 @@ class ShipWaves {
 
   /// Adds the waves every ship generates during [t, t + dt], observed at t + dt, into the
   /// spatial wave field z (n x n, row-major, unit m^2/s). Call after the propagation of z
-  /// to t + dt. One P x P inverse FFT per ship; no allocation.
-  void add(cfloat* z, double t, double dt);
+  /// to t + dt. One P x P inverse FFT per ship; no allocation. Every patch is checked for
+  /// non-finite values before it is added (P x P values per ship, small against N x N): returns
+  /// false, and leaves z without that ship's patch, when one is not finite.
+  bool add(cfloat* z, double t, double dt);
+  /// Test hook (tests only; no scene or command reaches it): the next add() writes one NaN
+  /// into the first ship's patch before its check, as if the kernels had produced it.
+  void poison_next_add_for_test() { poison_ = true; }
 
   /// The patch spectrum of ship i for the step [t, t + dt] (P x P, FFTW order, already
   /// normalised: an unnormalised inverse FFT gives the samples of dZ), and the big-grid
@@ -157,6 +162,7 @@ class ShipWaves {
   std::vector<Cache> cache_;
   std::vector<double> kx_, omega_;  // patch wavenumbers (per index) and omega per mode
   AlignedBuffer<cfloat> buf_;
+  bool poison_ = false;  // test hook: see poison_next_add_for_test()
   AlignedBuffer<cfloat> ph_;  // 4 P phase vectors: e^{-i kx dx0}, e^{-i ky dy0}, and for t + dt
   std::vector<int> cols_;
   Fft2D inverse_;
