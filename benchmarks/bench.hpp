@@ -48,5 +48,10 @@ void bench_sph(Context&);
 void bench_accuracy(Context&);
 void bench_skip(Context&);
 void bench_stress(Context&);
+void bench_interp(Context&);
+void bench_render(Context&);
+// the solver parts of "stress" (called by bench_stress)
+void stress_sph(Context&);
+void stress_lbm(Context&);
 
 }  // namespace huygens::bench

@@ -82,6 +82,8 @@ int main(int argc, char** argv) {
       {"accuracy", bench_accuracy},
       {"skip", bench_skip},
       {"stress", bench_stress},
+      {"interp", bench_interp},
+      {"render", bench_render},
   };
   Context ctx;
   std::string csv;
@@ -115,8 +117,16 @@ int main(int argc, char** argv) {
   std::printf("machine: %s, %u cores, g++ %s, %s, OpenMP threads %d, %s run\n", cpu_model().c_str(),
               std::thread::hardware_concurrency(), __VERSION__, huygens::fft_version(), omp_get_max_threads(),
               ctx.quick ? "quick" : "full");
+  const auto start = std::chrono::steady_clock::now();
+  huygens::Table took({"section", "wall s"});
   for (const auto& [name, fn] : sections)
-    if (chosen.empty() || std::find(chosen.begin(), chosen.end(), name) != chosen.end()) fn(ctx);
+    if (chosen.empty() || std::find(chosen.begin(), chosen.end(), name) != chosen.end()) {
+      const auto t0 = std::chrono::steady_clock::now();
+      fn(ctx);
+      took.add({name, huygens::fmt("%.1f", seconds_since(t0))});
+    }
+  took.add({"total", huygens::fmt("%.1f", seconds_since(start))});
+  std::printf("\n== run time per section ==\n%s", took.text().c_str());
   if (!csv.empty()) {
     std::ofstream f(csv);
     for (const auto& [title, table] : ctx.tables) f << "# " << title << "\n" << table.csv() << "\n";

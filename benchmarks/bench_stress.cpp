@@ -1,4 +1,5 @@
-// Sections "skip" and "stress" for the Huygens core (the SPH and LBM parts of stress come later).
+// Sections "skip" and "stress" (the Huygens part here; the SPH and LBM parts are in
+// bench_stress_sph.cpp and bench_stress_lbm.cpp).
 //   skip    the shipped default scene with its features switched on one at a time (cutoff,
 //           drops, plane wave), the per-stage counters (StageStats) of each: a feature the
 //           scene does not name runs no stage, makes no transform and costs zero.
@@ -7,7 +8,8 @@
 //           energy budget printed every tenth of the run and a verdict; dt from 1/60 s to 100 s on
 //           a periodic grid (no CFL limit: the energy must stay put); extreme inputs (dt = 1 s
 //           and 10 s on the default scene, a drop as deep as its wavelength); and values that
-//           overflow float, which must stop the run with NonFiniteError naming the stage.
+//           overflow float, which must stop the run with NonFiniteError naming the stage;
+//           ship speeds up to 80 m/s (the largest accepted one, faster refused with the reason).
 #include <omp.h>
 
 #include <algorithm>
@@ -340,6 +342,59 @@ void bench_stress(Context& ctx) {
     ctx.report("stress",
                "overflowing inputs: refused with the JSON path, or stopped with NonFiniteError naming the stage", t);
   }
+
+  // 5. ships: the largest speed a step accepts (a ship may move at most a quarter of its patch
+  //    per step, checked before the run), and a ship at 20 m/s on the kelvin scene
+  {
+    std::ifstream f(std::string(HUYGENS_SOURCE_DIR) + "/scenes/kelvin.json");
+    std::stringstream ss;
+    ss << f.rdbuf();
+    const nlohmann::json kelvin = nlohmann::json::parse(ss.str());
+    Table t({"ship speed m/s", "Froude U/sqrt(gL)", "steps", "max |eta| m", "E end / E max", "outcome"});
+    const int steps = ctx.quick ? 60 : 600;
+    const double len = kelvin["ships"][0]["length_m"].get<double>();
+    double largest_ok = 0;
+    for (double u : {1.253, 5.0, 10.0, 20.0, 40.0, 80.0}) {
+      nlohmann::json j = kelvin;
+      j["grid"]["n"] = 256;  // the kelvin scene at half size, same dx and dt
+      j["grid"]["length_m"] = 25.6;
+      j["grid"]["margin"] = 24;
+      auto& path = j["ships"][0]["path"];
+      path = nlohmann::json::array({{{"t", 0.0}, {"x_m", 3.0}, {"y_m", 12.8}},
+                                    {{"t", 1e3}, {"x_m", 3.0 + u * 1e3}, {"y_m", 12.8}}});
+      std::string outcome;
+      double worst_eta = 0, emax = 0, eend = 0;
+      try {
+        HuygensSolver s(scene_from(j));
+        for (int i = 1; i <= steps; ++i) {
+          s.step();
+          if (i % 10 == 0 || i == steps) {
+            const Budget b = budget(s);
+            worst_eta = std::max(worst_eta, b.max_eta);
+            emax = std::max(emax, b.energy);
+            eend = b.energy;
+          }
+        }
+        outcome = std::isfinite(worst_eta) && std::isfinite(emax) ? "finite" : "NON-FINITE, NOT REPORTED";
+        if (outcome == "finite") largest_ok = u;
+      } catch (const SceneError& e) {
+        outcome = std::string("refused before the run: ") + e.what();
+      } catch (const NonFiniteError& e) {
+        outcome = std::string("stopped: ") + e.what();
+      }
+      t.add({num(u, 4), num(u / std::sqrt(9.81 * len), 3), std::to_string(steps), num(worst_eta, 4),
+             emax > 0 ? num(eend / emax, 4) : "-", outcome});
+      ctx.expect(outcome != "NON-FINITE, NOT REPORTED", fmt("stress: a ship at %.3g m/s did not go non-finite silently", u));
+    }
+    ctx.report("stress",
+               fmt("ship speed on kelvin.json (n 256, 25.6 m, dt 0.05 s): largest accepted %.3g m/s; faster ships are "
+                   "refused before the run with the reason (energy keeps growing while a ship runs: it is a source)",
+                   largest_ok),
+               t);
+  }
+
+  stress_sph(ctx);
+  stress_lbm(ctx);
 }
 
 }  // namespace huygens::bench

@@ -2,7 +2,9 @@
 # README command 2: install the Debian packages, build, and pass the tests: the Release
 # suite (unit, physics, render, stress), then the sanitizer builds (ThreadSanitizer on the
 # threaded tests, AddressSanitizer + UBSan on the unit tests; scripts/test-sanitizers.sh).
-# HUYGENS_SKIP_SANITIZERS=1 runs the Release suite only.
+# Between the two, `huygens-bench --quick` (every section at CI size, about 2-3 minutes): it
+# asserts no timing, but it must finish and its accuracy checks must pass (exit 0).
+# HUYGENS_SKIP_SANITIZERS=1 runs the Release suite only; HUYGENS_SKIP_BENCH=1 skips the bench.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-deps.sh"
@@ -10,6 +12,10 @@ bash "$root/scripts/build.sh"
 # OpenMP threads that sleep at barriers: ctest runs two 2-thread tests at once on 2 cores.
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 (cd "${HUYGENS_BUILD_DIR:-$root/build}" && ctest --output-on-failure -j "$(nproc)" --timeout 900)
+if [ "${HUYGENS_SKIP_BENCH:-0}" != 1 ]; then
+  echo "== huygens-bench --quick"
+  "${HUYGENS_BUILD_DIR:-$root/build}/benchmarks/huygens-bench" --quick --csv "${HUYGENS_BUILD_DIR:-$root/build}/bench-quick.csv"
+fi
 if [ "${HUYGENS_SKIP_SANITIZERS:-0}" != 1 ]; then
   bash "$root/scripts/test-sanitizers.sh"
 fi
