@@ -2,10 +2,11 @@
 """Plot run time against error from huygens-bench --csv output.
 
 Reads the CSV written by `huygens-bench --csv FILE` (blocks of `# section: title` followed by a
-header line and rows) and writes one PNG per table that has a time column ("time/sim s") and an
-error column ("error"): error against wall seconds per simulated second, log-log, one marker
-style per method, the Pareto front (rows no other row beats in both time and error) drawn as a
-step line with the optimal points ringed.
+header line and rows) and writes one PNG per run-time-against-error table (the kinds in SPECS:
+the Huygens core and its baselines, the displayed-frame interpolation, the LBM Stoker sweep, the
+SPH dam-break sweep): error against time, log-log, one marker style per method or series, the
+Pareto front (points no other point beats in both time and error) drawn as a step line with the
+optimal points ringed.
 
 Uses Debian's python3-matplotlib and python3-numpy (scripts/install-deps.sh installs them).
 Example:
@@ -21,9 +22,17 @@ import re
 import sys
 import textwrap
 
-TIME_COLUMNS = ("time/sim s",)
-ERROR_COLUMNS = ("error",)
-
+# (time column, [(error column, series label or None = the "method" column)], x label, y label,
+#  column that names each point): one entry per kind of run-time-against-error table
+SPECS = [
+    ("time/sim s", [("error", None)], "wall time per simulated second (s)", "max error / amplitude", "n"),
+    ("ms/displayed frame", [("cubic rms err / rms h", "cubic Hermite (eta, eta_dot)"),
+                            ("linear rms err / rms h", "linear (eta only)")],
+     "ms per displayed frame", "rms error / rms height", "D"),
+    ("run time s", [("L1 rel. error", "LBM")], "run time (s)", "L1 relative error", "cells"),
+    ("wall s", [("mean front error % (T <= 2.5)", "mean front error"), ("max front error %", "max front error")],
+     "wall time (s)", "surge front error against Martin & Moyce (%)", "particles across a"),
+]
 
 def read_blocks(path):
     """Returns [(title, header, rows)] from a huygens-bench CSV file."""
@@ -76,35 +85,35 @@ def slug(title):
 
 def plot_block(plt, title, header, rows, out_dir):
     col = {name: i for i, name in enumerate(header)}
-    tcol = next((col[c] for c in TIME_COLUMNS if c in col), None)
-    ecol = next((col[c] for c in ERROR_COLUMNS if c in col), None)
-    if tcol is None or ecol is None:
+    spec = next((sp for sp in SPECS if sp[0] in col and all(e in col for e, _ in sp[1])), None)
+    if spec is None:
         return None
-    mcol = col.get("method")
-    ncol = col.get("n")
-    points = [(number(r[tcol]), number(r[ecol])) for r in rows]
+    tname, series, xlabel, ylabel, label_col = spec
+    tcol, mcol, ncol = col[tname], col.get("method"), col.get(label_col)
+    # every plotted point: (time, error, series label, point label)
+    pts = []
+    for ename, label in series:
+        for r in rows:
+            pts.append((number(r[tcol]), number(r[col[ename]]), label or (r[mcol] if mcol is not None else "rows"),
+                        r[ncol] if ncol is not None else ""))
+    points = [(t, e) for t, e, _, _ in pts]
     if not any(not math.isnan(t) and not math.isnan(e) for t, e in points):
         return None
     fig, ax = plt.subplots(figsize=(8, 5.5), dpi=110)
     methods = []
-    for r in rows:
-        m = r[mcol] if mcol is not None else "rows"
-        if m not in methods:
-            methods.append(m)
+    for p in pts:
+        if p[2] not in methods:
+            methods.append(p[2])
     markers = ["o", "s", "^", "D", "v", "P", "X", "*"]
     for k, m in enumerate(methods):
-        sel = [i for i, r in enumerate(rows) if (r[mcol] if mcol is not None else "rows") == m]
-        xs = [points[i][0] for i in sel if not math.isnan(points[i][0]) and not math.isnan(points[i][1])]
-        ys = [points[i][1] for i in sel if not math.isnan(points[i][0]) and not math.isnan(points[i][1])]
-        if not xs:
+        sel = [p for p in pts if p[2] == m and not math.isnan(p[0]) and not math.isnan(p[1])]
+        if not sel:
             continue
-        ax.scatter(xs, ys, marker=markers[k % len(markers)], s=36, label=m, zorder=3)
-        if ncol is not None:
-            for i in sel:
-                t, e = points[i]
-                if not math.isnan(t) and not math.isnan(e):
-                    ax.annotate(rows[i][ncol], (t, e), textcoords="offset points", xytext=(4, 3), fontsize=6,
-                                color="0.35")
+        ax.scatter([p[0] for p in sel], [p[1] for p in sel], marker=markers[k % len(markers)], s=36, label=m,
+                   zorder=3)
+        for t, e, _, name in sel:
+            if name:
+                ax.annotate(name, (t, e), textcoords="offset points", xytext=(4, 3), fontsize=6, color="0.35")
     front = pareto(points)
     if front:
         fx = [points[i][0] for i in front]
@@ -113,8 +122,8 @@ def plot_block(plt, title, header, rows, out_dir):
         ax.scatter(fx, fy, s=130, facecolors="none", edgecolors="k", lw=1.0, zorder=4)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("wall time per simulated second (s)")
-    ax.set_ylabel("max error / amplitude")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
     ax.set_title(textwrap.fill(title, 110), fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
@@ -123,7 +132,6 @@ def plot_block(plt, title, header, rows, out_dir):
     fig.savefig(path)
     plt.close(fig)
     return path
-
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description="Plot error against time per simulated second (log-log, Pareto front "
@@ -143,7 +151,7 @@ def main(argv=None):
     for p in written:
         print(p)
     if not written:
-        print("plot_bench.py: no table with 'time/sim s' and 'error' columns in " + args.csv, file=sys.stderr)
+        print("plot_bench.py: no run-time-against-error table in " + args.csv, file=sys.stderr)
         return 1
     return 0
 
