@@ -5,11 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "accum_blur.hpp"
@@ -395,4 +397,105 @@ TEST(Caustics, ObliqueSunBeamAreaAgainstPhotonReference) {
   }
   EXPECT_LT(err[1], err[0]);
   EXPECT_LT(err[1], 0.25);
+}
+
+// Regression (issue 5, defect 2: short dark lines on the ground in huygens-viz). The texture
+// covers the still-water projection of the domain exactly, so a wave that moved the border
+// vertices inwards used to leave the outermost texels unlit (0, and 0.25 after the blur); the
+// oblique sun puts that edge in the middle of the view through the water. Now a skirt continues
+// the mesh beyond its border (CausticsMesh). In the app's configuration (385-point field,
+// 96 x 96 mesh, 512^2 texture, depth 3 m), all four modes (MIP / explicit, 8-bit / float),
+// sun overhead and huygens-viz's oblique default (60 degrees from the zenith), the whole
+// texture, outermost rows and columns included:
+//  * still water gives 1 on every texel (within 1 %);
+//  * a plane wave eta = A sin(k.x + phi) through the borders (a third of it for the oblique sun,
+//    which focuses it about 3x more; irradiance in [0.84, 1.2]): no texel, raw or blurred, below
+//    0.8 of the median of its 5 x 5 neighbourhood (clipped at the texture's edge). The
+//    irradiance changes by a few % over 5 texels and an 8-bit level is 3 %; the old gap gave 0.
+//  * sun overhead, linear projection, explicit float: the closed form. The ground map is
+//    x + F grad eta, F = (1 - 1/n) D, with Jacobian 1 + F eta'' = 1 - S sin, S = F A k^2, so
+//    every texel lies in [1/(1+S), 1/(1-S)] up to the mesh's second-order error (5 %).
+TEST(Caustics, NoDarkLinesOnACalmSurface) {
+  context();
+  const int n = 385, tex = 512;
+  const double L = 11.25, D = 3.0, S = 0.15;
+  const double kx = 2 * kPi / L * 3.0, ky = 2 * kPi / L * 2.0, k2 = kx * kx + ky * ky;  // wavelength 3.1 m
+  const double A = S / (focus_factor(D) * k2);
+  Field still, wave;
+  for (Field* f : {&still, &wave}) {
+    f->n = n;
+    f->dx = float(L / (n - 1));
+    f->depth = float(D);
+    f->eta.assign(std::size_t(n) * n, 0.0f);
+  }
+  Field gentle = wave;  // a third of the amplitude for the oblique sun, which focuses about 3x more
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      wave.eta[std::size_t(i) * n + j] = float(A * std::sin(kx * j * wave.dx + ky * i * wave.dx + 0.7));
+      gentle.eta[std::size_t(i) * n + j] = wave.eta[std::size_t(i) * n + j] / 3.0f;
+    }
+  const std::array<float, 3> overhead{0.0f, 0.0f, -1.0f};
+  std::array<float, 3> oblique{-0.35f, -0.8f, -0.5f};  // huygens-viz's default sun (RenderSettings::sun_dir)
+  viz::AccumBlur blur(tex, tex);
+  // smallest ratio texel / median of its (clipped) 5 x 5 neighbourhood, and where
+  auto worst_dip = [&](const std::vector<float>& img, int& wx, int& wy, int b = 0) {
+    double worst = 1e30;
+    for (int y = b; y < tex - b; ++y)
+      for (int x = b; x < tex - b; ++x) {
+        float nb[25];
+        int m = 0;
+        for (int dy = -2; dy <= 2; ++dy)
+          for (int dx = -2; dx <= 2; ++dx) {
+            const int xx = x + dx, yy = y + dy;
+            if (xx >= 0 && yy >= 0 && xx < tex && yy < tex) nb[m++] = img[std::size_t(yy) * tex + xx];
+          }
+        std::nth_element(nb, nb + m / 2, nb + m);
+        const double r = img[std::size_t(y) * tex + x] / std::max(nb[m / 2], 1e-6f);
+        if (r < worst) worst = r, wx = x, wy = y;
+      }
+    return worst;
+  };
+  for (auto area : {CausticsArea::Mip, CausticsArea::Explicit})
+    for (bool flt : {false, true})
+      for (const auto& sun : {overhead, oblique}) {
+        auto p = params(96, tex, area, CausticsProjection::Linear, flt);
+        p.sun_dir = sun;
+        viz::CausticsRenderer r(p);
+        const bool obl = sun[0] != 0.0f;
+        const std::string name = std::string(area == CausticsArea::Mip ? "mip" : "explicit") + (flt ? " f32" : " u8") +
+                                 (obl ? " oblique" : " overhead");
+        // still water: exactly uniform everywhere
+        const auto flat = render(r, still);
+        float lo = 1e30f, hi = -1e30f;
+        for (float v : flat) lo = std::min(lo, v), hi = std::max(hi, v);
+        EXPECT_LT(std::max(std::abs(hi - 1.0f), std::abs(lo - 1.0f)), 0.01f) << name << ": still water";
+        // plane wave through the borders
+        const auto raw = render(r, obl ? gentle : wave);
+        std::vector<float> blurred;
+        if (flt) {
+          blur.blur_float(r.texture());
+          blurred = gl::read_pixels_f32(blur.float_framebuffer(), 1);
+        } else {
+          blur.blur_emulated(r.texture());
+          const auto b8 = gl::read_pixels_u8(blur.emulated_framebuffer(), GL_RED);
+          blurred.resize(b8.pixels.size());
+          for (std::size_t q = 0; q < blurred.size(); ++q) blurred[q] = float(b8.pixels[q]) / p.unit_level_u8;
+        }
+        int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+        const double dip_raw = worst_dip(raw, x0, y0), dip_blur = worst_dip(blurred, x1, y1);
+        float wlo = 1e30f, whi = -1e30f;
+        for (float v : raw) wlo = std::min(wlo, v), whi = std::max(whi, v);
+        int xi = 0, yi = 0;
+        const double dip_in = worst_dip(raw, xi, yi, 16);
+        std::printf(
+            "[ dark lines ] %-22s still [%.4f, %.4f]; wave [%.3f, %.3f], worst texel/median raw %.3f at (%d,%d), "
+            "blurred %.3f at (%d,%d); raw away from the edges %.3f\n",
+            name.c_str(), lo, hi, wlo, whi, dip_raw, x0, y0, dip_blur, x1, y1, dip_in);
+        EXPECT_GE(dip_raw, 0.8) << name << ": a dark texel at (" << x0 << ", " << y0 << ")";
+        EXPECT_GE(dip_blur, 0.8) << name << ": a dark texel after the blur at (" << x1 << ", " << y1 << ")";
+        if (area == CausticsArea::Explicit && flt && !obl) {
+          EXPECT_GE(wlo, 0.95 / (1 + S)) << name;
+          EXPECT_LE(whi, 1.05 / (1 - S)) << name;
+        }
+      }
 }

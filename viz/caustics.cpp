@@ -49,13 +49,14 @@ CausticsRenderer::CausticsRenderer(const CausticsParams& params)
   glBindVertexArray(vao_);
   glGenBuffers(1, &vbo_ground_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_ground_);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh_.ground_uv.size() * sizeof(float)), nullptr, GL_STREAM_DRAW);
+  // mesh vertices, then the skirt's (CausticsMesh)
+  const auto vbo_bytes = GLsizeiptr(2 * mesh_.vertex_count() * sizeof(float));
+  glBufferData(GL_ARRAY_BUFFER, vbo_bytes, nullptr, GL_STREAM_DRAW);
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glEnableVertexAttribArray(0);
   glGenBuffers(1, &vbo_surface_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_surface_);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(mesh_.surface_uv.size() * sizeof(float)), mesh_.surface_uv.data(),
-               GL_STREAM_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, vbo_bytes, nullptr, GL_STREAM_DRAW);
   glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glEnableVertexAttribArray(1);
   glGenBuffers(1, &ebo_);
@@ -167,10 +168,14 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
 
   // GPU: all projected triangles, additive
   glBindVertexArray(vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, vbo_ground_);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(mesh_.ground_uv.size() * sizeof(float)), mesh_.ground_uv.data());
-  glBindBuffer(GL_ARRAY_BUFFER, vbo_surface_);
-  glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(mesh_.surface_uv.size() * sizeof(float)), mesh_.surface_uv.data());
+  auto upload = [](GLuint vbo, const std::vector<float>& mesh, const std::vector<float>& skirt) {
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(mesh.size() * sizeof(float)), mesh.data());
+    glBufferSubData(GL_ARRAY_BUFFER, GLintptr(mesh.size() * sizeof(float)), GLsizeiptr(skirt.size() * sizeof(float)),
+                    skirt.data());
+  };
+  upload(vbo_ground_, mesh_.ground_uv, mesh_.skirt_ground_uv);
+  upload(vbo_surface_, mesh_.surface_uv, mesh_.skirt_surface_uv);
   fb_.bind();
   glClearColor(0, 0, 0, 0);
   glClear(GL_COLOR_BUFFER_BIT);

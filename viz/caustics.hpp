@@ -13,6 +13,8 @@
 //    (Figure 7; the higher levels are skipped as in the paper).
 //  * Explicit mode: brightness = unit * (surface area) / (ground area) per triangle, from a
 //    geometry shader; the ship's shadow is a mask in surface coordinates.
+// The mesh carries a skirt beyond its border (CausticsMesh in caustics_cpu.hpp), so the
+// texture's outer texels are lit even where the waves move the border inwards.
 // Values: unit irradiance (still water, sun light as it enters the surface) is 1 in a float
 // target and CausticsParams::unit_level_u8 / 255 in the 8-bit target (GL_R8; additive
 // blending saturates at 1). Texture row 0 is at the ground rect's y0 (ground_rect()).

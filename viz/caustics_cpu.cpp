@@ -88,13 +88,40 @@ void caustics_mesh_init(const CausticsParams& p, CausticsMesh& m) {
       m.surface_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float(i) / float(m.rows - 1);
     }
   m.indices.clear();
-  m.indices.reserve(std::size_t(m.cols - 1) * (m.rows - 1) * 6);
+  m.indices.reserve(std::size_t(m.cols + 1) * (m.rows + 1) * 6);
   for (int i = 0; i + 1 < m.rows; ++i)
     for (int j = 0; j + 1 < m.cols; ++j) {
       const std::uint32_t v00 = std::uint32_t(i * m.cols + j), v01 = v00 + 1, v10 = v00 + std::uint32_t(m.cols),
                           v11 = v10 + 1;
       m.indices.insert(m.indices.end(), {v00, v01, v11, v00, v11, v10});
     }
+  // skirt: the ring i in {-1, rows} or j in {-1, cols} of the extended lattice
+  const int ec = m.cols + 2, er = m.rows + 2;
+  std::vector<std::uint32_t> id(std::size_t(ec) * er);
+  m.skirt_anchor.clear();
+  m.skirt_dir.clear();
+  for (int i = -1; i <= m.rows; ++i)
+    for (int j = -1; j <= m.cols; ++j) {
+      std::uint32_t& v = id[std::size_t(i + 1) * ec + (j + 1)];
+      if (i >= 0 && i < m.rows && j >= 0 && j < m.cols) {
+        v = std::uint32_t(i * m.cols + j);
+        continue;
+      }
+      v = std::uint32_t(n + m.skirt_anchor.size());
+      const int ai = std::clamp(i, 0, m.rows - 1), aj = std::clamp(j, 0, m.cols - 1);
+      m.skirt_anchor.push_back(std::uint32_t(ai * m.cols + aj));
+      m.skirt_dir.push_back(std::int8_t(j - aj));
+      m.skirt_dir.push_back(std::int8_t(i - ai));
+    }
+  for (int i = -1; i < m.rows; ++i)
+    for (int j = -1; j < m.cols; ++j) {
+      if (i >= 0 && j >= 0 && i + 1 < m.rows && j + 1 < m.cols) continue;  // a mesh cell
+      const std::uint32_t v00 = id[std::size_t(i + 1) * ec + (j + 1)], v01 = id[std::size_t(i + 1) * ec + (j + 2)],
+                          v10 = id[std::size_t(i + 2) * ec + (j + 1)], v11 = id[std::size_t(i + 2) * ec + (j + 2)];
+      m.indices.insert(m.indices.end(), {v00, v01, v11, v00, v11, v10});
+    }
+  m.skirt_ground_uv.assign(2 * m.skirt_anchor.size(), 0.0f);
+  m.skirt_surface_uv.assign(2 * m.skirt_anchor.size(), 0.0f);
 }
 
 void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, CausticsMesh& m) {
@@ -137,6 +164,49 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
       m.ground_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float((Y - g.y0) / H);
     }
   }
+  // skirt (see CausticsMesh): the map continued linearly outwards from each border vertex,
+  // P_ring = P_a + r (P_a - P_inner) per outward axis, in ground and surface coordinates alike,
+  // with one reach r (in cells, >= 1) for the whole ring: the smallest that takes every ring
+  // vertex at least one texel beyond the texture's edge. Where that cannot work (a fold at the
+  // border, or r capped) the ground position is pushed out to that margin instead, so the ring
+  // always encloses the whole texture
+  const float mu = 1.0f / float(p.texture_width), mv = 1.0f / float(p.texture_height);  // one texel
+  auto inner = [&](std::size_t k, int c) {  // the vertex one cell inwards along axis c
+    const int a = int(m.skirt_anchor[k]), d = m.skirt_dir[2 * k + c];
+    return std::uint32_t(c == 0 ? a - d : a - d * m.cols);
+  };
+  float r = 1.0f;
+  for (std::size_t k = 0; k < m.skirt_anchor.size(); ++k) {
+    const std::uint32_t a = m.skirt_anchor[k];
+    for (int c = 0; c < 2; ++c) {
+      const int d = m.skirt_dir[2 * k + c];
+      if (d == 0) continue;
+      const float beyond = d > 0 ? m.ground_uv[2 * a + c] - 1.0f : -m.ground_uv[2 * a + c];
+      const float grow = float(d) * (m.ground_uv[2 * a + c] - m.ground_uv[2 * inner(k, c) + c]);
+      const float margin = c == 0 ? mu : mv;
+      if (grow > 0.0f) r = std::max(r, (margin - beyond) / grow);
+    }
+  }
+  r = std::min(r, 16.0f);
+  for (std::size_t k = 0; k < m.skirt_anchor.size(); ++k) {
+    const std::uint32_t a = m.skirt_anchor[k];
+    for (int c = 0; c < 2; ++c) {
+      float gr = m.ground_uv[2 * a + c], sr = m.surface_uv[2 * a + c];
+      for (int axis = 0; axis < 2; ++axis) {
+        if (m.skirt_dir[2 * k + axis] == 0) continue;
+        const std::uint32_t in = inner(k, axis);
+        gr += r * (m.ground_uv[2 * a + c] - m.ground_uv[2 * in + c]);
+        sr += r * (m.surface_uv[2 * a + c] - m.surface_uv[2 * in + c]);
+      }
+      const int d = m.skirt_dir[2 * k + c];
+      const float margin = c == 0 ? mu : mv;
+      if (d > 0) gr = std::max(gr, 1.0f + margin);
+      if (d < 0) gr = std::min(gr, -margin);
+      m.skirt_ground_uv[2 * k + c] = gr;
+      m.skirt_surface_uv[2 * k + c] = sr;
+    }
+  }
+  m.skirt_reach = r;
 }
 
 ShipShadow make_ellipse_hull(float cx, float cy, float heading, float length, float beam, int segments) {

@@ -103,6 +103,19 @@ GroundRect ground_rect(const CausticsParams& p, const HeightfieldView& field);
 /// The caustics mesh on the CPU: heights bilinearly sampled from the full heightfield at the
 /// mesh vertices, slopes by central differences on the mesh (one-sided at its border), each
 /// vertex projected onto the ground. Sized once, refilled each frame without allocation.
+///
+/// Skirt: the texture covers exactly the still-water projection of the domain, so wherever a
+/// wave moves the border vertices inwards the outer texels would receive no light at all
+/// (short black lines along the texture's edge, seen through the water in huygens-viz). A
+/// ring of skirt vertices outside the border closes that gap: each continues the map linearly
+/// from its anchor (the nearest border vertex), P_ring = P_anchor + r (P_anchor - P_inner) per
+/// outward axis, in ground and surface coordinates alike, so a skirt quad has about the
+/// Jacobian, hence the irradiance, of the border cell next to it. The reach r >= 1 (cells, one
+/// for the whole ring, at most 16) is the smallest that puts every ring vertex at least one
+/// texel beyond the texture's edge; where a fold at the border defeats that, the ground
+/// position is pushed out to that margin. So the ring encloses the whole texture and every
+/// texel is covered (the boundary of the map winds once around it). Skirt vertices are
+/// numbered after the rows*cols mesh vertices.
 struct CausticsMesh {
   int cols = 0, rows = 0;
   std::vector<float> height;     ///< sampled elevation per vertex (unit: m)
@@ -111,7 +124,14 @@ struct CausticsMesh {
   /// vertex position at rest when the sun is overhead or flux_by_beam_area is off): the
   /// triangle's area here is its beam cross-section, and MIP / shadow lookups use it
   std::vector<float> surface_uv;
-  std::vector<std::uint32_t> indices;  ///< two triangles per mesh cell
+  /// two triangles per mesh cell, then two per skirt cell (indices >= rows*cols are skirt vertices)
+  std::vector<std::uint32_t> indices;
+  std::vector<std::uint32_t> skirt_anchor;  ///< border vertex each skirt vertex continues
+  std::vector<std::int8_t> skirt_dir;       ///< its outward direction (x, y) in {-1, 0, 1}^2, 2 per vertex
+  std::vector<float> skirt_ground_uv;       ///< skirt vertices in ground texture coordinates (2 per vertex)
+  std::vector<float> skirt_surface_uv;      ///< skirt vertices in surface coordinates (2 per vertex)
+  float skirt_reach = 1;                    ///< the reach r of the last update (unit: mesh cells)
+  std::size_t vertex_count() const { return std::size_t(cols) * rows + skirt_anchor.size(); }
 };
 void caustics_mesh_init(const CausticsParams& p, CausticsMesh& mesh);
 void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& field, CausticsMesh& mesh);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <thread>
 
 namespace huygens {
 
@@ -84,54 +83,134 @@ void subsample_heights(std::span<const float> eta, std::size_t rows, std::size_t
   }
 }
 
+bool snell_slope_derivatives(const ViewRays& view, const glm::dvec3& p, double dx, const RefractionParams& params,
+                             glm::dvec2& d_eta_u, glm::dvec2& d_eta_v) {
+  // snell_ground_point at rest (n = up) and its first-order change when the normal tilts by
+  // dn = (-eta_u, -eta_v, 0) / (2 dx) (normal_from_differences to first order):
+  //   t = r d + (r c - sqrt(k)) n,  c = -n.d,  k = 1 - r^2 (1 - c^2)
+  //   dc = -dn.d,  dt = dc (r - r^2 c / sqrt(k)) n + (r c - sqrt(k)) dn
+  //   G = P_xy + s t_xy,  s = (ground_z - P_z) / t_z  =>  dG = s (dt_xy - t_xy dt_z / t_z)
+  const glm::dvec3 d = view.toward(p);
+  const double sigma = d.z > 0.0 ? -1.0 : 1.0;  // the flip of snell_ground_point: n faces the ray
+  const glm::dvec3 n(0.0, 0.0, sigma);
+  const double r = 1.0 / params.index, c = -glm::dot(n, d);
+  const double k = 1.0 - r * r * (1.0 - c * c);
+  if (k <= 0.0) return false;
+  const double sk = std::sqrt(k);
+  const glm::dvec3 t = r * d + (r * c - sk) * n;
+  if (t.z > -1e-6) return false;  // clamped in snell_ground_point: not differentiable this way
+  const double s = (params.ground_z - p.z) / t.z;
+  auto dG = [&](const glm::dvec3& dn_raw) {
+    const glm::dvec3 dn = sigma * dn_raw;
+    const double dc = -glm::dot(dn, d);
+    const glm::dvec3 dt = dc * (r - r * r * c / sk) * n + (r * c - sk) * dn;
+    return s * (glm::dvec2(dt.x, dt.y) - glm::dvec2(t.x, t.y) * (dt.z / t.z));
+  };
+  d_eta_u = dG(glm::dvec3(-1.0 / (2.0 * dx), 0.0, 0.0));
+  d_eta_v = dG(glm::dvec3(0.0, -1.0 / (2.0 * dx), 0.0));
+  return true;
+}
+
+namespace {
+// (c, d, e, f) at one point by central differences of snell_ground_point (the reference path)
+void numerical_slope_derivatives(const ViewRays& view, const glm::dvec3& p, double dx, const RefractionParams& params,
+                                 glm::dvec2& du, glm::dvec2& dv) {
+  const double hs = 1e-4 * dx;
+  du = (snell_ground_point(view, p, normal_from_differences(hs, 0.0, dx), params) -
+        snell_ground_point(view, p, normal_from_differences(-hs, 0.0, dx), params)) /
+       (2.0 * hs);
+  dv = (snell_ground_point(view, p, normal_from_differences(0.0, hs, dx), params) -
+        snell_ground_point(view, p, normal_from_differences(0.0, -hs, dx), params)) /
+       (2.0 * hs);
+}
+
+void slope_derivatives(const ViewRays& view, const glm::dvec3& p, double dx, const RefractionParams& params,
+                       bool analytic, glm::dvec2& du, glm::dvec2& dv) {
+  if (!analytic || !snell_slope_derivatives(view, p, dx, params, du, dv))
+    numerical_slope_derivatives(view, p, dx, params, du, dv);
+}
+
+void store_cdef(float* o, const glm::dvec2& du, const glm::dvec2& dv) {
+  o[0] = static_cast<float>(du.x);  // c
+  o[1] = static_cast<float>(dv.x);  // d
+  o[2] = static_cast<float>(du.y);  // e
+  o[3] = static_cast<float>(dv.y);  // f
+}
+
+// Cell k of the mesh axis `idx` holding grid index g (the last cell for the last point), and
+// the linear weight s in [0, 1] of its upper end.
+void axis_cell(const std::vector<std::size_t>& idx, std::size_t g, std::size_t& k, double& s) {
+  k = static_cast<std::size_t>(std::upper_bound(idx.begin(), idx.end(), g) - idx.begin());
+  k = std::clamp<std::size_t>(k, 1, idx.size() - 1) - 1;
+  s = static_cast<double>(g - idx[k]) / static_cast<double>(idx[k + 1] - idx[k]);
+}
+}  // namespace
+
 LinearRefraction linearise_refraction(const GridPlacement& grid, const SurfaceMeshLayout& layout, const ViewRays& view,
-                                      const RefractionParams& params) {
+                                      const RefractionParams& params, const LinearisationMethod& method) {
   LinearRefraction lin;
   const glm::dvec3 up(0.0, 0.0, 1.0);
-  // step of the numerical derivatives: small against the depth, large against rounding
+  // step of the numerical derivative in height: small against the depth, large against rounding
   const double he = 1e-4 * std::max(1.0, -params.ground_z);
-  const double hs = 1e-4 * grid.dx;
-  lin.vertex.resize(4 * layout.vertex_rows() * layout.vertex_cols());
-  for (std::size_t l = 0; l < layout.vertex_rows(); ++l) {
-    for (std::size_t k = 0; k < layout.vertex_cols(); ++k) {
+  const std::size_t vr = layout.vertex_rows(), vc = layout.vertex_cols();
+  lin.vertex.resize(4 * vr * vc);
+  // (c, d, e, f) at the mesh vertices too when the grid values are interpolated from them
+  std::vector<float> coarse(method.coarse ? 4 * vr * vc : 0);
+  for (std::size_t l = 0; l < vr; ++l) {
+    for (std::size_t k = 0; k < vc; ++k) {
       const double x = grid.x(layout.col_idx[k]), y = grid.y(layout.row_idx[l]);
       const glm::dvec2 g0 = snell_ground_point(view, {x, y, 0.0}, up, params);
       const glm::dvec2 gp = snell_ground_point(view, {x, y, he}, up, params);
       const glm::dvec2 gm = snell_ground_point(view, {x, y, -he}, up, params);
       const glm::dvec2 ab = (gp - gm) / (2.0 * he);
-      float* o = &lin.vertex[4 * (l * layout.vertex_cols() + k)];
+      float* o = &lin.vertex[4 * (l * vc + k)];
       o[0] = static_cast<float>(g0.x);
       o[1] = static_cast<float>(g0.y);
       o[2] = static_cast<float>(ab.x);
       o[3] = static_cast<float>(ab.y);
+      if (method.coarse) {
+        glm::dvec2 du, dv;
+        slope_derivatives(view, {x, y, 0.0}, grid.dx, params, method.analytic, du, dv);
+        store_cdef(&coarse[4 * (l * vc + k)], du, dv);
+      }
     }
   }
   lin.grid.resize(4 * grid.rows * grid.cols);
-  // rows [i0, i1) of the per-grid-point coefficients; split over a few threads (each point is
-  // independent, so the result does not depend on the split)
-  auto rows = [&](std::size_t i0, std::size_t i1) {
-    for (std::size_t i = i0; i < i1; ++i) {
+  if (!method.coarse) {
+    for (std::size_t i = 0; i < grid.rows; ++i)
       for (std::size_t j = 0; j < grid.cols; ++j) {
-        const glm::dvec3 p(grid.x(j), grid.y(i), 0.0);
-        const glm::dvec2 du = (snell_ground_point(view, p, normal_from_differences(hs, 0.0, grid.dx), params) -
-                               snell_ground_point(view, p, normal_from_differences(-hs, 0.0, grid.dx), params)) /
-                              (2.0 * hs);
-        const glm::dvec2 dv = (snell_ground_point(view, p, normal_from_differences(0.0, hs, grid.dx), params) -
-                               snell_ground_point(view, p, normal_from_differences(0.0, -hs, grid.dx), params)) /
-                              (2.0 * hs);
-        float* o = &lin.grid[4 * (i * grid.cols + j)];
-        o[0] = static_cast<float>(du.x);  // c
-        o[1] = static_cast<float>(dv.x);  // d
-        o[2] = static_cast<float>(du.y);  // e
-        o[3] = static_cast<float>(dv.y);  // f
+        glm::dvec2 du, dv;
+        slope_derivatives(view, {grid.x(j), grid.y(i), 0.0}, grid.dx, params, method.analytic, du, dv);
+        store_cdef(&lin.grid[4 * (i * grid.cols + j)], du, dv);
       }
+    return lin;
+  }
+  // bilinear over the mesh cells: the coefficients vary on the scale of the view distance, the
+  // cells are `factor` grid points wide
+  std::vector<std::size_t> kc(grid.cols);
+  std::vector<float> sc(grid.cols);
+  for (std::size_t j = 0; j < grid.cols; ++j) {
+    double s;
+    axis_cell(layout.col_idx, j, kc[j], s);
+    sc[j] = static_cast<float>(s);
+  }
+  for (std::size_t i = 0; i < grid.rows; ++i) {
+    std::size_t l;
+    double t;
+    axis_cell(layout.row_idx, i, l, t);
+    const float tf = static_cast<float>(t);
+    const float* r0 = &coarse[4 * l * vc];
+    const float* r1 = &coarse[4 * (l + 1) * vc];
+    float* out = &lin.grid[4 * i * grid.cols];
+    for (std::size_t j = 0; j < grid.cols; ++j) {
+      const std::size_t k = kc[j];
+      const float s = sc[j];
+      const float w00 = (1 - s) * (1 - tf), w01 = s * (1 - tf), w10 = (1 - s) * tf, w11 = s * tf;
+      for (int q = 0; q < 4; ++q)
+        out[4 * j + q] =
+            w00 * r0[4 * k + q] + w01 * r0[4 * (k + 1) + q] + w10 * r1[4 * k + q] + w11 * r1[4 * (k + 1) + q];
     }
-  };
-  const std::size_t nt = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 4);
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < nt; ++t) pool.emplace_back(rows, grid.rows * t / nt, grid.rows * (t + 1) / nt);
-  rows(0, grid.rows / nt);
-  for (std::thread& th : pool) th.join();
+  }
   return lin;
 }
 

@@ -16,8 +16,9 @@
 // vertex (both given per mesh vertex, linearly interpolated across a triangle);
 // eta_u, eta_v are the central height differences eta(i, j+1) - eta(i, j-1) and
 // eta(i+1, j) - eta(i-1, j), and [c d; e f] the derivative of the ground point with respect
-// to them at rest (given per original grid point). All six coefficients are numerical
-// (central) derivatives of the exact Snell calculation, computed at start-up and again
+// to them at rest (given per original grid point). All six coefficients are derivatives of
+// the exact Snell calculation (numerical in the paper; here (c, d, e, f) in closed form at the
+// mesh vertices, bilinear in between: LinearisationMethod), computed at start-up and again
 // whenever the camera moves. The normal from the differences is
 //   n = normalize(-eta_u / (2 dx), -eta_v / (2 dx), 1).
 // Coordinates are returned in metres on the ground plane; the renderer divides by the
@@ -99,9 +100,38 @@ struct LinearRefraction {
   std::vector<float> grid;
 };
 
-/// Coefficients by numerical derivatives of snell_ground_point at rest (paper 004, sec. 4).
+/// How linearise_refraction finds (c, d, e, f). The paper takes numerical derivatives of the
+/// exact calculation at every grid point; that costs 4 Snell evaluations per grid point (0.6 M
+/// for the 384 x 384 default, 15-35 ms on the render thread at every camera move). Both
+/// shortcuts below are on by default and leave the result within float rounding of it
+/// (refraction_test): the derivatives at rest have a closed form (snell_slope_derivatives),
+/// and they vary smoothly on the scale of the view distance, so evaluating them only at the
+/// mesh vertices and interpolating bilinearly over each mesh cell (what the GPU's linear
+/// filter would do) is ~factor^2 times cheaper.
+struct LinearisationMethod {
+  /// Closed-form derivatives (true) or central differences of snell_ground_point (false, the paper).
+  bool analytic = true;
+  /// Evaluate (c, d, e, f) at the mesh vertices and interpolate bilinearly to the grid points
+  /// (true), or evaluate at every grid point (false, the paper).
+  bool coarse = true;
+};
+
+/// Coefficients from derivatives of snell_ground_point at rest (paper 004, sec. 4): (u0, v0)
+/// exactly, (a, b) by central differences in the height of a flat water plane, (c, d, e, f) as
+/// `method` says.
 LinearRefraction linearise_refraction(const GridPlacement& grid, const SurfaceMeshLayout& layout, const ViewRays& view,
-                                      const RefractionParams& params);
+                                      const RefractionParams& params, const LinearisationMethod& method = {});
+
+/// Closed-form derivatives of snell_ground_point(view, p, n, params) at n = up with respect to
+/// the central height differences eta_u and eta_v (n = normal_from_differences(eta_u, eta_v, dx)):
+/// d_eta_u = (c, e), d_eta_v = (d, f). With the view ray d, c0 = -n.d, k = 1 - r^2 (1 - c0^2),
+/// r = 1/index, t = r d + (r c0 - sqrt k) n and s = (ground_z - P_z) / t_z, a tilt dn of the
+/// normal gives dc0 = -dn.d, dt = dc0 (r - r^2 c0 / sqrt k) n + (r c0 - sqrt k) dn and
+/// dG = s (dt_xy - t_xy dt_z / t_z), with dn = (-1, 0, 0) / (2 dx) per unit eta_u and
+/// (0, -1, 0) / (2 dx) per unit eta_v. Returns false where snell_ground_point is not smooth
+/// there (total internal reflection, or a refracted ray that does not go down).
+bool snell_slope_derivatives(const ViewRays& view, const glm::dvec3& p, double dx, const RefractionParams& params,
+                             glm::dvec2& d_eta_u, glm::dvec2& d_eta_v);
 
 /// Ground point of the linearised path at grid point (i, j), given the mesh heights and
 /// the interleaved height differences, interpolated over the same triangles the GPU draws
