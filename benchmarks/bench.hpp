@@ -14,6 +14,11 @@ namespace huygens::bench {
 struct Context {
   /// CI-sized run (the whole --quick run stays under 3 minutes).
   bool quick = false;
+  /// Parts of a section to run (e.g. "sph" from the argument "stress:sph"); empty = all.
+  std::vector<std::string> parts;
+  bool part(const std::string& name) const {
+    return parts.empty() || std::find(parts.begin(), parts.end(), name) != parts.end();
+  }
   /// Thread counts to sweep (1 and the machine's count).
   std::vector<int> threads;
   /// Accuracy checks that failed (a --quick run exits non-zero when any did).
@@ -50,7 +55,8 @@ void bench_skip(Context&);
 void bench_stress(Context&);
 void bench_interp(Context&);
 void bench_render(Context&);
-// the solver parts of "stress" (called by bench_stress)
+// the solver parts of "stress" (called by bench_stress; `stress:huygens` etc. runs one)
+void stress_huygens(Context&);
 void stress_sph(Context&);
 void stress_lbm(Context&);
 

@@ -1,4 +1,4 @@
-// huygens-bench [SECTION...] [--quick] [--csv FILE] [--threads LIST]
+// huygens-bench [SECTION[:PART]...] [--quick] [--csv FILE] [--threads LIST]
 // Prints run time against error, baselines and ratios measured in the same run.
 #include <omp.h>
 #include <unistd.h>
@@ -66,7 +66,7 @@ std::string cpu_model() {
 }
 
 const char* kUsage =
-    "usage: huygens-bench [SECTION...] [--quick] [--csv FILE] [--threads LIST]\n"
+    "usage: huygens-bench [SECTION[:PART]...] [--quick] [--csv FILE] [--threads LIST]\n"
     "sections: all (default)";
 
 }  // namespace
@@ -98,12 +98,17 @@ int main(int argc, char** argv) {
     } else if (a == "--help" || a == "-h") {
       std::printf("%s", kUsage);
       for (const auto& [name, fn] : sections) std::printf(", %s", name.c_str());
-      std::printf("\n  --quick    CI-sized sweeps (under 3 minutes in all)\n"
+      std::printf("\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm)\n"
+                  "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
                   "  --csv FILE also write every table's rows as CSV\n"
                   "  --threads  comma-separated thread counts to sweep (default 1,<cores>)\n");
       return 0;
     } else if (a == "all") {
     } else if (sections.count(a)) chosen.push_back(a);
+    else if (const auto colon = a.find(':'); colon != std::string::npos && sections.count(a.substr(0, colon))) {
+      chosen.push_back(a.substr(0, colon));  // SECTION:PART runs one part (e.g. stress:sph)
+      ctx.parts.push_back(a.substr(colon + 1));
+    }
     else {
       std::fprintf(stderr, "huygens-bench: unknown argument '%s' (see --help)\n", a.c_str());
       return 2;

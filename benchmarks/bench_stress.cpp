@@ -147,6 +147,12 @@ void bench_skip(Context& ctx) {
 
 // ---- stability stress ---------------------------------------------------------------------------
 void bench_stress(Context& ctx) {
+  if (ctx.part("huygens")) stress_huygens(ctx);
+  if (ctx.part("sph")) stress_sph(ctx);
+  if (ctx.part("lbm")) stress_lbm(ctx);
+}
+
+void stress_huygens(Context& ctx) {
   const nlohmann::json base = default_scene_json();
 
   // 1. the long run of the hardest shipped scene
@@ -393,8 +399,6 @@ void bench_stress(Context& ctx) {
                t);
   }
 
-  stress_sph(ctx);
-  stress_lbm(ctx);
 }
 
 }  // namespace huygens::bench

@@ -85,16 +85,18 @@ SphRun run_sph(const SphParams& p, double t_end, int checks) {
     s.refresh();
     const double e0 = sph_budget(s).energy_j;
     for (int c = 1; c <= checks; ++c) {
-      while (s.time() < t_end * c / checks) s.step();
-      const SphBudget b = sph_budget(s);
-      if (!b.finite) {
-        r.outcome = "NON-FINITE, NOT REPORTED";
-        return r;
+      while (s.time() < t_end * c / checks) {
+        s.step();
+        const SphBudget b = sph_budget(s);  // every step: impacts last a few steps
+        if (!b.finite) {
+          r.outcome = "NON-FINITE, NOT REPORTED";
+          return r;
+        }
+        r.worst.max_speed = std::max(r.worst.max_speed, b.max_speed);
+        r.worst.density_err = std::max(r.worst.density_err, b.density_err);
+        r.worst.outside = std::max(r.worst.outside, b.outside);
+        r.energy_ratio = std::max(r.energy_ratio, b.energy_j / e0);
       }
-      r.worst.max_speed = std::max(r.worst.max_speed, b.max_speed);
-      r.worst.density_err = std::max(r.worst.density_err, b.density_err);
-      r.worst.outside = std::max(r.worst.outside, b.outside);
-      r.energy_ratio = std::max(r.energy_ratio, b.energy_j / e0);
     }
     r.t_end = s.time();
     r.steps = s.steps();
@@ -120,6 +122,7 @@ void stress_sph(Context& ctx) {
     const double t_end = ctx.quick ? 0.5 : 10.0;
     SphSystem s(base);
     s.refresh();
+    // speed and compression: maxima over each tenth of the run (every step); E and outside: at its end
     Table t({"t s", "steps", "dt min s", "E / E0", "max speed / sqrt(2gH)", "max rho/rho0 - 1 %", "outside",
              "ms/step"});
     SphBudget b = sph_budget(s);
@@ -134,9 +137,15 @@ void stress_sph(Context& ctx) {
       for (int c = 1; c <= 10; ++c) {
         const auto t0 = std::chrono::steady_clock::now();
         const std::int64_t n0 = s.steps();
+        double iv = 0, irho = 0;  // maxima over this tenth of the run
         while (s.time() < t_end * c / 10) {
           s.step();
-          bar.update(static_cast<long long>(1000 * s.time() / t_end));
+          // the peaks (impacts) last a few steps: every step counts toward the worst values
+          const SphBudget k = sph_budget(s);
+          iv = std::max(iv, k.max_speed / v_ref);
+          irho = std::max(irho, k.density_err);
+          worst_e = std::max(worst_e, k.energy_j / e0);
+          if (s.steps() % 64 == 0) bar.update(static_cast<long long>(1000 * s.time() / t_end));
         }
         const double ms = seconds_since(t0) * 1e3 / static_cast<double>(std::max<std::int64_t>(s.steps() - n0, 1));
         b = sph_budget(s);
@@ -145,12 +154,11 @@ void stress_sph(Context& ctx) {
           break;
         }
         worst_e = std::max(worst_e, b.energy_j / e0);
-        worst_v = std::max(worst_v, b.max_speed / v_ref);
-        worst_rho = std::max(worst_rho, b.density_err);
+        worst_v = std::max(worst_v, iv);
+        worst_rho = std::max(worst_rho, irho);
         worst_out = std::max(worst_out, b.outside);
         t.add({num(s.time(), 4), std::to_string(s.steps()), num(s.dt_stats().min, 3), num(b.energy_j / e0, 5),
-               num(b.max_speed / v_ref, 4), num(100 * b.density_err, 3), std::to_string(b.outside),
-               fmt("%.3f", ms)});
+               num(iv, 4), num(100 * irho, 3), std::to_string(b.outside), fmt("%.3f", ms)});
       }
     } catch (const NonFiniteError& e) {
       failure = e.what();
