@@ -5,8 +5,10 @@
 // is sampled as ONE height per column of a 2D grid: for each column centre (x, y) the highest
 // z with phi(x, y, z) = iso (found by marching down from above the highest particle that
 // reaches the column, then bisection). Only particles of the 3 x 3 x 3 neighbour cells of the
-// SPH grid (cell = support radius >= R) are visited. Normals come from central differences of
-// the heights: n = (-dh/dx, -dh/dy, 1) / |...|.
+// SPH grid (cell = support radius >= R) are visited. The container walls x = 0, lx, y = 0, ly and
+// the floor are mirrors, as in the solver: phi includes the mirror images of the particles (the
+// evaluation point is mirrored instead), so columns next to a wall do not dip (they did by ~R/2).
+// Normals come from central differences of the heights: n = (-dh/dx, -dh/dy, 1) / |...|.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -32,6 +34,8 @@ struct SphSurfaceParams {
 struct SphHeightfield {
   std::size_t rows = 0, cols = 0;
   float cell = 0;
+  /// Container extent of the mirror walls (set by sph_heightfield_init; 0 = no mirror images) (unit: m).
+  float lx = 0, ly = 0;
   std::vector<float> height;
   std::vector<float> normal;
 };

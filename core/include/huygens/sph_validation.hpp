@@ -11,9 +11,10 @@ namespace huygens {
 /// Kernel normalisation and antisymmetry at the default spacing (support_factor 2).
 std::vector<ValidationRow> sph_kernel_rows(float support_factor = 2.0f);
 
-/// Hydrostatic column of nx x nx x nz particles: settle (velocity damping) for settle_s, then
-/// run free for hold_s and check bottom pressure, density error and stillness.
-std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double hold_s);
+/// Hydrostatic column of nx x nx x nz particles: settle (velocity damping) for settle_s, relax freely
+/// for relax_s (the particles leave the cubic start lattice for a stable packing), then run free for
+/// hold_s and check bottom pressure, pressure gradient, density error and stillness.
+std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double relax_s, double hold_s);
 
 /// Surge front of a dam break (column a x 2a, `na` particles across a) against Martin & Moyce
 /// (1952), both series, up to T_end = t sqrt(2 g / a): 8 % up to T = 3, 10 % up to T = 5.
