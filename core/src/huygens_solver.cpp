@@ -201,8 +201,10 @@ void HuygensSolver::make_height(std::int64_t step) {
   bool ok = true;
   {
     StageTimer timer(prop_.stats()[st_stokes_]);
-    ok = stokes_->compute(prop_.spectrum_view().data(), 1.0f / (static_cast<float>(n) * static_cast<float>(n)),
-                          wind_ ? wind_->spectrum() : nullptr, eta_.data(), etadot_.data());
+    const float scale = 1.0f / (static_cast<float>(n) * static_cast<float>(n));
+    // with wind: the sea W^(0) P is formed inside the height pass (read once, never written)
+    ok = wind_ ? stokes_->compute(prop_.spectrum_view().data(), scale, *wind_, eta_.data(), etadot_.data())
+               : stokes_->compute(prop_.spectrum_view().data(), scale, nullptr, eta_.data(), etadot_.data());
     prop_.stats()[st_stokes_].transforms += static_cast<std::uint64_t>(stokes_->transforms_per_call());
   }
   if (!ok) throw NonFiniteError(prop_.stats()[st_stokes_].name, step);

@@ -78,8 +78,9 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
       dt_(dt),
       omega_(static_cast<std::size_t>(n) * n),
       w0_(static_cast<std::size_t>(n) * n),
-      cur_(static_cast<std::size_t>(n) * n),
-      step_(static_cast<std::size_t>(n) * n) {
+      step_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
+      phase_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
+      cur_(static_cast<std::size_t>(n) * n) {
   const double dk = 2.0 * kPi / length_m;
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
@@ -88,7 +89,6 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
       const double kx = dk * mx, ky = dk * my, k = std::hypot(kx, ky);
       const double om = omega(w, k);
       omega_[m] = om;
-      step_[m] = cfloat(std::exp(std::complex<double>(0.0, -om * dt)));
       // k = 0 and the Nyquist row and column (their own mirror) carry no wave
       if (k == 0.0 || 2 * c == n || 2 * r == n) continue;
       const double f = wind_density(p, w, kx, ky);
@@ -99,24 +99,74 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
       w0_[m] = cfloat(z);
     }
   std::copy(w0_.data(), w0_.data() + w0_.size(), cur_.data());
+  // e^{-i omega dt} on the quadrant of FFT indices (r, c) in [0, N/2]^2: the value of every mode
+  // (+-r, +-c), since omega depends on |k| only (and the sign of an integer times dk is exact)
+  const int q = n / 2 + 1;
+  for (int r = 0; r < q; ++r)
+    for (int c = 0; c < q; ++c) {
+      const int mx = c < n / 2 ? c : c - n, my = r < n / 2 ? r : r - n;
+      const double om = omega(w, std::hypot(dk * mx, dk * my));
+      step_[static_cast<std::size_t>(r) * q + c] = cfloat(std::exp(std::complex<double>(0.0, -om * dt)));
+      phase_[static_cast<std::size_t>(r) * q + c] = cfloat(1.0f, 0.0f);
+    }
 }
 
 void WindSea::advance() {
   ++steps_;
+  cur_valid_ = false;
+  const int n = n_, q = n / 2 + 1;
   if (steps_ % 256 == 0) {
-    spectrum_at(time(), cur_.data());
+    // exact phases from t (double), so that the repeated float products cannot drift
+    const double t = time();
+#pragma omp parallel for schedule(static) if (n >= 256)
+    for (int r = 0; r < q; ++r)
+      for (int c = 0; c < q; ++c) {
+        const double om = omega_[static_cast<std::size_t>(r) * n + c];  // mode (r, c): |k| of the quadrant cell
+        phase_[static_cast<std::size_t>(r) * q + c] = cfloat(std::exp(std::complex<double>(0.0, -om * t)));
+      }
     return;
   }
-  const std::size_t total = cur_.size();
   // complex multiply written out on interleaved floats so GCC vectorises it
-  float* cur = reinterpret_cast<float*>(cur_.data());
+  float* ph = reinterpret_cast<float*>(phase_.data());
   const float* st = reinterpret_cast<const float*>(step_.data());
-#pragma omp parallel for simd schedule(static) if (total > 65536)
+  const std::size_t total = phase_.size();
+#pragma omp simd
   for (std::size_t m = 0; m < total; ++m) {
-    const float a = cur[2 * m], b = cur[2 * m + 1], c = st[2 * m], d = st[2 * m + 1];
-    cur[2 * m] = a * c - b * d;
-    cur[2 * m + 1] = a * d + b * c;
+    const float a = ph[2 * m], b = ph[2 * m + 1], x = st[2 * m], y = st[2 * m + 1];
+    ph[2 * m] = a * x - b * y;
+    ph[2 * m + 1] = a * y + b * x;
   }
+}
+
+const cfloat* WindSea::spectrum() const {
+  if (cur_valid_) return cur_.data();
+  cur_valid_ = true;
+  const int n = n_, h = n / 2, q = h + 1;
+  // W^(t) = W^(0) P, the quadrant row |r| read forward for columns 0..N/2 and backward above
+  const float* w0 = reinterpret_cast<const float*>(w0_.data());
+  float* cur = reinterpret_cast<float*>(cur_.data());
+  const float* ph = reinterpret_cast<const float*>(phase_.data());
+#pragma omp parallel for schedule(static) if (n >= 256)
+  for (int r = 0; r < n; ++r) {
+    const std::size_t o = 2 * static_cast<std::size_t>(r) * n;
+    const float* w = w0 + o;
+    float* out = cur + o;
+    const float* p = ph + 2 * static_cast<std::size_t>(r <= h ? r : n - r) * q;
+#pragma omp simd
+    for (int c = 0; c <= h; ++c) {
+      const float a = w[2 * c], b = w[2 * c + 1], x = p[2 * c], y = p[2 * c + 1];
+      out[2 * c] = a * x - b * y;
+      out[2 * c + 1] = a * y + b * x;
+    }
+#pragma omp simd
+    for (int c = h + 1; c < n; ++c) {
+      const int j = n - c;
+      const float a = w[2 * c], b = w[2 * c + 1], x = p[2 * j], y = p[2 * j + 1];
+      out[2 * c] = a * x - b * y;
+      out[2 * c + 1] = a * y + b * x;
+    }
+  }
+  return cur_.data();
 }
 
 void WindSea::spectrum_at(double t, cfloat* out) const {

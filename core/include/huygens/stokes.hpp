@@ -21,10 +21,16 @@
 // second order needs chi and chidot as full complex fields (Re and Im of each enter the
 // squares), so 4 more real fields = 2 more transforms: 3 per output in all, 1 without Stokes.
 // Six independent real fields in complex transforms of two: 3 is the minimum.
+// Passes over the N x N field per call (besides the transforms): one pass over the spectrum by
+// pairs of mirror rows (r, N - r), reading Z^ and the wind sea once and writing the three
+// transform inputs (per-mode tables on one quadrant, (N/2+1)^2 values), and one pass over the
+// visible region of the transform outputs.
 #include <cstddef>
+#include <cstdint>
 
 #include "huygens/dispersion.hpp"
 #include "huygens/fft.hpp"
+#include "huygens/wind.hpp"
 
 namespace huygens {
 
@@ -43,6 +49,9 @@ class StokesHeight {
   /// No allocation; transforms_per_call() inverse transforms. Returns false when an output
   /// value is not finite (fused test; the caller raises NonFiniteError naming this stage).
   bool compute(const cfloat* zhat, float zscale, const cfloat* extra, float* eta, float* etadot);
+  /// The same with the wind sea as `extra`: its W^(0) P (wind.hpp) is formed inside this
+  /// stage's pass over the spectrum, so the sea is read once and never written.
+  bool compute(const cfloat* zhat, float zscale, const WindSea& wind, float* eta, float* etadot);
 
   bool second_order() const { return second_; }
   int transforms_per_call() const { return second_ ? 3 : 1; }
@@ -50,18 +59,29 @@ class StokesHeight {
   /// Side of the output region (n - 2 margin).
   int visible() const { return n_ - 2 * m_; }
   std::size_t bytes() const;
+  /// Wall time spent inside FFTW executions by compute(), summed (unit: ns).
+  std::uint64_t fft_ns() const { return fft_ns_; }
+  /// Runs the transforms compute() performs (the same plan on the same buffers) and nothing
+  /// else: the benchmark's baseline. Overwrites the internal buffers.
+  void raw_transforms();
 
  private:
+  bool run(const cfloat* zhat, float zscale, const cfloat* extra, const cfloat* extra_phase, float* eta, float* etadot);
+
   int n_;
   int m_;
   bool second_;
-  AlignedBuffer<float> k_;      // |k| per mode (unit: rad/m)
-  AlignedBuffer<float> kw_;     // k / omega per mode, 0 at k = 0 (unit: s/m)
-  AlignedBuffer<float> sq_;     // sqrt(k / 2) per mode (unit: (rad/m)^{1/2})
-  AlignedBuffer<cfloat> x_;     // packed eta1 + i etadot1
-  AlignedBuffer<cfloat> chi_;   // chi (second order only)
-  AlignedBuffer<cfloat> chid_;  // chidot (second order only)
+  int threads_;  // scratch rows exist for this many threads
+  // per-mode tables on one quadrant (N/2+1)^2, index (|row index|, |col index|): they depend on |k| only
+  AlignedBuffer<float> k_;        // |k| (unit: rad/m)
+  AlignedBuffer<float> kw_;       // k / omega, 0 at k = 0 (unit: s/m)
+  AlignedBuffer<float> sq_;       // sqrt(k / 2) (unit: (rad/m)^{1/2}; second order only)
+  AlignedBuffer<float> scratch_;  // per thread: 11 N floats of row scratch (L1-resident)
+  AlignedBuffer<cfloat> x_;       // packed eta1 + i etadot1
+  AlignedBuffer<cfloat> chi_;     // chi (second order only)
+  AlignedBuffer<cfloat> chid_;    // chidot (second order only)
   Fft2D inverse_;
+  std::uint64_t fft_ns_ = 0;
 };
 
 }  // namespace huygens

@@ -63,9 +63,14 @@ class WindSea {
   /// W^(t) for the current time (FFTW order; an unnormalised inverse FFT gives the spatial
   /// wave field in m^2/s): pass as StokesHeight::compute's `extra`. It starts at t = 0; after
   /// the solver's step to t + dt call advance() first, so both describe the same time.
-  const cfloat* spectrum() const { return cur_.data(); }
-  /// Advances the sea by one step dt (one complex multiply per mode; every 256 steps the
-  /// phases are recomputed exactly from t so rounding cannot drift).
+  /// The sea is stored as W^(k, 0) and a phase table P(|k|, t) = e^{-i omega t} on one quadrant
+  /// (omega depends on |k| only): W^(t) = W^(0) P. This call writes the product into a buffer
+  /// the first time it is asked for after an advance() (one pass); the height stage reads
+  /// W^(0) and P directly instead (StokesHeight::compute(..., const WindSea&, ...)), so that a
+  /// step with wind moves N^2 complex values of the sea once (a read) instead of three times.
+  const cfloat* spectrum() const;
+  /// Advances the sea by one step dt: P <- P e^{-i omega dt} on the quadrant ((N/2+1)^2 complex
+  /// multiplies); every 256 steps P is recomputed exactly from t, so rounding cannot drift.
   void advance();
   /// Current time (unit: s).
   double time() const { return steps_ * dt_; }
@@ -74,8 +79,15 @@ class WindSea {
   /// Expected elevation variance of the grid's modes, sum F dk^2 (unit: m^2).
   double grid_variance() const { return variance_; }
   std::size_t bytes() const {
-    return (w0_.size() + cur_.size() + step_.size()) * sizeof(cfloat) + omega_.size() * sizeof(double);
+    return (w0_.size() + cur_.size() + step_.size() + phase_.size()) * sizeof(cfloat) + omega_.size() * sizeof(double);
   }
+
+  // ---- the representation (for StokesHeight::compute) ------------------------------------------
+  /// W^(k, 0), n x n, FFTW order.
+  const cfloat* base() const { return w0_.data(); }
+  /// P = e^{-i omega(k) t} at time(), on the quadrant of FFT indices (r, c) in [0, N/2]^2, row
+  /// length N/2 + 1: the value of every mode (+-r, +-c).
+  const cfloat* phase_quadrant() const { return phase_.data(); }
 
  private:
   int n_;
@@ -83,7 +95,11 @@ class WindSea {
   long long steps_ = 0;
   double variance_ = 0;
   std::vector<double> omega_;  // per mode (unit: rad/s)
-  AlignedBuffer<cfloat> w0_, cur_, step_;
+  AlignedBuffer<cfloat> w0_;
+  AlignedBuffer<cfloat> step_;         // e^{-i omega dt}, one quadrant
+  AlignedBuffer<cfloat> phase_;        // e^{-i omega t}, one quadrant
+  mutable AlignedBuffer<cfloat> cur_;  // W^(t) = W^(0) P, written by spectrum() when stale
+  mutable bool cur_valid_ = true;
 };
 
 }  // namespace huygens
