@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -42,13 +43,21 @@ void publish_step(FrameRing& ring, std::vector<float>& eta, std::vector<float>& 
   std::vector<StageStat> stages(1);
   stages[0].calls = checksum(eta, rate);
   stages[0].transforms = static_cast<std::uint64_t>(step);
-  ring.publish(FrameInfo{step, 0.1 * static_cast<double>(step), 0}, eta, rate, stages);
+  FrameInfo info{step, 0.1 * static_cast<double>(step), 0};
+  // ship poses travel with the frame: one per step modulo kMaxFrameShips + 1, x = step
+  info.ship_count = static_cast<std::uint32_t>(static_cast<std::uint64_t>(step) % (kMaxFrameShips + 1));
+  for (std::size_t k = 0; k < info.ship_count; ++k)
+    info.ships[k] = ShipState{static_cast<double>(step), static_cast<double>(k), 0.0, 1.0};
+  ring.publish(info, eta, rate, stages);
 }
 
 /// True when the frame's fields are the ones made for its step and match its checksum.
 bool intact(const Frame& f) {
   const auto step = static_cast<std::uint64_t>(f.info.step);
   if (f.stages[0].transforms != step) return false;
+  if (f.info.ship_count != step % (kMaxFrameShips + 1)) return false;
+  for (std::size_t k = 0; k < f.info.ship_count; ++k)
+    if (f.info.ships[k].x_m != static_cast<double>(step) || f.info.ships[k].y_m != static_cast<double>(k)) return false;
   if (checksum(f.eta.span(), f.eta_dot.span()) != f.stages[0].calls) return false;
   for (std::size_t i = 0; i < f.eta.size(); ++i)
     if (f.eta[i] != value_of(step, i) || f.eta_dot[i] != rate_of(step, i)) return false;
@@ -160,6 +169,31 @@ TEST(FrameInterp, SampleAtOneThirdUsesPaper004sWeights) {
   EXPECT_NEAR(out[1], 7.0 / 27, 1e-6);
   EXPECT_NEAR(out[2], 4.0 / 27 * h, 1e-6);
   EXPECT_NEAR(out[3], -2.0 / 27 * h, 1e-6);
+}
+
+// Ship poses between two frames: linear in position and speed at the same phase as the
+// heights, heading along the shorter arc (across +-pi), clamped outside the pair.
+TEST(FrameInterp, ShipPoseIsInterpolatedLikeTheFields) {
+  FrameRing ring(1, 2, 0);
+  const std::vector<float> e{0, 0};
+  FrameInfo a{0, 1.0, 0}, b{1, 1.2, 0};
+  a.ship_count = b.ship_count = 1;
+  a.ships[0] = ShipState{2.0, 3.0, 3.0, 1.0};
+  b.ships[0] = ShipState{2.4, 2.8, -3.0, 2.0};  // heading wraps: 3 -> -3 is +0.283 rad
+  ring.publish(a, e, e);
+  ShipState p;
+  ASSERT_TRUE(ring.acquire().ship(0, 5.0, p));  // one frame: its pose
+  EXPECT_EQ(p.x_m, 2.0);
+  ring.publish(b, e, e);
+  const FramePair f = ring.acquire();
+  ASSERT_TRUE(f.ship(0, 1.05, p));
+  EXPECT_NEAR(p.x_m, 2.1, 1e-12);
+  EXPECT_NEAR(p.y_m, 2.95, 1e-12);
+  EXPECT_NEAR(p.speed_mps, 1.25, 1e-12);
+  EXPECT_NEAR(p.heading_rad, 3.0 + 0.25 * (2 * std::numbers::pi - 6.0), 1e-12);
+  ASSERT_TRUE(f.ship(0, 9.0, p));  // clamped to the newest
+  EXPECT_EQ(p.x_m, 2.4);
+  EXPECT_FALSE(f.ship(1, 1.05, p));
 }
 
 TEST(FrameInterp, SampleIsExactForCubicsAndClampsOutsideThePair) {

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -146,4 +148,93 @@ TEST(HuygensSolver, DisplayFramesInterpolateBetweenFullSteps) {
   }
   EXPECT_LT(err, 1e-6 * scale);
   EXPECT_EQ(s->display_outputs(0)[0].data.data(), s->height().data());
+}
+
+// ---------------------------------------------------------------- ship steering (cmd::ShipTarget)
+
+namespace {
+
+const char* kShipScene = R"({"solver": "huygens", "grid": {"n": 128, "length_m": 16.0, "margin": 8},
+    "time": {"dt": 0.05},
+    "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
+               "path": [{"t": 0, "x_m": 4.0, "y_m": 8.0}, {"t": 8, "x_m": 12.0, "y_m": 8.0}]}]})";
+
+/// Sum of eta^2 over the visible cells within `radius` of (x, y) (unit: m^2 per cell).
+double energy_near(Solver& s, double x, double y, double radius) {
+  const auto eta = s.height();
+  const std::size_t v = s.height_cols();
+  const double dx = 16.0 / 128, x0 = 8 * dx;
+  double e = 0;
+  for (std::size_t r = 0; r < v; ++r)
+    for (std::size_t c = 0; c < v; ++c)
+      if (std::hypot(x0 + c * dx - x, x0 + r * dx - y) < radius) e += double(eta[r * v + c]) * eta[r * v + c];
+  return e;
+}
+
+ShipState pose_of(const Solver& s) {
+  std::array<ShipState, kMaxFrameShips> p{};
+  EXPECT_EQ(s.ship_poses(p), 1u);
+  return p[0];
+}
+
+}  // namespace
+
+// A ShipTarget between steps takes the ship off its scripted path: the solver's pose follows
+// ShipWaves' steering law (the same ship steered directly at the same time), the scripted
+// position is no longer where the ship is, and the wake follows the new track: energy appears
+// around the steered ship and not where the path would have taken it.
+TEST(HuygensSolver, ShipTargetSteersTheShipAndItsWake) {
+  auto steered = make_solver(parse_scene_text(kShipScene), RunOptions{false});
+  auto scripted = make_solver(parse_scene_text(kShipScene), RunOptions{false});
+  const HuygensScene sc = parse_huygens_scene(parse_scene_text(kShipScene), RunOptions{false});
+  ShipWaves ref(sc.params.water, 128, 16.0, sc.ship_patch, sc.ships, PlanEffort::estimate);
+  std::vector<cfloat> z(128 * 128);
+  const double dt = 0.05;
+  for (int i = 0; i < 20; ++i) {
+    steered->step(), scripted->step();
+    ref.add(z.data(), i * dt, dt);
+  }
+  EXPECT_NEAR(pose_of(*steered).x_m, 5.0, 1e-9);  // on its path: 1 m/s along +x
+  EXPECT_NEAR(pose_of(*steered).speed_mps, 1.0, 1e-9);
+  ASSERT_TRUE(steered->apply(Command{cmd::ShipTarget{0, 5.0f, 13.0f, 0.0f, 0.0f}}));
+  ASSERT_TRUE(ref.steer(0, 20 * dt, 5.0, 13.0, 0.0, 0.0));
+  for (int i = 20; i < 80; ++i) {
+    steered->step(), scripted->step();
+    ref.add(z.data(), i * dt, dt);
+  }
+  const ShipState p = pose_of(*steered), q = pose_of(*scripted);
+  const ShipPoseNow r = ref.pose(0, 80 * dt);
+  EXPECT_NEAR(p.x_m, r.x_m, 1e-9);
+  EXPECT_NEAR(p.y_m, r.y_m, 1e-9);
+  EXPECT_NEAR(p.heading_rad, r.heading_rad, 1e-12);
+  EXPECT_NEAR(p.speed_mps, r.speed_mps, 1e-12);
+  EXPECT_GT(p.y_m, 10.0) << "heads for y = 13";
+  EXPECT_NEAR(p.x_m, 5.0, 0.7);
+  EXPECT_NEAR(q.x_m, 8.0, 1e-9);  // the unsteered twin is where the path says
+  EXPECT_NEAR(q.y_m, 8.0, 1e-9);
+  // the wake follows the ship
+  const double near_new = energy_near(*steered, p.x_m, p.y_m, 1.5);
+  const double at_old = energy_near(*steered, 8.0, 8.0, 1.5);
+  const double twin_at_old = energy_near(*scripted, 8.0, 8.0, 1.5);
+  std::printf("energy near the steered ship %.3g, at the scripted position %.3g (twin there %.3g)\n", near_new, at_old,
+              twin_at_old);
+  EXPECT_GT(near_new, 10.0 * at_old);
+  EXPECT_LT(at_old, 0.1 * twin_at_old);
+  EXPECT_GT(near_new, 0.1 * twin_at_old);
+}
+
+TEST(HuygensSolver, ShipTargetRefusesInvalidCommands) {
+  auto s = make_solver(parse_scene_text(kShipScene), RunOptions{false});
+  const float nan = std::nanf(""), inf = INFINITY;
+  EXPECT_FALSE(s->apply(Command{cmd::ShipTarget{1, 5.0f, 5.0f, 0.0f, 0.0f}}));   // one ship only
+  EXPECT_FALSE(s->apply(Command{cmd::ShipTarget{-1, 5.0f, 5.0f, 0.0f, 0.0f}}));  // no such ship
+  EXPECT_FALSE(s->apply(Command{cmd::ShipTarget{0, nan, 5.0f, 0.0f, 0.0f}}));
+  EXPECT_FALSE(s->apply(Command{cmd::ShipTarget{0, 5.0f, 5.0f, inf, 0.0f}}));
+  EXPECT_FALSE(s->apply(Command{cmd::ShipTarget{0, 5.0f, 20.0f, 0.0f, 0.0f}}));  // outside the 16 m grid
+  s->step();
+  EXPECT_NEAR(pose_of(*s).x_m, 4.05, 1e-9) << "refused commands leave the path alone";
+  auto calm = build("");
+  EXPECT_FALSE(calm->apply(Command{cmd::ShipTarget{0, 1.0f, 1.0f, 0.0f, 0.0f}}));  // no ships at all
+  std::array<ShipState, kMaxFrameShips> p{};
+  EXPECT_EQ(calm->ship_poses(p), 0u);
 }

@@ -107,3 +107,47 @@ TEST(Kelvin, PropagatorWakeAtFroude04) {
   EXPECT_NEAR(r.wake.envelope_angle_deg, 19.4712, 0.5);
   EXPECT_NEAR(r.wake.transverse_wavelength_m / lam, 1.0, 0.02);
 }
+
+TEST(Kelvin, LowPassRecoversTheEnvelopeAtHighFroude) {
+  // The steady reference wake at Fr 2 (lambda = 25 m) on 2048 x 4096 cells of 0.4 m (819 m x
+  // 1638 m), measured between 5 and 20 wavelengths behind the hull. The short divergent waves near
+  // the track (k >> g/U^2) carry the largest amplitude there: on the full field the outermost
+  // strong lobe is not the cusp (13.4 deg). Low-passed at 3 g/U^2 (WakeOptions::lowpass_k0) the
+  // envelope reads arcsin(1/3) again (19.25 deg). Nearer, at 1.6-3.2 wavelengths (the range the
+  // froude_trend validation can afford), the same reference reads 18.6 deg: that is the method's
+  // own bias at short range, printed here and reported with the validation.
+  Water w;
+  w.surface_tension = 0;
+  HullParams h;
+  WakeGrid g;
+  WakeTrack t;
+  const double u = 2.0 * std::sqrt(w.gravity * h.length_m);
+  const double lam = kelvin_transverse_wavelength(w, u);
+  g.rows = 2048;
+  g.cols = 4096;
+  g.dx = 0.4;
+  t.speed_mps = u;
+  t.x_m = 0.95 * g.cols * g.dx;
+  t.y_m = 0.5 * g.rows * g.dx;
+  std::vector<float> eta(static_cast<std::size_t>(g.rows) * g.cols);
+  steady_wake(w, h, g, t, 0.005 * w.gravity / u, eta.data());
+  WakeOptions o;
+  o.s_min_m = 5 * lam;
+  o.s_max_m = 20 * lam;
+  const WakeMeasurement full = measure_kelvin_wake(eta.data(), g, t, o);
+  o.lowpass_k0 = 3.0;
+  const WakeMeasurement low = measure_kelvin_wake(eta.data(), g, t, o);
+  o.s_min_m = 1.6 * lam;
+  o.s_max_m = 3.2 * lam;
+  const WakeMeasurement near = measure_kelvin_wake(eta.data(), g, t, o);
+  std::printf(
+      "Fr 2 reference, 5-20 lambda: envelope %.3f deg full field, %.3f deg low-passed (1.6-3.2 lambda: %.3f); "
+      "max amplitude %.2f / %.2f deg; transverse %.3f / %.3f m (%.3f)\n",
+      full.envelope_angle_deg, low.envelope_angle_deg, near.envelope_angle_deg, full.max_amplitude_angle_deg,
+      low.max_amplitude_angle_deg, full.transverse_wavelength_m, low.transverse_wavelength_m, lam);
+  EXPECT_NEAR(low.envelope_angle_deg, 19.4712, 0.5);
+  EXPECT_NEAR(low.transverse_wavelength_m / lam, 1.0, 0.02);
+  EXPECT_GT(std::abs(full.envelope_angle_deg - 19.4712), 3.0) << "the full field hides the cusp (why the low-pass)";
+  EXPECT_EQ(low.max_amplitude_angle_deg, full.max_amplitude_angle_deg);  // read on the full field either way
+  EXPECT_LT(low.max_amplitude_angle_deg, 10.0);                          // inside the wedge (Rabaud-Moisy regime)
+}

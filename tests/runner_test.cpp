@@ -30,6 +30,8 @@ class FakeSolver : public Solver {
     /// Busy time per step (unit: s).
     double step_cost_s = 0;
     bool with_rate = true;
+    /// Report one ship (x = step, y = the last ShipTarget's x, heading = its y) and accept ShipTarget.
+    bool ship = false;
   };
   explicit FakeSolver(Options o) : o_(o), eta_(kRows * kCols), rate_(kRows * kCols) {
     stage_ = stats_.add("propagate", eta_.size() * sizeof(float));
@@ -72,13 +74,23 @@ class FakeSolver : public Solver {
       fill();  // the drop shows in height() at once
       return true;
     }
+    if (const auto* t = std::get_if<cmd::ShipTarget>(&c); t && o_.ship) {
+      target_x_ = t->x_m;
+      target_y_ = t->y_m;
+      return true;
+    }
     if (std::holds_alternative<cmd::Reset>(c)) {
       steps_ = 0;
       depth_sum_ = 0;
       fill();
       return true;
     }
-    return false;  // ship targets, parameters, toggles: not supported by this solver
+    return false;  // ship targets (unless Options::ship), parameters, toggles: not supported by this solver
+  }
+  std::size_t ship_poses(std::span<ShipState> out) const override {
+    if (!o_.ship || out.empty()) return 0;
+    out[0] = ShipState{static_cast<double>(steps_), target_x_, target_y_, 1.0};
+    return 1;
   }
 
   std::vector<float> drops_;
@@ -96,6 +108,7 @@ class FakeSolver : public Solver {
   int stage_ = 0;
   std::int64_t steps_ = 0;
   float depth_sum_ = 0;
+  double target_x_ = -1, target_y_ = 0;
   bool in_step_ = false;
   std::vector<float> eta_, rate_;
 };
@@ -176,6 +189,45 @@ TEST(Runner, CommandsAreAppliedInOrderBetweenStepsAndShowInTheNextFrame) {
   auto& s = dynamic_cast<FakeSolver&>(r.solver());
   EXPECT_EQ(s.drops_, (std::vector<float>{0.25f, 0.5f, 0.75f, 1.0f, 1.25f}));
   EXPECT_FALSE(s.inside_step_) << "a command reached the solver inside step()";
+}
+
+// Every frame carries the solver's ship poses at its step (Solver::ship_poses), and a ShipTarget
+// applied at a step boundary shows in the next frame; a solver without ships publishes none.
+TEST(Runner, FramesCarryTheSolversShipPoses) {
+  RunnerParams p;
+  p.realtime = false;
+  p.start_paused = true;
+  FakeSolver::Options o;
+  o.ship = true;
+  Runner r(fake(o), p);
+  r.start();
+  wait_for([&] { return r.frames_published() >= 1; });
+  ASSERT_TRUE(r.send(cmd::StepOnce{}));
+  wait_for([&] { return r.frames_published() >= 2; });
+  ASSERT_TRUE(r.send(cmd::ShipTarget{0, 3.5f, -0.25f, 0.0f, 0.0f}));
+  ASSERT_TRUE(r.send(cmd::StepOnce{}));
+  wait_for([&] { return r.frames_published() >= 3; });
+  const FramePair f = r.frames();
+  ASSERT_TRUE(f && f.prev);
+  ASSERT_EQ(f.prev->info.ship_count, 1u);
+  ASSERT_EQ(f.newest->info.ship_count, 1u);
+  EXPECT_EQ(f.prev->info.ships[0].x_m, 1.0);  // step 1, before the target
+  EXPECT_EQ(f.prev->info.ships[0].y_m, -1.0);
+  EXPECT_EQ(f.newest->info.ships[0].x_m, 2.0);  // step 2, after it
+  EXPECT_EQ(f.newest->info.ships[0].y_m, 3.5);
+  EXPECT_EQ(f.newest->info.ships[0].heading_rad, -0.25);
+  ShipState mid;
+  ASSERT_TRUE(f.ship(0, f.prev->info.time_s + 0.5 * (f.newest->info.time_s - f.prev->info.time_s), mid));
+  EXPECT_DOUBLE_EQ(mid.x_m, 1.5);  // interpolated between the two frames
+  ShipState none;
+  EXPECT_FALSE(f.ship(1, 0.0, none));
+  EXPECT_EQ(r.commands_rejected(), 0u);
+  r.stop();
+  Runner plain(fake(), p);
+  plain.start();
+  wait_for([&] { return plain.frames_published() >= 1; });
+  EXPECT_EQ(plain.frames().newest->info.ship_count, 0u);
+  plain.stop();
 }
 
 TEST(Runner, PauseStepOnceResume) {

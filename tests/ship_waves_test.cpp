@@ -308,3 +308,156 @@ TEST(ShipWaves, SceneShipsWithErrorPaths) {
     EXPECT_EQ(e.path(), "$.ships[0].path[1].t");
   }
 }
+
+// ---------------------------------------------------------------- steering (cmd::ShipTarget)
+
+namespace {
+
+/// One ship resting at (x0, y0) on a 16 m grid (n = 128, P = 64), with the given steering bounds.
+ShipWaves resting_ship(double x0, double y0, double vmax, double amax, double tau) {
+  Ship s;
+  s.path = ShipPath({{0.0, x0, y0}});
+  s.steering.max_speed_mps = vmax;
+  s.steering.max_accel_mps2 = amax;
+  s.steering.time_constant_s = tau;
+  return ShipWaves(Water{}, 128, 16.0, 64, {s}, PlanEffort::estimate);
+}
+
+}  // namespace
+
+// The steering law of ShipWaves::steer on a straight run from rest towards a target 6 m away:
+// (1) acceleration-limited: v_k = (k+1) a dt, so x_k = x0 + a dt^2 k (k+1) / 2 while (k+1) a dt <= v_max;
+// (2) cruise at v_max: x advances v_max dt per step and the kernels are not rebuilt;
+// (3) the approach |e|/tau with braking ends at rest at the target (within 0.05 dx) without
+//     overshooting it by more than one step's a dt^2.
+TEST(ShipSteering, StraightRunFollowsTheClosedForm) {
+  const double x0 = 3.0, y0 = 8.0, vmax = 1.0, a = 2.0, tau = 0.5, dt = 0.05, dx = 16.0 / 128;
+  ShipWaves sw = resting_ship(x0, y0, vmax, a, tau);
+  std::vector<cfloat> z(128 * 128);
+  EXPECT_FALSE(sw.steered(0));
+  ASSERT_TRUE(sw.steer(0, 0.0, x0 + 6.0, y0, 0.0, 0.0));
+  EXPECT_TRUE(sw.steered(0));
+  EXPECT_DOUBLE_EQ(sw.steer_speed_limit(0, dt), vmax);
+  EXPECT_DOUBLE_EQ(sw.steer_accel(0), a);
+  int k = 0;
+  double t = 0.0;
+  auto step = [&] {
+    ASSERT_TRUE(sw.add(z.data(), t, dt));
+    t += dt;
+    ++k;
+  };
+  // (1) 10 steps: v = 0.1, 0.2, ..., 1.0 = v_max
+  for (int i = 0; i < 10; ++i) {
+    step();
+    const ShipPoseNow p = sw.pose(0, t);
+    EXPECT_NEAR(p.x_m, x0 + a * dt * dt * k * (k + 1) / 2.0, 1e-12) << "step " << k;
+    EXPECT_EQ(p.y_m, y0);
+    EXPECT_NEAR(p.speed_mps, k * a * dt, 1e-12);
+    EXPECT_EQ(p.heading_rad, 0.0);
+  }
+  const double x10 = x0 + a * dt * dt * 55.0;  // 0.275 m
+  // (2) cruise: 40 more steps at v_max (the target is still 3.7 m > tau v_max away), no rebuild
+  const std::uint64_t builds = sw.kernel_rebuilds();
+  for (int i = 0; i < 40; ++i) step();
+  EXPECT_NEAR(sw.pose(0, t).x_m, x10 + 40 * vmax * dt, 1e-9);
+  EXPECT_NEAR(sw.pose(0, t).speed_mps, vmax, 1e-12);
+  EXPECT_EQ(sw.kernel_rebuilds(), builds) << "constant velocity: kernels kept";
+  // (3) arrive and stop
+  double xmax = 0;
+  for (int i = 0; i < 300; ++i) {
+    step();
+    xmax = std::max(xmax, sw.pose(0, t).x_m);
+  }
+  const ShipPoseNow end = sw.pose(0, t);
+  EXPECT_NEAR(end.x_m, x0 + 6.0, 0.05 * dx);
+  EXPECT_EQ(end.speed_mps, 0.0);
+  EXPECT_LE(xmax, x0 + 6.0 + a * dt * dt);
+  const std::uint64_t at_rest = sw.kernel_rebuilds();
+  for (int i = 0; i < 10; ++i) step();
+  EXPECT_EQ(sw.kernel_rebuilds(), at_rest) << "at rest: kernels kept";
+}
+
+// Taking over a moving ship: the path is truncated at the command time, the first steered step
+// starts from the path's velocity (its change is bounded by a dt), the ship turns towards the
+// target, and a moving target is tracked at its own velocity.
+TEST(ShipSteering, TakesOverFromThePathWithoutAJump) {
+  Water w;
+  Ship s;
+  s.path = ShipPath({{0.0, 2.0, 8.0}, {10.0, 12.0, 8.0}});  // 1 m/s along +x
+  s.steering = SteeringParams{2.0, 1.0, 0.5};
+  ShipWaves sw(w, 128, 16.0, 64, {s}, PlanEffort::estimate);
+  std::vector<cfloat> z(128 * 128);
+  const double dt = 0.05;
+  double t = 0;
+  for (int i = 0; i < 20; ++i, t += dt) ASSERT_TRUE(sw.add(z.data(), t, dt));
+  const ShipPoseNow before = sw.pose(0, t);
+  EXPECT_NEAR(before.x_m, 3.0, 1e-9);
+  EXPECT_NEAR(before.speed_mps, 1.0, 1e-12);
+  // target 3 m to the ship's left, moving at 0.3 m/s along +y
+  ASSERT_TRUE(sw.steer(0, t, 3.0, 11.0, 0.0, 0.3));
+  ASSERT_EQ(sw.path(0).points().size(), 2u);
+  EXPECT_NEAR(sw.path(0).points().back().t, t, 1e-12) << "future scripted points dropped";
+  EXPECT_NEAR(sw.path(0).points().back().x_m, 3.0, 1e-9);
+  ASSERT_TRUE(sw.add(z.data(), t, dt));
+  t += dt;
+  const ShipPoseNow p1 = sw.pose(0, t);
+  // first step: v = (1, 0) + a dt towards v_des = (0, 0.3) + e/|e| min(...) (clamped to 2 m/s)
+  const double vx = (p1.x_m - 3.0) / dt, vy = (p1.y_m - 8.0) / dt;
+  EXPECT_NEAR(std::hypot(vx - 1.0, vy), 1.0 * dt, 1e-9) << "velocity change bounded by a dt";
+  EXPECT_GT(vy, 0.0);
+  EXPECT_GT(p1.heading_rad, 0.0);  // turning towards +y
+  // long after: tracking the moving target (clamped at the grid edge y = 16: not reached yet)
+  for (int i = 0; i < 160; ++i, t += dt) ASSERT_TRUE(sw.add(z.data(), t, dt));
+  const ShipPoseNow p = sw.pose(0, t);
+  const double ty = 11.0 + 0.3 * (t - 1.0);
+  EXPECT_NEAR(p.x_m, 3.0, 0.01);
+  EXPECT_NEAR(p.y_m, ty, 0.01);
+  EXPECT_NEAR(p.speed_mps, 0.3, 0.01);
+  EXPECT_NEAR(p.heading_rad, kPi / 2, 0.02);
+}
+
+TEST(ShipSteering, RefusesInvalidTargets) {
+  ShipWaves sw = resting_ship(4.0, 4.0, 1.0, 1.0, 0.5);
+  const double nan = std::nan(""), inf = INFINITY;
+  EXPECT_FALSE(sw.steer(-1, 0.0, 5.0, 5.0, 0, 0));
+  EXPECT_FALSE(sw.steer(1, 0.0, 5.0, 5.0, 0, 0));
+  EXPECT_FALSE(sw.steer(0, 0.0, nan, 5.0, 0, 0));
+  EXPECT_FALSE(sw.steer(0, 0.0, 5.0, 5.0, inf, 0));
+  EXPECT_FALSE(sw.steer(0, 0.0, 5.0, 5.0, 0, nan));
+  EXPECT_FALSE(sw.steer(0, 0.0, -0.1, 5.0, 0, 0));
+  EXPECT_FALSE(sw.steer(0, 0.0, 5.0, 16.5, 0, 0));
+  EXPECT_FALSE(sw.steered(0));
+  EXPECT_TRUE(sw.steer(0, 0.0, 16.0, 0.0, 0, 0));
+}
+
+// The steering speed never exceeds check_step's bound (a quarter of the patch per step), whatever
+// the scene's max_speed_mps: the clamp, not a refusal, keeps a steered ship's patch valid.
+TEST(ShipSteering, SpeedIsClampedToThePatchBound) {
+  ShipWaves sw = resting_ship(2.0, 8.0, 1000.0, 1e6, 0.01);
+  const double dt = 0.05, limit = 0.25 * 64 * (16.0 / 128) / dt;  // 40 m/s
+  EXPECT_DOUBLE_EQ(sw.steer_speed_limit(0, dt), limit);
+  ASSERT_TRUE(sw.steer(0, 0.0, 14.0, 8.0, 0, 0));
+  std::vector<cfloat> z(128 * 128);
+  ASSERT_TRUE(sw.add(z.data(), 0.0, dt));
+  EXPECT_LE(sw.pose(0, dt).speed_mps, limit);
+  EXPECT_LE(sw.pose(0, dt).x_m - 2.0, 0.25 * 64 * (16.0 / 128) + 1e-12);
+}
+
+TEST(ShipSteering, SceneSteeringBlock) {
+  const Scene sc = parse_scene_text(R"({"solver": "huygens", "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
+      "path": [{"t": 0, "x_m": 2, "y_m": 7.5}], "steering": {"max_speed_mps": 2.5, "max_accel_mps2": 3, "time_constant_s": 0.2}}]})");
+  const std::vector<Ship> ships = parse_ships(sc.root());
+  ASSERT_EQ(ships.size(), 1u);
+  EXPECT_EQ(ships[0].steering.max_speed_mps, 2.5);
+  EXPECT_EQ(ships[0].steering.max_accel_mps2, 3.0);
+  EXPECT_EQ(ships[0].steering.time_constant_s, 0.2);
+  const Scene bad =
+      parse_scene_text(R"({"solver": "huygens", "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
+      "path": [{"t": 0, "x_m": 2, "y_m": 7.5}], "steering": {"top_speed": 2}}]})");
+  try {
+    parse_ships(bad.root());
+    FAIL() << "unknown steering key accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "$.ships[0].steering.top_speed");
+  }
+}

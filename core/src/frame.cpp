@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -119,6 +121,27 @@ void FramePair::sample(double t, std::span<float> out) const {
   float* o = out.data();
 #pragma omp simd
   for (std::size_t i = 0; i < n; ++i) o[i] = w0 * a[i] + w1 * b[i];
+}
+
+bool FramePair::ship(std::size_t i, double t, ShipState& out) const {
+  if (!newest || i >= newest->info.ship_count) return false;
+  const ShipState& b = newest->info.ships[i];
+  if (!prev || i >= prev->info.ship_count) {
+    out = b;
+    return true;
+  }
+  const ShipState& a = prev->info.ships[i];
+  const double s = phase(t);
+  out.x_m = a.x_m + s * (b.x_m - a.x_m);
+  out.y_m = a.y_m + s * (b.y_m - a.y_m);
+  out.speed_mps = a.speed_mps + s * (b.speed_mps - a.speed_mps);
+  // heading along the shorter arc
+  const double two_pi = 2.0 * std::numbers::pi;
+  double dh = std::fmod(b.heading_rad - a.heading_rad, two_pi);
+  if (dh > std::numbers::pi) dh -= two_pi;
+  if (dh < -std::numbers::pi) dh += two_pi;
+  out.heading_rad = a.heading_rad + s * dh;
+  return true;
 }
 
 }  // namespace huygens

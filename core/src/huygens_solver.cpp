@@ -299,7 +299,22 @@ std::vector<OutputField> HuygensSolver::display_outputs(int j) {
   return {OutputField{"eta", {v, v}, frame_.span()}};
 }
 
+std::size_t HuygensSolver::ship_poses(std::span<ShipState> out) const {
+  if (!ships_) return 0;
+  const std::size_t k = std::min(out.size(), static_cast<std::size_t>(ships_->ships()));
+  for (std::size_t i = 0; i < k; ++i) {
+    const ShipPoseNow p = ships_->pose(static_cast<int>(i), prop_.time());
+    out[i] = ShipState{p.x_m, p.y_m, p.heading_rad, p.speed_mps};
+  }
+  return k;
+}
+
 bool HuygensSolver::apply(const Command& c) {
+  if (const auto* s = std::get_if<cmd::ShipTarget>(&c)) {
+    // between steps: the ship leaves its path now (no transform, no allocation)
+    if (!ships_) return false;
+    return ships_->steer(s->ship, prop_.time(), s->x_m, s->y_m, s->vx_mps, s->vy_mps);
+  }
   const auto* d = std::get_if<cmd::Drop>(&c);
   if (!d) return false;
   const double len = scene_.params.length_m;

@@ -94,17 +94,30 @@ WakeMeasurement measure_kelvin_wake(const float* eta, const WakeGrid& g, const W
     fwd.execute();
   }
   const double dxh = std::cos(tr.heading_rad), dyh = std::sin(tr.heading_rad);
+  // optional low-passed copy of the spectrum for the envelope and the transverse wavelength
+  const double kc = opt.lowpass_k0 * opt.gravity / (tr.speed_mps * tr.speed_mps);
+  AlignedBuffer<cfloat> low(opt.lowpass_k0 > 0 ? total : 0);
   for (int r = 0; r < g.rows; ++r)
     for (int c = 0; c < g.cols; ++c) {
-      const double kd = wavenumber(c, g.cols, g.cols * g.dx) * dxh + wavenumber(r, g.rows, g.rows * g.dx) * dyh;
+      const double kx = wavenumber(c, g.cols, g.cols * g.dx), ky = wavenumber(r, g.rows, g.rows * g.dx);
+      const double kd = kx * dxh + ky * dyh;
       const float f = kd > 0 ? 2.0f : (kd == 0 ? 1.0f : 0.0f);
-      buf[static_cast<std::size_t>(r) * g.cols + c] *= f / static_cast<float>(total);
+      const std::size_t m = static_cast<std::size_t>(r) * g.cols + c;
+      buf[m] *= f / static_cast<float>(total);
+      if (low.size()) {
+        const double q = (kx * kx + ky * ky) / (kc * kc);
+        low[m] = buf[m] * static_cast<float>(1.0 / (1.0 + q * q * q * q));
+      }
     }
-  {
-    Fft2D inv(g.rows, g.cols, buf.data(), buf.data(), Fft2D::backward, PlanEffort::estimate);
+  std::vector<cfloat> a, al;
+  for (AlignedBuffer<cfloat>* b : {&buf, &low}) {
+    if (!b->size()) continue;
+    Fft2D inv(g.rows, g.cols, b->data(), b->data(), Fft2D::backward, PlanEffort::estimate);
     inv.execute();
+    (b == &buf ? a : al).assign(b->data(), b->data() + total);
   }
-  std::vector<cfloat> a(buf.data(), buf.data() + total);
+  // the envelope and the phase along the track from the low-passed signal when asked
+  const std::vector<cfloat>& ae = al.empty() ? a : al;
 
   const double lam = 2.0 * kPi * tr.speed_mps * tr.speed_mps / opt.gravity;
   const double s_min = opt.s_min_m >= 0 ? opt.s_min_m : 3.0 * lam;
@@ -117,29 +130,32 @@ WakeMeasurement measure_kelvin_wake(const float* eta, const WakeGrid& g, const W
   for (double s = s_min; s <= s_max; s += ds) {
     const double bx = tr.x_m - s * dxh, by = tr.y_m - s * dyh;  // point on the track
     cd v;
-    if (!sample(a, g, bx, by, v)) break;
+    if (!sample(ae, g, bx, by, v)) break;
     ts.push_back(s);
     tphase.push_back(std::arg(v));
     bool complete = true;
     for (int side = 0; side < 2; ++side) {
       const double sg = side == 0 ? 1.0 : -1.0;
       const double nx = -dyh * sg, ny = dxh * sg;  // lateral unit vector
-      std::vector<double> prof;
+      std::vector<double> prof, full;
       for (double n = 0; n <= s * tan_wide; n += dn) {
-        if (!sample(a, g, bx + n * nx, by + n * ny, v)) {
+        if (!sample(ae, g, bx + n * nx, by + n * ny, v)) {
           complete = false;
           break;
         }
         prof.push_back(std::abs(v));
+        if (!al.empty() && sample(a, g, bx + n * nx, by + n * ny, v)) full.push_back(std::abs(v));
       }
       if (!complete || prof.size() < 8) {
         complete = false;
         break;
       }
-      const auto gmax = std::max_element(prof.begin(), prof.end());
-      const double top = *gmax;
+      // the angle of maximum amplitude from the full field
+      const std::vector<double>& pm = al.empty() ? prof : full;
+      const auto fmax = std::max_element(pm.begin(), pm.end());
+      if (*fmax > 0) angmax[side].push_back(std::atan2(static_cast<double>(fmax - pm.begin()) * dn, s));
+      const double top = *std::max_element(prof.begin(), prof.end());
       if (!(top > 0)) continue;
-      angmax[side].push_back(std::atan2(static_cast<double>(gmax - prof.begin()) * dn, s));
       // outermost local maximum of at least lobe_fraction * top
       int lobe = -1;
       for (int i = static_cast<int>(prof.size()) - 2; i >= 1; --i)
@@ -219,7 +235,7 @@ KelvinRunResult run_kelvin_case(const KelvinCase& kc, const WakeOptions& opt) {
   p.n = kc.n;
   p.length_m = len;
   p.margin = kc.margin;
-  p.dt = std::min(kc.dt, dx / u);
+  p.dt = std::min(kc.dt, kc.max_cells_per_step * dx / u);
   p.water = kc.water;
   p.effort = PlanEffort::estimate;
   p.spatial = true;

@@ -102,8 +102,10 @@ double Runner::display_time() const { return clock_at(runner_now_ns()); }
 // ---- simulation thread ----
 
 void Runner::publish() {
-  ring_.publish(FrameInfo{solver_->steps(), solver_->time(), applied_.load(std::memory_order_relaxed)},
-                solver_->height(), solver_->height_rate(), solver_->stats().all());
+  FrameInfo info{solver_->steps(), solver_->time(), applied_.load(std::memory_order_relaxed)};
+  // where the solver has its ships (a steered ship is not where its scene path says)
+  info.ship_count = static_cast<std::uint32_t>(std::min(solver_->ship_poses(info.ships), info.ships.size()));
+  ring_.publish(info, solver_->height(), solver_->height_rate(), solver_->stats().all());
 }
 
 void Runner::apply_commands() {

@@ -299,16 +299,22 @@ std::vector<ValidationRow> absorption_case(double cutoff_time_s) {
 // kelvin.hpp (analytic signal; the outer Airy lobe's 0.6628 level on lateral profiles, line fit
 // = outer half-angle; median angle of the largest envelope = max-amplitude angle; phase slope
 // along the track = transverse wavelength) between 3 wavelengths and half the distance travelled.
-KelvinRunResult kelvin_run(double froude, int n, double cells) {
+// `dx_m` > 0 replaces that cell size; `lowpass_k0` > 0 measures the envelope and the transverse
+// wavelength on the field low-passed at lowpass_k0 g/U^2 (WakeOptions::lowpass_k0); the step is
+// min(dt, max_cells U / dx).
+KelvinRunResult kelvin_run(double froude, int n, double cells, double dx_m = 0.0, double lowpass_k0 = 0.0,
+                           double dt = 0.05, double max_cells = 1.0) {
   KelvinCase c;
   c.water.surface_tension = 0.0;
   c.speed_mps = froude * std::sqrt(c.water.gravity * c.hull.length_m);
   const double lam = kelvin_transverse_wavelength(c.water, c.speed_mps);
   c.n = n;
-  c.dx_m = std::min(lam, c.hull.length_m) / cells;
+  c.dx_m = dx_m > 0 ? dx_m : std::min(lam, c.hull.length_m) / cells;
   c.margin = n / 10;
-  c.dt = 0.05;
+  c.dt = dt;
+  c.max_cells_per_step = max_cells;
   WakeOptions o;
+  o.lowpass_k0 = lowpass_k0;
   // the default nearest distance is 3 transverse wavelengths; at Fr >= 1 that is beyond half the
   // distance travelled (the steady part), so measure between a quarter and half of it
   const double travelled = (c.n - 2 * c.margin) * c.dx_m - 4 * c.hull.length_m;
@@ -337,35 +343,58 @@ std::vector<ValidationRow> kelvin_case() { return kelvin_rows("kelvin", 512, 10,
 
 // Froude trend (Rabaud and Moisy 2013): for Fr >= 1 the angle of maximum amplitude falls as 1/Fr
 // (checked as Fr * angle against the Fr = 1 value, within 15 %), while the outer envelope stays
-// at 19.47 deg. At Fr 2 and 3 the transverse wavelength (25 m, 57 m) exceeds the 51 m grid that
-// resolves the 1 m hull, so the envelope cannot be measured there: those rows say so and FAIL.
-// At Fr >= 1 the profiles lie between a quarter and half of the distance travelled.
+// at 19.47 deg. The two angles live at different scales, so each is measured where it is resolved:
+//  * max-amplitude angle: the short divergent waves (k ~ 1/L_hull) -- the run of 10 cells per
+//    min(lambda, hull length) (dx = 0.1 m for Fr >= 1), as at Fr 0.3 to 1;
+//  * outer envelope: the long cusp waves (k = 1.5 g/U^2) need >= 8 transverse wavelengths on the
+//    grid (Fr 1 reads 19.87 deg on n = 512 with 8.2 wavelengths, 16.6 deg on n = 256 with 4.1).
+//    When the fine grid is shorter (Fr 2: lambda = 25 m, Fr 3: 57 m against 51 m at n = 512), the
+//    envelope run uses n cells of dx = 8.15 lambda / n (Fr 2: 0.40 m, Fr 3: 0.90 m at n = 512):
+//    coarse against the 1 m hull, which only the short waves feel -- the envelope does not move
+//    with dx (Fr 2: 19.463 deg at dx 0.2 m, 19.474 at 0.4 m; Fr 3: 19.463 at 0.44 m, 19.457 at
+//    0.9 m, all at 8.15 wavelengths). The envelope run takes steps of 0.2 s (at most 2 cells of
+//    hull motion): the ship kernels are exact for steady motion (ship_steps case), and Fr 1 reads
+//    19.873, 19.862, 19.862 deg at dt = 0.032, 0.1, 0.2 s. For Fr >= 1 the envelope is read on
+//    the field low-passed at 3 g/U^2 (kelvin.hpp WakeOptions::lowpass_k0): the short divergent
+//    waves near the track carry the largest amplitude there and hide the cusp lobe (unfiltered,
+//    Fr 2 reads 10.6 deg).
+// At Fr >= 1 the profiles lie between a quarter and half of the distance travelled (1.6 to 3.2
+// transverse wavelengths). Caveat, measured: at that range the method reads the exact steady wake
+// (kelvin_test, Fr 2) at 18.6 deg, and 19.25 deg only at 5-20 wavelengths; the started ship's
+// field reads higher (19.47 here, 19.01 at 3-6.4 wavelengths on a 16-wavelength grid), so part of
+// the agreement at Fr 2 and 3 is the start transient offsetting that bias (docs/huygens.md).
 std::vector<ValidationRow> froude_rows(int n, std::vector<double> froudes) {
   std::vector<ValidationRow> rows;
   double ref = 0;
+  constexpr double kLowpass = 3.0, kWavelengths = 8.15;
   for (double fr : froudes) {
-    const KelvinRunResult r = kelvin_run(fr, n, 10);
-    const double env = r.wake.envelope_angle_deg, amax = r.wake.max_amplitude_angle_deg;
+    const double lowpass = fr >= 1.0 ? kLowpass : 0.0;
+    const KelvinRunResult r = kelvin_run(fr, n, 10, 0.0, lowpass);
+    const double amax = r.wake.max_amplitude_angle_deg;
     const double lam = 2 * kPi * fr * fr;
-    // the envelope needs the grid to hold >= 8 transverse wavelengths: Fr 1 reads 19.87 deg on
-    // n = 512 (8.2 wavelengths) but 16.6 deg on n = 256 (4.1 wavelengths)
-    const bool measurable = 8 * lam <= n * 0.1;
+    const double dx_fine = r.grid.dx;
+    double env = r.wake.envelope_angle_deg, dx_env = dx_fine;
+    if (n * dx_fine < 8.0 * lam) {
+      dx_env = kWavelengths * lam / n;
+      env = kelvin_run(fr, n, 10, dx_env, lowpass, 0.2, 2.0).wake.envelope_angle_deg;
+    }
     rows.push_back(check("froude_trend",
-                         measurable ? fmt("Fr %.1f: outer envelope half-angle (deg), |error| deg", fr)
-                                    : fmt("Fr %.1f: outer envelope (deg) NOT MEASURABLE: lambda %.0f m vs %.0f m grid",
-                                          fr, lam, n * 0.1),
-                         env, kKelvinDeg, measurable ? std::abs(env - kKelvinDeg) : std::nan(""), 0.5));
+                         fmt("Fr %.1f: outer envelope half-angle (deg), |error| deg (n=%d, dx %.2f m = %.1f lambda%s)",
+                             fr, n, dx_env, n * dx_env / lam, lowpass > 0 ? ", low-pass 3 g/U^2" : ""),
+                         env, kKelvinDeg, std::abs(env - kKelvinDeg), 0.5));
     if (fr < 1.0) {
       rows.push_back(check("froude_trend", fmt("Fr %.1f: max-amplitude angle (deg), below the envelope", fr), amax,
                            kKelvinDeg, amax < kKelvinDeg ? 0.0 : amax - kKelvinDeg, 0.0));
     } else if (fr == 1.0) {
       ref = amax;
-      rows.push_back(check("froude_trend", "Fr 1.0: max-amplitude angle (deg), below the envelope", amax, kKelvinDeg,
-                           amax < kKelvinDeg ? 0.0 : amax - kKelvinDeg, 0.0));
-    } else {
       rows.push_back(check("froude_trend",
-                           fmt("Fr %.1f: Fr * max-amplitude angle (deg) vs Fr 1 value, rel. (1/Fr trend)", fr),
-                           fr * amax, ref, std::abs(fr * amax / ref - 1), 0.15));
+                           fmt("Fr 1.0: max-amplitude angle (deg), below the envelope (dx %.2f m)", dx_fine), amax,
+                           kKelvinDeg, amax < kKelvinDeg ? 0.0 : amax - kKelvinDeg, 0.0));
+    } else {
+      rows.push_back(
+          check("froude_trend",
+                fmt("Fr %.1f: Fr * max-amplitude angle (deg) vs Fr 1 value, rel. (1/Fr trend; dx %.2f m)", fr, dx_fine),
+                fr * amax, ref, std::abs(fr * amax / ref - 1), 0.15));
     }
   }
   return rows;

@@ -20,6 +20,7 @@
 // pair, which also releases the slots it held before. The producer's CAS can only fail
 // when the consumer has just taken a pair, so both sides are lock-free, no side ever
 // waits for the other, and nothing is allocated after construction.
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -44,6 +45,20 @@ struct StageCounter {
   std::uint64_t transforms = 0;
 };
 
+/// Where one ship is at a frame's time, as the solver has it (Solver::ship_poses): a ship
+/// steered by cmd::ShipTarget is drawn here, not where its scene path would put it.
+struct ShipState {
+  /// Hull centre in the full grid's frame (unit: m).
+  double x_m = 0, y_m = 0;
+  /// Heading from +x towards +y (unit: rad).
+  double heading_rad = 0;
+  /// Speed over the last step (unit: m/s).
+  double speed_mps = 0;
+};
+
+/// Most ships a frame carries (unit: ships); a solver with more reports the first ones.
+inline constexpr std::size_t kMaxFrameShips = 8;
+
 /// Everything of a frame except its fields (the producer fills this in).
 struct FrameInfo {
   /// Full steps taken when the frame was made.
@@ -52,6 +67,10 @@ struct FrameInfo {
   double time_s = 0;
   /// Commands the runner had applied before this frame (to find the first frame that shows one).
   std::uint64_t commands_applied = 0;
+  /// Ships in `ships` (unit: ships; at most kMaxFrameShips).
+  std::uint32_t ship_count = 0;
+  /// Poses of the solver's ships at time_s (fixed capacity: copied with the frame, no allocation).
+  std::array<ShipState, kMaxFrameShips> ships{};
 };
 
 struct Frame {
@@ -85,6 +104,10 @@ struct FramePair {
   /// weights 20/27, 7/27, 4/27 dt, -2/27 dt at s = 1/3; time_interp.hpp); linear when a frame
   /// has no rate, the newest frame alone when there is no prev.
   void sample(double t, std::span<float> out) const;
+  /// Pose of ship i at display time t (clamped like sample()): linear in position and speed
+  /// between prev and newest, heading along the shorter arc; the newest frame's pose when prev
+  /// has no such ship. False when the newest frame has no ship i.
+  bool ship(std::size_t i, double t, ShipState& out) const;
 };
 
 class FrameRing {

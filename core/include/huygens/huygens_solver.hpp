@@ -108,9 +108,16 @@ class HuygensSolver : public Solver {
   /// N x N transforms per full step for the scene's features: the propagation (2 with the
   /// round trip, 0 without) + the height (1 first order, 3 second order).
   int transforms_per_step() const;
-  /// Supports cmd::Drop (a Gaussian depression released now). The height is recomputed lazily:
-  /// by the next step, or by the next height()/height_rate()/outputs() before it.
+  /// Supports cmd::Drop (a Gaussian depression released now; the height is recomputed lazily:
+  /// by the next step, or by the next height()/height_rate()/outputs() before it) and
+  /// cmd::ShipTarget (ShipWaves::steer at time(): the ship leaves its path and heads for the
+  /// target with bounded acceleration and speed; refused for an unknown ship, a non-finite
+  /// value or a target outside the grid).
   bool apply(const Command& c) override;
+  /// The ships' poses at time() (ShipWaves::pose), at most out.size().
+  std::size_t ship_poses(std::span<ShipState> out) const override;
+  /// The ship stage (null without ships), for tests.
+  const ShipWaves* ship_waves() const { return ships_.get(); }
 
   /// True while the still-sea skip holds (see HuygensScene::still_skip).
   bool still() const { return still_; }

@@ -16,6 +16,10 @@
 // seen from the ship: median of atan(n_max / s) over the profiles, both sides averaged.
 // (4) Transverse wavelength: the unwrapped phase of a along the track behind the ship, fitted
 // by a straight line over [s_min, s_max]: lambda = 2 pi / |slope|.
+// (5) Optional low-pass (WakeOptions::lowpass_k0, used by froude_trend at Fr >= 1): (2) and (4)
+// read the analytic signal of the field weighted by 1 / (1 + (k / (c k0))^8), k0 = g/U^2; the
+// cusp (k = 1.5 k0) and transverse (k0) waves pass, the short divergent waves that dominate the
+// near-track field at high Froude numbers do not. (3) always reads the full field.
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -62,6 +66,13 @@ struct WakeOptions {
   double search_angle_deg = 30.0;
   /// Gravity for the default distances (unit: m/s^2).
   double gravity = 9.81;
+  /// Low-pass for the envelope and the transverse wavelength (unit: 1): when > 0, the field is
+  /// weighted by 1 / (1 + (k / (lowpass_k0 k0))^8), k0 = g / U^2, before those two are measured
+  /// (the max-amplitude angle always uses the full field). The cusp waves (k = 1.5 k0) and the
+  /// transverse ones (k0) pass; at high Froude numbers the short divergent waves near the track
+  /// (k >> k0, ray angles < 16 deg for k > 3 k0), which carry the largest amplitude and hide
+  /// the cusp lobe, are removed. 0: off.
+  double lowpass_k0 = 0.0;
 };
 
 struct WakeMeasurement {
@@ -112,8 +123,12 @@ struct KelvinCase {
   double dx_m = 0.1;
   /// Absorbing margin M (unit: cells); the ship patch is the smallest even size >= 2M that fits the hull.
   int margin = 51;
-  /// Full step (unit: s); at most one cell of hull motion per step is used if larger.
+  /// Full step (unit: s); at most max_cells_per_step cells of hull motion per step is used if larger.
   double dt = 0.05;
+  /// Largest hull motion per step (unit: cells); the step is shortened to it. The ship kernels are
+  /// exact for steady motion at any step (one step of dt = two of dt/2), so this only bounds the
+  /// patch travel (ShipWaves::check_step allows a quarter of the patch).
+  double max_cells_per_step = 1.0;
   /// Duration of a linear speed ramp from rest (unit: s); 0 starts at full speed.
   double ramp_s = 0.0;
   /// Radius around the hull outside which the far field is taken (unit: m).
@@ -142,8 +157,10 @@ KelvinRunResult run_kelvin_case(const KelvinCase& c, const WakeOptions& opt = {}
 std::vector<ValidationRow> kelvin_validation_rows(int n, double cells);
 /// The `capillary` validation row on an n x n grid of 1 mm cells (the validation uses n = 512).
 std::vector<ValidationRow> capillary_validation_rows(int n);
-/// The `froude_trend` rows for Fr 1, 2, 3 on n x n cells of 0.1 m (the validation uses n = 512 and
-/// adds Fr 0.3 and 0.5). Rows whose envelope is not measurable on the grid say so in `quantity`.
+/// The `froude_trend` rows for Fr 1, 2, 3 (the validation uses n = 512 and adds Fr 0.3 and 0.5):
+/// the max-amplitude angle on n x n cells of 0.1 m; the outer envelope on the same run when it
+/// holds >= 8 transverse wavelengths, else on n x n cells of 8.15 lambda / n (Fr >= 1: on the
+/// field low-passed at 3 g/U^2). Defined in validation_huygens.cpp.
 std::vector<ValidationRow> froude_validation_rows(int n);
 
 }  // namespace huygens

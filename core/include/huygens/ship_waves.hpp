@@ -71,6 +71,10 @@ class ShipPath {
   explicit ShipPath(std::vector<PathPoint> points);
   /// Appends a point (interactive dragging); throws when t is before the last point's time.
   void append(const PathPoint& p);
+  /// Ends the path at time t (a ship taken over by steering): the points after t are removed and,
+  /// when any were, the position at t becomes the last point. Never grows the point storage
+  /// beyond its size before the call (no allocation).
+  void truncate_after(double t);
   const std::vector<PathPoint>& points() const { return pts_; }
 
   /// Hull centre at time t (unit: m).
@@ -88,14 +92,37 @@ class ShipPath {
   std::vector<PathPoint> pts_;
 };
 
-/// One ship: its hull and its path.
+/// Bounds of a ship's motion when it is steered interactively (cmd::ShipTarget).
+struct SteeringParams {
+  /// Top speed (unit: m/s); <= 0: sqrt(g length) (hull Froude number 1; 1 m/s without gravity). Always also limited to
+  /// a quarter of the ship patch per step, the bound ShipWaves::check_step enforces for paths.
+  double max_speed_mps = -1.0;
+  /// Largest change of velocity per unit time (unit: m/s^2); <= 0: top speed / 2 s.
+  double max_accel_mps2 = -1.0;
+  /// Time constant of the approach to the target (unit: s); at least one step is used.
+  double time_constant_s = 0.5;
+};
+
+/// One ship: its hull, its path and how it may be steered.
 struct Ship {
   HullParams hull;
   ShipPath path;
+  SteeringParams steering;
+};
+
+/// Where a ship is at one time, for the frame pipeline and the renderer.
+struct ShipPoseNow {
+  /// Hull centre (unit: m).
+  double x_m = 0.0, y_m = 0.0;
+  /// Heading from +x towards +y (unit: rad).
+  double heading_rad = 0.0;
+  /// Speed over the last step (unit: m/s).
+  double speed_mps = 0.0;
 };
 
 /// Reads the scene's `ships` array (absent: none): length_m, beam_m, draft_m, optional blur_m,
-/// and `path`, an array of {t, x_m, y_m} with non-decreasing t. Errors name the JSON path.
+/// `path`, an array of {t, x_m, y_m} with non-decreasing t, and an optional `steering` object
+/// {max_speed_mps, max_accel_mps2, time_constant_s} (SteeringParams). Errors name the JSON path.
 std::vector<Ship> parse_ships(const JsonIn& root);
 
 /// Phi1^ and Phi2^ of paper 004 eq. 2 for one wave vector, with beta = k.v dt and
@@ -119,8 +146,35 @@ class ShipWaves {
             PlanEffort effort = PlanEffort::measure);
 
   /// Throws std::invalid_argument (with the reason) when a ship moves more than a quarter of
-  /// the patch in one step of dt, so its waves would wrap around the patch.
+  /// the patch in one step of dt along its path, so its waves would wrap around the patch.
+  /// Steered ships cannot break it: their speed is clamped to steer_speed_limit(i, dt).
   void check_step(double dt) const;
+
+  // ---- interactive steering (cmd::ShipTarget; call between steps, never inside add()) ----
+  /// Ship i leaves its path at time t (the path is truncated there: its later points are
+  /// dropped) and from now on heads for the target point (x, y), which itself moves at
+  /// (vx, vy) from t on and stops at the grid edge. Kinematics per step [t_k, t_k + dt], with
+  /// a constant velocity v_k over the step (the straight-line motion eq. 2's kernels assume):
+  ///   e_k   = p_T(t_k) - x_k,            p_T(t) = clamp(x_T + v_T (t - t_cmd), [0, L]^2)
+  ///   v_des = v_T + e_k/|e_k| min(|e_k| / tau, sqrt(2 a_max |e_k|))   (0 when v_T = 0 and
+  ///           |e_k| <= 0.05 dx: the ship stops there), then |v_des| <= v_max
+  ///   v_k   = v_{k-1} + clamp_norm(v_des - v_{k-1}, a_max dt)   (a change below 1e-3 a_max dt
+  ///           is dropped, so that rounding does not rebuild the kernels)
+  ///   x_{k+1} = x_k + v_k dt,  heading_k = atan2(v_k) (kept when v_k = 0),
+  /// tau = max(time_constant_s, dt), v_max = min(max_speed, steer_speed_limit), v_{-1} the
+  /// velocity of the last step (or the path's at t). The hull turns over the step (eq. 2 with
+  /// E_t at the old heading and E_{t+dt} at the new). A later target replaces the earlier one.
+  /// Returns false (and changes nothing) for an invalid ship index, a non-finite value, or a
+  /// target outside the grid [0, L]^2.
+  bool steer(int i, double t, double x, double y, double vx, double vy);
+  /// True once ship i follows a target instead of its path.
+  bool steered(int i) const { return steer_[static_cast<std::size_t>(i)].active; }
+  /// Top speed of steered ship i at step dt (unit: m/s): min(max_speed_mps, a quarter of the patch / dt).
+  double steer_speed_limit(int i, double dt) const;
+  /// Acceleration bound of steered ship i (unit: m/s^2).
+  double steer_accel(int i) const;
+  /// Pose of ship i at time t: its path's, or for a steered ship its state after the last step.
+  ShipPoseNow pose(int i, double t) const;
 
   /// Adds the waves every ship generates during [t, t + dt], observed at t + dt, into the
   /// spatial wave field z (n x n, row-major, unit m^2/s). Call after the propagation of z
@@ -140,7 +194,7 @@ class ShipWaves {
   int n() const { return n_; }
   int patch() const { return p_; }
   int ships() const { return static_cast<int>(ships_.size()); }
-  /// The path of ship i (interactive dragging appends points between steps).
+  /// The path of ship i (truncated when steering takes over).
   ShipPath& path(int i) { return ships_[static_cast<std::size_t>(i)].path; }
   /// How often a kernel spectrum was rebuilt (velocity, heading or dt changed).
   std::uint64_t kernel_rebuilds() const { return rebuilds_; }
@@ -152,6 +206,22 @@ class ShipWaves {
     double vx = 0, vy = 0, h0 = 0, h1 = 0, dt = -1;
     AlignedBuffer<cfloat> g1, g2;  // C Phi1 E^(h0) / (dx^2 P^2) and C Phi2 E^(h1) / (dx^2 P^2)
   };
+  /// The straight-line motion of one ship over one step.
+  struct Motion {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0, vx = 0, vy = 0, h0 = 0, h1 = 0;
+  };
+  /// Steering state of one ship (active after the first ShipTarget).
+  struct Steer {
+    bool active = false;
+    double t = 0, x = 0, y = 0, vx = 0, vy = 0, h = 0;  // state after the last step (time t)
+    double tx = 0, ty = 0, tvx = 0, tvy = 0, tt = 0;    // target, its velocity, command time
+  };
+  /// Velocity and heading of the last step of each ship (to start steering without a jump).
+  struct Last {
+    bool valid = false;
+    double t1 = 0, vx = 0, vy = 0, h1 = 0;
+  };
+  Motion motion(int i, double t, double dt) const;
   void rebuild(const Ship& s, Cache& c, double vx, double vy, double h0, double h1, double dt);
 
   Water water_;
@@ -160,9 +230,12 @@ class ShipWaves {
   double dx_ = 0;
   std::vector<Ship> ships_;
   std::vector<Cache> cache_;
+  std::vector<Steer> steer_;
+  std::vector<Last> last_;
+  std::vector<Motion> motion_;      // the motion patch_spectrum used last, per ship
   std::vector<double> kx_, omega_;  // patch wavenumbers (per index) and omega per mode
   AlignedBuffer<cfloat> buf_;
-  bool poison_ = false;  // test hook: see poison_next_add_for_test()
+  bool poison_ = false;       // test hook: see poison_next_add_for_test()
   AlignedBuffer<cfloat> ph_;  // 4 P phase vectors: e^{-i kx dx0}, e^{-i ky dy0}, and for t + dt
   std::vector<int> cols_;
   Fft2D inverse_;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "huygens/command.hpp"
+#include "huygens/frame.hpp"
 #include "huygens/scene.hpp"
 #include "huygens/stats.hpp"
 
@@ -22,7 +23,8 @@ class NonFiniteError : public std::runtime_error {
  public:
   NonFiniteError(std::string stage, std::int64_t step)
       : std::runtime_error("non-finite value produced by stage '" + stage + "' at step " + std::to_string(step)),
-        stage_(std::move(stage)), step_(step) {}
+        stage_(std::move(stage)),
+        step_(step) {}
   const std::string& stage() const { return stage_; }
   std::int64_t step() const { return step_; }
 
@@ -69,6 +71,13 @@ class Solver {
   /// Applies a UI command (drop, ship target, parameter, feature) between steps, never inside
   /// step(); returns false when the solver does not support it (the default: none).
   virtual bool apply(const Command&) { return false; }
+  /// Fills `out` with the poses of the solver's ships at time() (where they are, including a
+  /// ship steered by cmd::ShipTarget) and returns how many it wrote (at most out.size()); the
+  /// default has no ships. Called by the runner for every frame: no allocation.
+  virtual std::size_t ship_poses(std::span<ShipState> out) const {
+    (void)out;
+    return 0;
+  }
   /// Displayed frames per full step D (unit: 1); 1 when the solver does not interpolate.
   virtual int display_per_step() const { return 1; }
   /// The fields of displayed frame j of D of the last full step (time (steps() - 1 + j/D) dt for
