@@ -24,9 +24,7 @@ HeadlessResult render_headless(const HeadlessOptions& opt) {
     const double t = opt.time + k * dt_display;
     while (solver->time() + geo.dt <= t + 1e-9 * geo.dt) solver->step();
     renderer.set_heights(solver->height());
-    std::vector<ShipPose> poses;
-    for (const ShipPath& p : geo.ships) poses.push_back(p.pose(solver->time()));
-    renderer.set_ships(poses);
+    renderer.set_ships(solver_ship_poses(geo, *solver));  // where the solver has them
     renderer.times.enabled = (k + 1 == opt.frames);
     renderer.render(cam, opt.settings, target);
   }

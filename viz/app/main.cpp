@@ -200,9 +200,7 @@ int run_benchmark(const std::string& scene_file, huygens::RenderSettings setting
   WaterRenderer renderer(geo.grid, geo.ground_z, subsample);
   renderer.set_height_offset(geo.height_offset);
   renderer.set_heights(solver->height());
-  std::vector<ShipPose> poses;
-  for (const ShipPath& p : geo.ships) poses.push_back(p.pose(solver->time()));
-  renderer.set_ships(poses);
+  renderer.set_ships(solver_ship_poses(geo, *solver));  // where the solver has them
   const OrbitCamera cam =
       default_camera(geo.grid.x0, geo.grid.y0, geo.grid.cols * geo.grid.dx, geo.grid.rows * geo.grid.dx);
   Table t({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship", "render total", "sim/frame",

@@ -1,13 +1,14 @@
 #include "scene_view.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 namespace huygens {
 
-ShipPose ShipPath::pose(double time) const {
+ShipPose SceneShipPath::pose(double time) const {
   ShipPose p;
   p.length = length;
   p.beam = beam;
@@ -25,6 +26,26 @@ ShipPose ShipPath::pose(double time) const {
   p.y = y[k] + s * (y[k + 1] - y[k]);
   p.heading = std::atan2(y[k + 1] - y[k], x[k + 1] - x[k]);
   return p;
+}
+
+ShipPose SceneShipPath::pose(const ShipState& s) const {
+  ShipPose p;
+  p.length = length;
+  p.beam = beam;
+  p.draft = draft;
+  p.x = s.x_m;
+  p.y = s.y_m;
+  p.heading = s.heading_rad;
+  return p;
+}
+
+std::vector<ShipPose> solver_ship_poses(const SceneGeometry& geo, const Solver& solver) {
+  std::array<ShipState, kMaxFrameShips> now{};
+  const std::size_t reported = solver.ship_poses(now);
+  std::vector<ShipPose> poses;
+  for (std::size_t i = 0; i < geo.ships.size(); ++i)
+    poses.push_back(i < reported ? geo.ships[i].pose(now[i]) : geo.ships[i].pose(solver.time()));
+  return poses;
 }
 
 namespace {
@@ -72,7 +93,7 @@ SceneGeometry scene_geometry(const Scene& scene, Solver& solver) {
   }
   if (doc.contains("ships") && doc["ships"].is_array()) {
     for (const auto& s : doc["ships"]) {
-      ShipPath p;
+      SceneShipPath p;
       p.length = num(s, "length_m", p.length);
       p.beam = num(s, "beam_m", p.beam);
       p.draft = num(s, "draft_m", p.draft);

@@ -1,7 +1,10 @@
 #pragma once
 // What the renderer needs to know about a scene besides the heights: where the visible
-// region sits in the world, how deep the ground is, the display rate, and where the ships
-// are at a given time (their scene paths, piecewise linear; heading along the path).
+// region sits in the world, how deep the ground is, the display rate, the ships' hulls, and
+// where the ships are. A ship is drawn where the SOLVER has it (Solver::ship_poses, carried by
+// every frame as FrameInfo::ships): a ship steered by cmd::ShipTarget leaves its scene path.
+// The scene path (piecewise linear; heading along the path) is only the fallback for a
+// solver that reports no pose.
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,13 +17,16 @@
 
 namespace huygens {
 
-struct ShipPath {
+/// A ship as the scene file describes it (named apart from the core's huygens::ShipPath).
+struct SceneShipPath {
   /// Hull size (unit: m).
   double length = 1.0, beam = 0.3, draft = 0.05;
   /// Waypoints: time (unit: s) and position (unit: m).
   std::vector<double> t, x, y;
-  /// Pose at time `time` (holds the end points outside the path).
+  /// Pose at time `time` along the scene path (holds the end points outside the path).
   ShipPose pose(double time) const;
+  /// The hull placed at a pose the solver reports.
+  ShipPose pose(const ShipState& s) const;
 };
 
 struct SceneGeometry {
@@ -30,7 +36,7 @@ struct SceneGeometry {
   /// Full step (unit: s) and displayed frames per step.
   double dt = 0.05;
   int display_per_step = 3;
-  std::vector<ShipPath> ships;
+  std::vector<SceneShipPath> ships;
   /// Level of the water at rest in the solver's height() (unit: m): 0 for elevation fields
   /// (Huygens); the mean initial height for solvers whose height is a depth or a level
   /// above the floor (LBM, SPH). The renderer draws height() - height_offset.
@@ -44,6 +50,12 @@ struct SceneGeometry {
 /// the spacing their meta() reports ("dx"), else 1 cm, and the ground at their mean
 /// initial height below the rest level.
 SceneGeometry scene_geometry(const Scene& scene, Solver& solver);
+
+/// The ships to draw for `solver` in its current state: the poses it reports (ship_poses), each
+/// with its scene hull; ships it does not report follow their scene path at solver.time().
+/// For the synchronous callers (headless capture, --benchmark); the window reads the poses from
+/// the frames instead (FramePair::ship).
+std::vector<ShipPose> solver_ship_poses(const SceneGeometry& geo, const Solver& solver);
 
 /// Applies a scene file's "render" block (caustics: bool, blur: "accumulation" | "float" | "none").
 void apply_scene_render_block(const std::string& scene_file, RenderSettings& s);

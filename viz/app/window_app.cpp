@@ -55,9 +55,12 @@ struct App {
   int drag_ship = -1;
   double press_x = 0, press_y = 0, last_x = 0, last_y = 0;
   double drag_last_t = 0;
-  glm::dvec2 drag_last_pos{0.0};
-  // ship poses overridden by dragging (index = ship); NaN x = follow the scene path
-  std::vector<ShipPose> ship_override;
+  glm::dvec2 drag_last_pos{0.0}, drag_target{0.0}, drag_velocity{0.0};
+  /// The last ShipTarget carried a non-zero cursor velocity (stopped by hold_drag_target()).
+  bool drag_moving = false;
+  // the ships as drawn in the last frame: where the solver has them (FrameInfo::ships),
+  // interpolated to the display time like the heights; picking uses them too
+  std::vector<ShipPose> ships_drawn;
   std::string message;
 };
 
@@ -89,15 +92,20 @@ bool cursor_hit(const App& a, double cx, double cy, glm::dvec2& hit) {
   return true;
 }
 
-ShipPose ship_pose(const App& a, std::size_t i, double t) {
-  const ShipPose& o = a.ship_override[i];
-  if (!std::isnan(o.x)) return o;
-  return a.geo.ships[i].pose(t);
+// The ships to draw at display time t: the solver's poses carried by the frames (a dragged ship
+// is where the simulation has steered it, not where the cursor or the scene path is); the scene
+// path only for a ship the frames do not carry.
+void update_ship_poses(App& a, const FramePair& fp, double t, double t_newest) {
+  a.ships_drawn.resize(a.geo.ships.size());
+  for (std::size_t i = 0; i < a.geo.ships.size(); ++i) {
+    ShipState st;
+    a.ships_drawn[i] = fp && fp.ship(i, t, st) ? a.geo.ships[i].pose(st) : a.geo.ships[i].pose(t_newest);
+  }
 }
 
-int ship_under(const App& a, glm::dvec2 p, double t) {
-  for (std::size_t i = 0; i < a.geo.ships.size(); ++i) {
-    const ShipPose s = ship_pose(a, i, t);
+int ship_under(const App& a, glm::dvec2 p) {
+  for (std::size_t i = 0; i < a.ships_drawn.size(); ++i) {
+    const ShipPose& s = a.ships_drawn[i];
     const double c = std::cos(s.heading), sn = std::sin(s.heading);
     const double lx = c * (p.x - s.x) + sn * (p.y - s.y), ly = -sn * (p.x - s.x) + c * (p.y - s.y);
     if (std::abs(lx) <= 0.6 * s.length && std::abs(ly) <= 0.5 * s.beam + 0.1 * s.length) return static_cast<int>(i);
@@ -138,8 +146,7 @@ void on_key(App& a, int key) {
       a.runner->send(a.runner->paused() ? Command{cmd::Resume{}} : Command{cmd::Pause{}});
       break;
     case GLFW_KEY_R:
-      a.runner->send(cmd::Reset{});
-      std::fill(a.ship_override.begin(), a.ship_override.end(), ShipPose{std::numeric_limits<double>::quiet_NaN()});
+      a.runner->send(cmd::Reset{});  // a fresh solver: the ships follow their scene paths again
       break;
     case GLFW_KEY_F1:
       a.show_panel = !a.show_panel;
@@ -179,11 +186,10 @@ void on_mouse_button(App& a, int button, int action, int mods, double x, double 
       glm::dvec2 p;
       a.drag_ship = -1;
       if (cursor_hit(a, x, y, p)) {
-        const double t = a.runner->display_time();
-        a.drag_ship = ship_under(a, p, std::isfinite(t) ? t : 0.0);
+        a.drag_ship = ship_under(a, p);
         if (a.drag_ship >= 0) {
-          a.ship_override[a.drag_ship] = ship_pose(a, a.drag_ship, std::isfinite(t) ? t : 0.0);
-          a.drag_last_pos = p;
+          a.drag_last_pos = a.drag_target = p;
+          a.drag_velocity = glm::dvec2(0.0);
           a.drag_last_t = glfwGetTime();
         }
       }
@@ -191,9 +197,11 @@ void on_mouse_button(App& a, int button, int action, int mods, double x, double 
       a.left_down = false;
       glm::dvec2 p;
       if (a.drag_ship >= 0) {
-        // release: the ship keeps its position and stops
-        const ShipPose& s = a.ship_override[a.drag_ship];
-        a.runner->send(cmd::ShipTarget{a.drag_ship, static_cast<float>(s.x), static_cast<float>(s.y), 0.0f, 0.0f});
+        // release: the ship heads for the last cursor point and stops there (the simulation
+        // brakes it with its bounded acceleration)
+        if (a.dragged_far)
+          a.runner->send(cmd::ShipTarget{a.drag_ship, static_cast<float>(a.drag_target.x),
+                                         static_cast<float>(a.drag_target.y), 0.0f, 0.0f});
       } else if (!a.dragged_far && cursor_hit(a, x, y, p)) {
         a.runner->send(cmd::Drop{static_cast<float>(p.x), static_cast<float>(p.y), a.stone_radius, a.stone_depth});
         std::printf("huygens-viz: stone dropped at (%.3f, %.3f) m\n", p.x, p.y);
@@ -225,16 +233,16 @@ void cursor_callback(GLFWwindow* w, double x, double y) {
   if (a.left_down && a.drag_ship >= 0) {
     glm::dvec2 p;
     if (!cursor_hit(a, x, y, p)) return;
-    ShipPose& s = a.ship_override[a.drag_ship];
+    // the cursor is the target; its velocity (smoothed over ~0.1 s, mouse events are irregular)
+    // lets the simulation track it without lagging (ShipWaves::steer)
     const double now = glfwGetTime(), dt = std::max(now - a.drag_last_t, 1e-3);
-    const glm::dvec2 delta = p - glm::dvec2(s.x, s.y);
-    const glm::dvec2 v = (p - a.drag_last_pos) / dt;
-    if (glm::length(delta) > 1e-4) s.heading = std::atan2(delta.y, delta.x);
-    s.x = p.x, s.y = p.y;
-    a.drag_last_pos = p;
+    const double w = 1.0 - std::exp(-dt / 0.1);
+    a.drag_velocity += w * ((p - a.drag_last_pos) / dt - a.drag_velocity);
+    a.drag_last_pos = a.drag_target = p;
     a.drag_last_t = now;
+    a.drag_moving = true;
     a.runner->send(cmd::ShipTarget{a.drag_ship, static_cast<float>(p.x), static_cast<float>(p.y),
-                                   static_cast<float>(v.x), static_cast<float>(v.y)});
+                                   static_cast<float>(a.drag_velocity.x), static_cast<float>(a.drag_velocity.y)});
     return;
   }
   if (a.orbiting) {
@@ -247,6 +255,16 @@ void cursor_callback(GLFWwindow* w, double x, double y) {
     // horizontal view direction (-cos yaw, -sin yaw)
     a.camera.target += glm::dvec3(s * dx * scale - c * dy * scale, -c * dx * scale - s * dy * scale, 0.0);
   }
+}
+
+// A drag that pauses (no cursor event for 50 ms): the target stops where the cursor is, instead
+// of moving on at the last cursor velocity.
+void hold_drag_target(App& a) {
+  if (!a.left_down || a.drag_ship < 0 || !a.drag_moving || glfwGetTime() - a.drag_last_t < 0.05) return;
+  a.drag_moving = false;
+  a.drag_velocity = glm::dvec2(0.0);
+  a.runner->send(cmd::ShipTarget{a.drag_ship, static_cast<float>(a.drag_target.x), static_cast<float>(a.drag_target.y),
+                                 0.0f, 0.0f});
 }
 
 void scroll_callback(GLFWwindow* w, double, double yoff) {
@@ -395,7 +413,7 @@ int run_window(const WindowOptions& opt) {
       auto h = solver->height();
       std::copy(h.begin(), h.end(), a.field.begin());
     }
-    a.ship_override.assign(a.geo.ships.size(), ShipPose{std::numeric_limits<double>::quiet_NaN()});
+    a.ships_drawn = solver_ship_poses(a.geo, *solver);  // until the first frame arrives
     a.camera = default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
     RunnerParams rp;
     rp.realtime = true;
@@ -432,21 +450,21 @@ int run_window(const WindowOptions& opt) {
       double fps = 0.0;
       while (!glfwWindowShouldClose(window) && !a.quit) {
         glfwPollEvents();
+        hold_drag_target(a);
         if (a.subsample != renderer_ptr->subsample()) {
           renderer_ptr.reset();  // free the old GL objects first
           renderer_ptr = make_renderer(a.subsample);
         }
         WaterRenderer& renderer = *renderer_ptr;
         FramePair fp = runner.frames();
+        const double t = a.interpolate ? runner.display_time() : std::numeric_limits<double>::infinity();
         if (fp) {
-          const double t = a.interpolate ? runner.display_time() : std::numeric_limits<double>::infinity();
           fp.sample(t, a.field);
           renderer.set_heights(a.field);
         }
-        const double tshow = fp ? fp.newest->info.time_s : 0.0;
-        std::vector<ShipPose> poses;
-        for (std::size_t i = 0; i < a.geo.ships.size(); ++i) poses.push_back(ship_pose(a, i, tshow));
-        renderer.set_ships(poses);
+        // the hulls at the same display time as the heights, where the solver has them
+        update_ship_poses(a, fp, t, fp ? fp.newest->info.time_s : 0.0);
+        renderer.set_ships(a.ships_drawn);
 
         int fw, fh;
         glfwGetFramebufferSize(window, &fw, &fh);
