@@ -244,10 +244,17 @@ void HuygensSolver::step() {
   if (height_dirty_ && scene_.display_per_step > 1) refresh_height();
   height_dirty_ = false;
   if (scene_.display_per_step > 1) {
-    // keep the previous full step for the displayed frames in between
-    const auto e = eta_view(), d = etadot_view();
-    std::memcpy(eta0_.data(), e.data(), e.size() * sizeof(float));
-    std::memcpy(etadot0_.data(), d.data(), d.size() * sizeof(float));
+    // keep the previous full step for the displayed frames in between: with the height stage
+    // the solver owns eta_, so the buffers trade places (make_height rewrites all of eta_);
+    // otherwise the propagator owns the height and it is copied
+    if (stokes_) {
+      std::swap(eta0_, eta_);
+      std::swap(etadot0_, etadot_);
+    } else {
+      const auto e = eta_view(), d = etadot_view();
+      std::memcpy(eta0_.data(), e.data(), e.size() * sizeof(float));
+      std::memcpy(etadot0_.data(), d.data(), d.size() * sizeof(float));
+    }
   }
   const double t0 = prop_.time(), dt = scene_.params.dt;
   prop_.propagate();
