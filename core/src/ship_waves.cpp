@@ -287,6 +287,13 @@ void ShipWaves::check_step(double dt) const {
 // ---------------------------------------------------------------- steering
 
 namespace {
+// True when ship's last step ended at t (to rounding): its velocity and heading are the ones to
+// continue from, not the path's at t (a steered ship has left its path).
+template <class Last>
+bool last_ended_at(const Last& l, double t) {
+  return l.valid && std::abs(l.t1 - t) <= 1e-9 * std::max(1.0, std::abs(t));
+}
+
 // The scene's top speed, or sqrt(g length) (1 m/s without gravity).
 double top_speed(const Ship& s, const Water& w) {
   if (s.steering.max_speed_mps > 0) return s.steering.max_speed_mps;
@@ -316,15 +323,9 @@ bool ShipWaves::steer(int i, double t, double x, double y, double vx, double vy)
   if (!st.active) {
     // take over from the path at t without a jump in position, velocity or heading
     Ship& s = ships_[k];
-    st.t = t;
     s.path.position(t, st.x, st.y);
-    const Last& l = last_[k];
-    if (l.valid && std::abs(l.t1 - t) <= 1e-9 * std::max(1.0, std::abs(t))) {
-      st.vx = l.vx, st.vy = l.vy, st.h = l.h1;
-    } else {
-      s.path.velocity(t, st.vx, st.vy);
-      st.h = s.path.heading(t);
-    }
+    velocity_at(i, t, st.vx, st.vy);
+    st.h = last_ended_at(last_[k], t) ? last_[k].h1 : s.path.heading(t);
     s.path.truncate_after(t);
     st.active = true;
   }
@@ -343,14 +344,19 @@ ShipPoseNow ShipWaves::pose(int i, double t) const {
   const ShipPath& path = ships_[k].path;
   path.position(t, p.x_m, p.y_m);
   p.heading_rad = path.heading(t);
-  const Last& l = last_[k];
   double vx, vy;
-  if (l.valid && std::abs(l.t1 - t) <= 1e-9 * std::max(1.0, std::abs(t)))
-    vx = l.vx, vy = l.vy;
-  else
-    path.velocity(t, vx, vy);
+  velocity_at(i, t, vx, vy);
   p.speed_mps = std::hypot(vx, vy);
   return p;
+}
+
+void ShipWaves::velocity_at(int i, double t, double& vx, double& vy) const {
+  const std::size_t k = static_cast<std::size_t>(i);
+  if (last_ended_at(last_[k], t)) {
+    vx = last_[k].vx, vy = last_[k].vy;
+  } else {
+    ships_[k].path.velocity(t, vx, vy);
+  }
 }
 
 ShipWaves::Motion ShipWaves::motion(int i, double t, double dt) const {
@@ -487,7 +493,6 @@ bool ShipWaves::add(cfloat* z, double t, double dt) {
     last_[k] = Last{true, t + dt, mo.vx, mo.vy, mo.h1};
     Steer& st = steer_[k];
     if (st.active) {
-      st.t = t + dt;
       st.x = mo.x1, st.y = mo.y1, st.vx = mo.vx, st.vy = mo.vy, st.h = mo.h1;
     }
   }

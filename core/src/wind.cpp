@@ -79,8 +79,7 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
       omega_(static_cast<std::size_t>(n) * n),
       w0_(static_cast<std::size_t>(n) * n),
       step_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
-      phase_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
-      cur_(static_cast<std::size_t>(n) * n) {
+      phase_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)) {
   const double dk = 2.0 * kPi / length_m;
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
@@ -98,7 +97,6 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
       const std::complex<double> z = std::complex<double>(0.0, -om / k) * a * mode_gaussian(p.seed, mx, my);
       w0_[m] = cfloat(z);
     }
-  std::copy(w0_.data(), w0_.data() + w0_.size(), cur_.data());
   // e^{-i omega dt} on the quadrant of FFT indices (r, c) in [0, N/2]^2: the value of every mode
   // (+-r, +-c), since omega depends on |k| only (and the sign of an integer times dk is exact)
   const int q = n / 2 + 1;
@@ -140,6 +138,9 @@ void WindSea::advance() {
 
 const cfloat* WindSea::spectrum() const {
   if (cur_valid_) return cur_.data();
+  // first call: the buffer exists only for callers of spectrum() (tests, benchmarks); the
+  // solver's height pass reads W^(0) and P directly, so a scene never allocates it
+  if (!cur_.size()) cur_ = AlignedBuffer<cfloat>(static_cast<std::size_t>(n_) * n_);
   cur_valid_ = true;
   const int n = n_, h = n / 2, q = h + 1;
   // W^(t) = W^(0) P, the quadrant row |r| read forward for columns 0..N/2 and backward above

@@ -213,7 +213,7 @@ class ShipWaves {
   /// Steering state of one ship (active after the first ShipTarget).
   struct Steer {
     bool active = false;
-    double t = 0, x = 0, y = 0, vx = 0, vy = 0, h = 0;  // state after the last step (time t)
+    double x = 0, y = 0, vx = 0, vy = 0, h = 0;      // state after the last step
     double tx = 0, ty = 0, tvx = 0, tvy = 0, tt = 0;    // target, its velocity, command time
   };
   /// Velocity and heading of the last step of each ship (to start steering without a jump).
@@ -222,6 +222,8 @@ class ShipWaves {
     double t1 = 0, vx = 0, vy = 0, h1 = 0;
   };
   Motion motion(int i, double t, double dt) const;
+  /// Velocity of ship i at time t: its last step's when that step ended at t, else its path's.
+  void velocity_at(int i, double t, double& vx, double& vy) const;
   void rebuild(const Ship& s, Cache& c, double vx, double vy, double h0, double h1, double dt);
 
   Water water_;

@@ -65,7 +65,8 @@ class WindSea {
   /// the solver's step to t + dt call advance() first, so both describe the same time.
   /// The sea is stored as W^(k, 0) and a phase table P(|k|, t) = e^{-i omega t} on one quadrant
   /// (omega depends on |k| only): W^(t) = W^(0) P. This call writes the product into a buffer
-  /// the first time it is asked for after an advance() (one pass); the height stage reads
+  /// the first time it is asked for after an advance() (one pass; the buffer, N^2 complex, is
+  /// allocated by the first call: not inside a solver step); the height stage reads
   /// W^(0) and P directly instead (StokesHeight::compute(..., const WindSea&, ...)), so that a
   /// step with wind moves N^2 complex values of the sea once (a read) instead of three times.
   const cfloat* spectrum() const;
@@ -98,8 +99,8 @@ class WindSea {
   AlignedBuffer<cfloat> w0_;
   AlignedBuffer<cfloat> step_;         // e^{-i omega dt}, one quadrant
   AlignedBuffer<cfloat> phase_;        // e^{-i omega t}, one quadrant
-  mutable AlignedBuffer<cfloat> cur_;  // W^(t) = W^(0) P, written by spectrum() when stale
-  mutable bool cur_valid_ = true;
+  mutable AlignedBuffer<cfloat> cur_;  // W^(t) = W^(0) P, made by the first spectrum() call, rewritten when stale
+  mutable bool cur_valid_ = false;
 };
 
 }  // namespace huygens
