@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <numeric>
 
 #include "huygens/solver.hpp"
@@ -109,6 +110,47 @@ TEST(SphGrid, GridPathEqualsBruteForceAllPairs) {
     worst = std::max(worst, double(std::hypot(a1[i] - a2[i], b1[i] - b2[i], c1[i] - c2[i])));
   }
   EXPECT_LT(worst, 1e-3 * amax);
+}
+
+// Impact viscosity (Monaghan 1992): for two particles alone, far from walls (p = 0, so only the
+// viscous terms act), switching (alpha, beta) on adds exactly a_i = m 45/(pi h^6) Pi_ij (h - r)^2 / r x_ij
+// with Pi_ij = (alpha c0 mu + beta mu^2) / rho0, mu = h (-v_ij . x_ij) / (r^2 + h^2/100), when they
+// approach, and nothing when they recede.
+TEST(SphViscosity, ImpactViscosityActsOnlyOnApproachingPairs) {
+  auto pair_ax = [](float alpha, float beta, float u, float& ax_left) {
+    SphParams p;
+    p.spacing = 0.01f;
+    p.container = {0.5f, 0.5f, 0.5f};
+    p.sound_speed = 10.f;
+    p.impact_alpha = alpha;
+    p.impact_beta = beta;
+    SphSystem s(p);
+    const float r = 0.7f * s.support();
+    const std::vector<float> X{0.25f - r / 2, 0.25f + r / 2}, Y{0.25f, 0.25f}, Z{0.25f, 0.25f};
+    s.set_particles(X, Y, Z);
+    std::vector<float> vx(2), vy(2, 0.f), vz(2, 0.f);
+    for (std::size_t i = 0; i < 2; ++i) vx[i] = s.x()[i] < 0.25f ? u : -u;  // u > 0: approaching
+    s.set_velocities(vx, vy, vz);
+    std::vector<float> ax(2), ay(2), az(2), rho(2);
+    s.grid_accelerations(ax, ay, az, rho);
+    ax_left = s.x()[0] < 0.25f ? ax[0] : ax[1];
+    return s;
+  };
+  const float u = 0.3f;
+  for (const auto& [alpha, beta] : {std::pair{0.1f, 0.f}, std::pair{0.f, 4.f}, std::pair{0.1f, 4.f}}) {
+    float a0, a1, b0, b1;
+    const SphSystem s = pair_ax(0.f, 0.f, u, a0);
+    pair_ax(alpha, beta, u, a1);
+    const double h = s.support(), r = 0.7 * h, c0 = s.sound_speed();
+    const double mu = h * (2.0 * u * r) / (r * r + 0.01 * h * h);  // -v_ij . x_ij = 2 u r (left particle)
+    const double Pi = (alpha * c0 * mu + beta * mu * mu) / s.params().rest_density;
+    const double expected = s.mass() * 45.0 / (std::numbers::pi * std::pow(h, 6)) * Pi * (h - r) * (h - r) / r * (-r);
+    EXPECT_LT(expected, 0.0);  // pushes the left particle back (to -x)
+    EXPECT_NEAR(a1 - a0, expected, 2e-4 * std::fabs(expected)) << "alpha " << alpha << " beta " << beta;
+    pair_ax(0.f, 0.f, -u, b0);
+    pair_ax(alpha, beta, -u, b1);
+    EXPECT_EQ(b1, b0) << "receding pair, alpha " << alpha << " beta " << beta;
+  }
 }
 
 TEST(SphWalls, RestLatticeInAClosedBoxHasRestDensityEverywhere) {
@@ -221,11 +263,12 @@ TEST(SphPhysics, DamBreakFrontCoarse) {
   expect_rows_pass(sph_dam_break_rows(10, 3.0, std::string(HUYGENS_TEST_DATA_DIR) + "/martin_moyce_1952.csv"));
 }
 
-// The invariants of the boundary over 1 s of the validate set-up (8 particles across a; validate runs
-// 10 s): no particle leaves the container, nothing goes non-finite, and the maximum speed stays below
-// 1.5 sqrt(2 g H). The speed peaks in the jet up the end wall when the surge hits it (t ~ 0.19 s): 1.44
-// at 8 across, 1.48 at 10; at 6 across the one-particle-thick front makes a 2.16 jet (docs/sph.md).
-TEST(SphPhysics, NoLeakageShort) { expect_rows_pass(sph_leakage_rows(8, 1.0)); }
+// The invariants of the boundary over 1 s of the validate set-up (8 particles across a, a 4a box;
+// validate runs 10 s): no particle leaves the container, nothing goes non-finite, and the maximum
+// speed (sampled every step) stays below 1.5 sqrt(2 g H). The speed peaks in the jet up the end wall
+// when the surge hits it (t ~ 0.19 s): 1.09 here with the impact viscosity, 1.49 without it. The bound
+// is not met everywhere (12 and 24 across in an 8a box: 1.51, 1.54; docs/sph.md).
+TEST(SphPhysics, NoLeakageShort) { expect_rows_pass(sph_leakage_rows(8, 1.0, 4.f)); }
 
 TEST(SphSurface, FlatAndTiltedHeightfields) { expect_rows_pass(sph_heightfield_rows(10, 6, 0.3, 0.25f)); }
 

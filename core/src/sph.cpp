@@ -189,6 +189,14 @@ void SphSystem::set_particles(std::span<const float> px, std::span<const float> 
   refresh();
 }
 
+void SphSystem::set_velocities(std::span<const float> vx, std::span<const float> vy, std::span<const float> vz) {
+  if (vx.size() != n_ || vy.size() != n_ || vz.size() != n_)
+    throw std::invalid_argument("set_velocities: one value per particle expected");
+  std::copy(vx.begin(), vx.end(), vx_.data());
+  std::copy(vy.begin(), vy.end(), vy_.data());
+  std::copy(vz.begin(), vz.end(), vz_.data());
+}
+
 std::vector<double> SphSystem::dt_history() const {
   std::vector<double> out;
   const std::size_t cap = dt_hist_.size();
@@ -451,11 +459,13 @@ inline void poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, cons
   msum += sm;
 }
 
-// pressure: sum (P_i + P_j) (h - r)^2 / r (x_i - x_j); viscosity: sum (v_j - v_i) (h - r) / rho_j
+// pressure: sum (P_i + P_j + Pi_ij) (h - r)^2 / r (x_i - x_j) (Pi_ij: impact viscosity, pik = alpha c0 h / rho0,
+// pbk = beta h^2 / rho0);
+// viscosity: sum (v_j - v_i) (h - r) / rho_j
 template <bool kImage>
 inline void force_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im, const float vi[3],
-                        float Pi, float h, float h2, float rmin, float acc[7]) {
-  const float rmin2 = rmin * rmin;
+                        float Pi, float h, float h2, float rmin, float pik, float pbk, float acc[7]) {
+  const float rmin2 = rmin * rmin, eta2 = 0.01f * h2;
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
@@ -480,7 +490,13 @@ inline void force_range(const SphView& v, std::uint32_t b, std::uint32_t e, cons
     const float r = r2 * ri;
     const float hr = (r2 < h2 && j >= b && j < e) ? h - r : 0.f;
     const float Pj = kImage ? std::max(PP[j] + LR[j] * (G0 + gx * X[j] + gy * Y[j] + gz * Z[j]), 0.f) : PP[j];
-    const float fp = (Pi + Pj) * hr * hr * ri;
+    const float vjx = kImage ? -sx * VX[j] : VX[j], vjy = kImage ? -sy * VY[j] : VY[j],
+                vjz = kImage ? -sz * VZ[j] : VZ[j];
+    const float vr = (vxi - vjx) * dx + (vyi - vjy) * dy + (vzi - vjz) * dz;
+    const float ie = rsqrt_nr(r2 + eta2);  // Monaghan's 1 / (r^2 + h^2/100), squared below
+    const float mu = std::max(-vr, 0.f) * ie * ie;
+    const float Pv = (pik + pbk * mu) * mu;
+    const float fp = (Pi + Pj + Pv) * hr * hr * ri;
     fpx += fp * dx;
     fpy += fp * dy;
     fpz += fp * dz;
@@ -624,6 +640,8 @@ void SphSystem::compute_forces() {
   const SphView v{x_.data(),  y_.data(), z_.data(),    vx_.data(),   vy_.data(),
                   vz_.data(), P_.data(), irho_.data(), lirho_.data()};
   const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_;
+  // impact viscosity Pi_ij = (pik + pbk mu) mu, mu = max(0, -v_ij . x_ij) / (r^2 + h^2/100) (see sph.hpp)
+  const float pik = p_.impact_alpha * c0_ * h_ / p_.rest_density, pbk = p_.impact_beta * h_ * h_ / p_.rest_density;
   const float cp = mass_ * k_.spiky_k;                          // m 45/(pi h^6)
   const float cv = nu_ * p_.rest_density * mass_ * k_.spiky_k;  // nu rho0 m 45/(pi h^6)
   const float gx = g_[0], gy = g_[1], gz = g_[2];
@@ -656,17 +674,17 @@ void SphSystem::compute_forces() {
       float acc[7] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
       if (own && cnt >= 0) {
         const auto e = static_cast<std::uint32_t>(cnt);
-        force_range<false>(sv, 0, e, im[0], vi, Pi, h, h2, rmin, acc);
+        force_range<false>(sv, 0, e, im[0], vi, Pi, h, h2, rmin, pik, pbk, acc);
         for (int k = 1; k <= ni; ++k)
-          force_range<true>(sv, 0, im[k].floor ? floor_end : e, im[k], vi, Pi, h, h2, rmin, acc);
+          force_range<true>(sv, 0, im[k].floor ? floor_end : e, im[k], vi, Pi, h, h2, rmin, pik, pbk, acc);
       } else {
         const int x0 = std::max(cx - 1, 0), x1 = std::min(cx + 1, nx - 1);
         for (int kz = std::max(cz - 1, 0); kz <= std::min(cz + 1, nz - 1); ++kz)
           for (int ky = std::max(cy - 1, 0); ky <= std::min(cy + 1, ny - 1); ++ky) {
             std::uint32_t b, e;
             grid_.row_range(x0, x1, ky, kz, b, e);
-            force_range<false>(v, b, e, im[0], vi, Pi, h, h2, rmin, acc);
-            for (int k = 1; k <= ni; ++k) force_range<true>(v, b, e, im[k], vi, Pi, h, h2, rmin, acc);
+            force_range<false>(v, b, e, im[0], vi, Pi, h, h2, rmin, pik, pbk, acc);
+            for (int k = 1; k <= ni; ++k) force_range<true>(v, b, e, im[k], vi, Pi, h, h2, rmin, pik, pbk, acc);
           }
       }
       const float vis = cv * v.IR[i];
@@ -878,6 +896,7 @@ void SphSystem::brute_force_accelerations(std::span<float> ax, std::span<float> 
   // the same physics with every particle (and every wall image) tested against every other
   const std::size_t n = n_;
   const float h = h_, h2 = k_.h2, mk = mass_ * k_.poly6_k, rmin = 1e-6f * h_;
+  const float pik = p_.impact_alpha * c0_ * h_ / p_.rest_density, pbk = p_.impact_beta * h_ * h_ / p_.rest_density;
   float* R = rho.data();
   float* Pa = tx_.data();  // scratch: p / rho^2
   float* Ia = ty_.data();  // scratch: 1 / rho
@@ -909,8 +928,8 @@ void SphSystem::brute_force_accelerations(std::span<float> ax, std::span<float> 
     const int ni = container_images(v.X[i], v.Y[i], v.Z[i], im + 1);
     const float vi[3] = {v.VX[i], v.VY[i], v.VZ[i]};
     float acc[7] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
-    force_range<false>(v, 0, un, im[0], vi, Pa[i], h, h2, rmin, acc);
-    for (int k = 1; k <= ni; ++k) force_range<true>(v, 0, un, im[k], vi, Pa[i], h, h2, rmin, acc);
+    force_range<false>(v, 0, un, im[0], vi, Pa[i], h, h2, rmin, pik, pbk, acc);
+    for (int k = 1; k <= ni; ++k) force_range<true>(v, 0, un, im[k], vi, Pa[i], h, h2, rmin, pik, pbk, acc);
     float a0 = g_[0] + cp * acc[0] + cv * Ia[i] * acc[3];
     float a1 = g_[1] + cp * acc[1] + cv * Ia[i] * acc[4];
     float a2 = g_[2] + cp * acc[2] + cv * Ia[i] * acc[5];

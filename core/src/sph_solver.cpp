@@ -84,6 +84,8 @@ class SphSolver final : public Solver {
             {"sound_speed_mps", sys_.sound_speed()},
             {"viscosity_m2ps", p.viscosity},
             {"artificial_viscosity", p.artificial_viscosity},
+            {"impact_alpha", p.impact_alpha},
+            {"impact_beta", p.impact_beta},
             {"viscosity_total_m2ps", sys_.viscosity()},
             {"container_m", p.container},
             {"pressure_model", "weakly compressible, Tait equation of state"},
@@ -157,17 +159,19 @@ SphScene parse_sph_scene(const Scene& scene) {
   root.allow_only({"solver", "sph", "description"});
   const JsonIn s = root.object("sph");
   s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2ps", "artificial_viscosity",
-                "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles", "time", "surface"});
+                "impact_alpha", "impact_beta", "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles", "time", "surface"});
   SphScene out;
   SphParams& p = out.params;
   p.spacing = static_cast<float>(s.number("spacing_m", 1e-4, 10.0));
   p.support_factor = static_cast<float>(s.number("support_factor", 2.0, 1.5, 4.0));
   p.rest_density = static_cast<float>(s.number("rest_density_kgpm3", 1000.0, 1.0, 1e5));
-  p.viscosity = static_cast<float>(s.number("viscosity_m2ps", 1e-4, 0.0, 10.0));
+  p.viscosity = static_cast<float>(s.number("viscosity_m2ps", p.viscosity, 0.0, 10.0));
   p.artificial_viscosity = static_cast<float>(s.number("artificial_viscosity", p.artificial_viscosity, 0.0, 1.0));
   if (p.artificial_viscosity < SphParams::min_artificial_viscosity)
     s.fail("artificial_viscosity", "below " + num(SphParams::min_artificial_viscosity, 3) +
                                        " the poly6/spiky kernel mix pumps energy into the fluid (unstable); refused");
+  p.impact_alpha = static_cast<float>(s.number("impact_alpha", p.impact_alpha, 0.0, 1.0));
+  p.impact_beta = static_cast<float>(s.number("impact_beta", p.impact_beta, 0.0, 10.0));
   if (auto c = s.optional_number("sound_speed_mps", 1e-3, 1e5)) p.sound_speed = static_cast<float>(*c);
   if (s.has("gravity_mps2")) p.gravity = vec3(s, "gravity_mps2", -1000.0, 1000.0);
   p.container = vec3(s, "container_m", 1e-4, 1e4);

@@ -186,10 +186,12 @@ DamRun run_dam(int na, double T_end, double t_end, float container_len) {
   try {
     while (s.time() < stop) {
       s.step();
+      // every step: an impact's speed peak lasts a few steps (sampling every 8th step read 1.44 at
+      // 8 across where every step reads 1.49)
+      out.vmax_ratio = std::max(out.vmax_ratio, s.max_speed() / vref);
       if (s.steps() % 8 == 0) {
         out.T.push_back(s.time() * Ts);
         out.Z.push_back(front());
-        out.vmax_ratio = std::max(out.vmax_ratio, s.max_speed() / vref);
         for (std::size_t i = 0; i < s.count(); ++i) {
           const bool in = s.x()[i] >= 0 && s.x()[i] <= p.container[0] && s.y()[i] >= 0 && s.y()[i] <= p.container[1] &&
                           s.z()[i] >= 0 && s.z()[i] <= p.container[2];
@@ -257,15 +259,16 @@ std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::s
   return rows;
 }
 
-std::vector<ValidationRow> sph_leakage_rows(int na, double t_end) {
+std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float container_len) {
   const std::string c = "sph_no_leakage";
-  const DamRun run = run_dam(na, 0.0, t_end, 4.f);
+  const DamRun run = run_dam(na, 0.0, t_end, container_len);
+  const std::string at = " (" + std::to_string(na) + " across a, box " + num(container_len, 3) + " a long, " +
+                         num(t_end, 3) + " s)";
   std::vector<ValidationRow> rows;
-  rows.push_back(
-      check(c, "particles outside the container (count > 0 = 1)", run.inside ? 0 : 1, 0, run.inside ? 0 : 1, 0));
-  rows.push_back(check(c, "non-finite values (1 = yes)", run.finite ? 0 : 1, 0, run.finite ? 0 : 1, 0));
-  rows.push_back(
-      check(c, "max speed / sqrt(2 g H) over " + num(t_end, 3) + " s", run.vmax_ratio, 0, run.vmax_ratio, 1.5));
+  rows.push_back(check(c, "particles outside the container (count > 0 = 1)" + at, run.inside ? 0 : 1, 0,
+                       run.inside ? 0 : 1, 0));
+  rows.push_back(check(c, "non-finite values (1 = yes)" + at, run.finite ? 0 : 1, 0, run.finite ? 0 : 1, 0));
+  rows.push_back(check(c, "max speed / sqrt(2 g H)" + at, run.vmax_ratio, 0, run.vmax_ratio, 1.5));
   return rows;
 }
 
@@ -365,8 +368,15 @@ std::vector<ValidationCase> sph_validation_cases() {
        [] { return sph_hydrostatic_rows(6, 16, 1.0, 5.0, 10.0); }},
       {"sph_dam_break", "sph", "surge front vs Martin & Moyce (1952), both series, 16 particles across a, T <= 5",
        [] { return sph_dam_break_rows(16, 5.0, sph_martin_moyce_path()); }},
-      {"sph_no_leakage", "sph", "10 s dam break: no particle leaves the box, finite, max speed < 1.5 sqrt(2 g H)",
-       [] { return sph_leakage_rows(8, 10.0); }},
+      {"sph_no_leakage", "sph",
+       "dam break: no particle leaves the box, finite, max speed < 1.5 sqrt(2 g H); 10 s at 8 across in a 4a box, "
+       "and the shipped scene's set-up (16 across, 8a box) over its wall impact (1 s; stress:sph runs it 10 s)",
+       [] {
+         auto rows = sph_leakage_rows(8, 10.0, 4.f);
+         auto shipped = sph_leakage_rows(16, 1.0, 8.f);
+         rows.insert(rows.end(), shipped.begin(), shipped.end());
+         return rows;
+       }},
       {"sph_heightfield", "sph", "heightfield of eq. 5-6: flat settled pool height = volume/area, tilted slope",
        [] { return sph_heightfield_rows(16, 8, 0.5, 0.25f); }},
   };

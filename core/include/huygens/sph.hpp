@@ -17,10 +17,21 @@
 // Forces (symmetric pressure of Monaghan's SPH, MCG03 eq. 10 and 14 with mu = nu rho0):
 //   a_i = g - sum_j m (l_i p_i/rho_i^2 + l_j p_j/rho_j^2) grad W_spiky
 //           + (nu rho0 / rho_i) sum_j m (v_j - v_i) / rho_j lap W_visc
+//           - sum_j m Pi_ij grad W_spiky                (impact viscosity, below)
 //   with nu = nu_physical + eps c0 h. The artificial part eps c0 h is needed: poly6 density with
 //   a spiky pressure gradient is not energy-consistent and pumps energy at too low a viscosity
 //   (measured with the ghost-lattice walls of the first version: growth at eps = 0.002, decay at
 //   0.007); default eps = 0.01, scenes may not go below 0.007.
+// Impact viscosity (Monaghan 1992, Annu. Rev. Astron. Astrophys. 30, eq. 4.1-4.2, with rho_ij = rho0):
+//   Pi_ij = (alpha c0 mu_ij + beta mu_ij^2) / rho0,  mu_ij = h max(0, -v_ij . x_ij) / (r^2 + 0.01 h^2),
+//   v_ij = v_i - v_j, x_ij = x_i - x_j: only approaching pairs (and wall images). Defaults alpha = 0,
+//   beta = 4: the quadratic term acts where pairs close fast (a wall impact) and vanishes in slow
+//   motion (settling) and in the shear of a surge. Why: without it the tip of a dam-break surge
+//   (density below rho0, so p = 0, lying on the floor) is thrown up the end wall at twice its speed
+//   when its wall images compress it (2.38 sqrt(2 g H) in sph_dam_break.json, against issue 7's
+//   bound of 1.5). Measured (docs/sph.md): beta = 4 gives 1.42 and 4.7 % compression instead of
+//   9.3 %, the surge front moves by < 0.4 %, the hydrostatic column stays still; the linear term
+//   (alpha = 0.1 for 1.47) also slows the surge (wall impact 2.6 % later) and the column's settling.
 // Gradient correction l_i = 3 / tr(M_i), M_i = sum_j (m/rho0) (-W'_spiky(r)) r_ij r_ij^T / r (the
 //   first-moment tensor of the spiky gradient over the particle's actual neighbours and wall
 //   images; Bonet and Lok 1999 in scalar form, kept symmetric in i, j so momentum is conserved).
@@ -103,6 +114,10 @@ struct SphParams {
   float artificial_viscosity = 0.01f;
   /// Smallest artificial viscosity a scene may ask for (measured stability limit, see above) (unit: 1).
   static constexpr float min_artificial_viscosity = 0.007f;
+  /// Monaghan's alpha (linear term) of the approaching-pairs impact viscosity Pi_ij (see above) (unit: 1).
+  float impact_alpha = 0.f;
+  /// Monaghan's beta (quadratic term) of the impact viscosity Pi_ij; 0 with alpha 0 = off (unit: 1).
+  float impact_beta = 4.f;
   /// Speed of sound c0 of the Tait equation; 0 = automatic, 10 sqrt(2 g H) with H the fluid height (unit: m/s).
   float sound_speed = 0.f;
   /// Tait exponent gamma (unit: 1).
@@ -225,6 +240,9 @@ class SphSystem {
 
   /// Replaces the particle set (tests, validation): positions and velocities, in any order.
   void set_particles(std::span<const float> px, std::span<const float> py, std::span<const float> pz);
+
+  /// Sets the velocities of the current particle order (tests, validation) (unit: m/s).
+  void set_velocities(std::span<const float> vx, std::span<const float> vy, std::span<const float> vz);
 
   /// Rebuilds the grid and densities for the current positions without moving anything
   /// (so density(), pressure() and grid() describe the current state).

@@ -21,9 +21,9 @@ std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s,
 /// `csv` is the data file (shared/data/martin_moyce_1952.csv).
 std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::string& csv);
 
-/// No leakage over t_end seconds of a dam break at `na` particles across the column: inside the
-/// container, finite, max speed < 1.5 sqrt(2 g H).
-std::vector<ValidationRow> sph_leakage_rows(int na, double t_end);
+/// No leakage over t_end seconds of a dam break at `na` particles across the column, in a box
+/// container_len a long: inside the container, finite, max speed (every step) < 1.5 sqrt(2 g H).
+std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float container_len);
 
 /// Heightfield extraction: a settled flat pool (height = volume / area within half a spacing)
 /// and a tilted lattice (slope of the extracted surface).
