@@ -159,7 +159,8 @@ SphScene parse_sph_scene(const Scene& scene) {
   root.allow_only({"solver", "sph", "description"});
   const JsonIn s = root.object("sph");
   s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2ps", "artificial_viscosity",
-                "impact_alpha", "impact_beta", "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles", "time", "surface"});
+                "impact_alpha", "impact_beta", "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles",
+                "time", "surface"});
   SphScene out;
   SphParams& p = out.params;
   p.spacing = static_cast<float>(s.number("spacing_m", 1e-4, 10.0));

@@ -1,6 +1,8 @@
 // SPH validation cases (issue 7): kernels, hydrostatic column, Martin & Moyce dam break,
 // no leakage, heightfield extraction. `huygens validate` runs the full versions below; the
 // tests run the same functions at smaller sizes.
+#include "huygens/sph_validation.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -10,7 +12,6 @@
 #include "huygens/report.hpp"
 #include "huygens/sph.hpp"
 #include "huygens/sph_surface.hpp"
-#include "huygens/sph_validation.hpp"
 
 namespace huygens {
 
@@ -262,11 +263,11 @@ std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::s
 std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float container_len) {
   const std::string c = "sph_no_leakage";
   const DamRun run = run_dam(na, 0.0, t_end, container_len);
-  const std::string at = " (" + std::to_string(na) + " across a, box " + num(container_len, 3) + " a long, " +
-                         num(t_end, 3) + " s)";
+  const std::string at =
+      " (" + std::to_string(na) + " across a, box " + num(container_len, 3) + " a long, " + num(t_end, 3) + " s)";
   std::vector<ValidationRow> rows;
-  rows.push_back(check(c, "particles outside the container (count > 0 = 1)" + at, run.inside ? 0 : 1, 0,
-                       run.inside ? 0 : 1, 0));
+  rows.push_back(
+      check(c, "particles outside the container (count > 0 = 1)" + at, run.inside ? 0 : 1, 0, run.inside ? 0 : 1, 0));
   rows.push_back(check(c, "non-finite values (1 = yes)" + at, run.finite ? 0 : 1, 0, run.finite ? 0 : 1, 0));
   rows.push_back(check(c, "max speed / sqrt(2 g H)" + at, run.vmax_ratio, 0, run.vmax_ratio, 1.5));
   return rows;
