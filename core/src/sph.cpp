@@ -162,6 +162,8 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   B_ = p_.rest_density * c0_ * c0_ / p_.tait_gamma;
   mvol_ = p_.gradient_correction ? mass_ / p_.rest_density * k_.spiky_k / 3.f : 0.f;
   nu_ = p_.viscosity + p_.artificial_viscosity * c0_ * h_;
+  pik_ = p_.impact_alpha * c0_ * h_ / p_.rest_density;
+  pbk_ = p_.impact_beta * h_ * h_ / p_.rest_density;
 
   build_wall_tables();
 
@@ -501,9 +503,9 @@ inline void force_range(const SphView& v, std::uint32_t b, std::uint32_t e, cons
     fpy += fp * dy;
     fpz += fp * dz;
     const float fv = hr * IR[j];
-    fvx += fv * ((kImage ? -sx * VX[j] : VX[j]) - vxi);
-    fvy += fv * ((kImage ? -sy * VY[j] : VY[j]) - vyi);
-    fvz += fv * ((kImage ? -sz * VZ[j] : VZ[j]) - vzi);
+    fvx += fv * (vjx - vxi);
+    fvy += fv * (vjy - vyi);
+    fvz += fv * (vjz - vzi);
     sm += hr * hr * r;  // first moment of the spiky gradient, for the next step's correction
   }
   acc[0] += fpx;
@@ -640,8 +642,7 @@ void SphSystem::compute_forces() {
   const SphView v{x_.data(),  y_.data(), z_.data(),    vx_.data(),   vy_.data(),
                   vz_.data(), P_.data(), irho_.data(), lirho_.data()};
   const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_;
-  // impact viscosity Pi_ij = (pik + pbk mu) mu, mu = max(0, -v_ij . x_ij) / (r^2 + h^2/100) (see sph.hpp)
-  const float pik = p_.impact_alpha * c0_ * h_ / p_.rest_density, pbk = p_.impact_beta * h_ * h_ / p_.rest_density;
+  const float pik = pik_, pbk = pbk_;
   const float cp = mass_ * k_.spiky_k;                          // m 45/(pi h^6)
   const float cv = nu_ * p_.rest_density * mass_ * k_.spiky_k;  // nu rho0 m 45/(pi h^6)
   const float gx = g_[0], gy = g_[1], gz = g_[2];
@@ -896,7 +897,7 @@ void SphSystem::brute_force_accelerations(std::span<float> ax, std::span<float> 
   // the same physics with every particle (and every wall image) tested against every other
   const std::size_t n = n_;
   const float h = h_, h2 = k_.h2, mk = mass_ * k_.poly6_k, rmin = 1e-6f * h_;
-  const float pik = p_.impact_alpha * c0_ * h_ / p_.rest_density, pbk = p_.impact_beta * h_ * h_ / p_.rest_density;
+  const float pik = pik_, pbk = pbk_;
   float* R = rho.data();
   float* Pa = tx_.data();  // scratch: p / rho^2
   float* Ia = ty_.data();  // scratch: 1 / rho

@@ -213,8 +213,8 @@ class ShipWaves {
   /// Steering state of one ship (active after the first ShipTarget).
   struct Steer {
     bool active = false;
-    double x = 0, y = 0, vx = 0, vy = 0, h = 0;      // state after the last step
-    double tx = 0, ty = 0, tvx = 0, tvy = 0, tt = 0;    // target, its velocity, command time
+    double x = 0, y = 0, vx = 0, vy = 0, h = 0;       // state after the last step
+    double tx = 0, ty = 0, tvx = 0, tvy = 0, tt = 0;  // target, its velocity, command time
   };
   /// Velocity and heading of the last step of each ship (to start steering without a jump).
   struct Last {

@@ -286,6 +286,9 @@ class SphSystem {
   SphKernels k_;
   float h_, mass_, c0_, B_, nu_;
   float mvol_ = 0;  // (m / rho0) 45 / (pi h^6) / 3: tr(M) / 3 per unit moment sum
+  // impact viscosity Pi_ij = (pik_ + pbk_ mu) mu, mu = max(0, -v_ij . x_ij) / (r^2 + h^2/100):
+  // pik_ = alpha c0 h / rho0, pbk_ = beta h^2 / rho0
+  float pik_ = 0, pbk_ = 0;
   std::array<float, 3> g_;
   float damping_;
   std::size_t n_ = 0;
