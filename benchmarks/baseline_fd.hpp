@@ -17,7 +17,7 @@
 #include <span>
 #include <string>
 
-#include "huygens/fft.hpp"
+#include "huygens/common/fft.hpp"
 
 namespace huygens::bench {
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "huygens/fft.hpp"
+#include "huygens/common/fft.hpp"
 
 namespace huygens::bench {
 

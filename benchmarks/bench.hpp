@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "huygens/report.hpp"
+#include "huygens/common/report.hpp"
 
 namespace huygens::bench {
 

@@ -34,11 +34,11 @@
 #include "baseline_fd.hpp"
 #include "baseline_iwave.hpp"
 #include "bench.hpp"
-#include "huygens/cauchy_poisson.hpp"
-#include "huygens/dispersion.hpp"
-#include "huygens/fft.hpp"
-#include "huygens/huygens_propagator.hpp"
-#include "huygens/time_interp.hpp"
+#include "huygens/validation/reference/cauchy_poisson.hpp"
+#include "huygens/common/dispersion.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/huygens/propagator.hpp"
+#include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens::bench {
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "bench.hpp"
-#include "huygens/fft.hpp"
-#include "huygens/huygens_propagator.hpp"
-#include "huygens/validation.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/huygens/propagator.hpp"
+#include "huygens/validation/validation.hpp"
 
 namespace huygens::bench {
 

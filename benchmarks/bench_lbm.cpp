@@ -8,8 +8,8 @@
 #include <cstring>
 
 #include "bench.hpp"
-#include "huygens/fft.hpp"
-#include "huygens/lbm_shallow.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/lbm/shallow.hpp"
 
 namespace huygens::bench {
 

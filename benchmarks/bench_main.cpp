@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "bench.hpp"
-#include "huygens/fft.hpp"
+#include "huygens/common/fft.hpp"
 
 namespace huygens::bench {
 

@@ -31,15 +31,15 @@
 #include <vector>
 
 #include "bench.hpp"
-#include "huygens/fft.hpp"
-#include "huygens/huygens_propagator.hpp"
-#include "huygens/huygens_solver.hpp"
-#include "huygens/report.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/ship_waves.hpp"
-#include "huygens/stokes.hpp"
-#include "huygens/time_interp.hpp"
-#include "huygens/wind.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/huygens/propagator.hpp"
+#include "huygens/huygens/solver.hpp"
+#include "huygens/common/report.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/huygens/ship_waves.hpp"
+#include "huygens/huygens/stokes.hpp"
+#include "huygens/pipeline/time_interp.hpp"
+#include "huygens/huygens/wind.hpp"
 
 namespace huygens::bench {
 

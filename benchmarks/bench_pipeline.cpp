@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "bench.hpp"
-#include "huygens/fft.hpp"
-#include "huygens/frame.hpp"
-#include "huygens/runner.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/pipeline/frame.hpp"
+#include "huygens/pipeline/runner.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 namespace huygens::bench {
 

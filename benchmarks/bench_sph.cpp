@@ -12,8 +12,8 @@
 #include <sstream>
 
 #include "bench.hpp"
-#include "huygens/sph.hpp"
-#include "huygens/sph_validation.hpp"
+#include "huygens/sph/system.hpp"
+#include "huygens/validation/sph_cases.hpp"
 
 namespace huygens::bench {
 

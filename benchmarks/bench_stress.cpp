@@ -25,12 +25,12 @@
 #include <vector>
 
 #include "bench.hpp"
-#include "huygens/fft.hpp"
-#include "huygens/finite.hpp"
-#include "huygens/huygens_propagator.hpp"
-#include "huygens/huygens_solver.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/common/finite.hpp"
+#include "huygens/huygens/propagator.hpp"
+#include "huygens/huygens/solver.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 namespace huygens::bench {
 

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "bench.hpp"
-#include "huygens/lbm_shallow.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/lbm/shallow.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 namespace huygens::bench {
 

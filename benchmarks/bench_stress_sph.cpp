@@ -17,10 +17,10 @@
 #include <vector>
 
 #include "bench.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
-#include "huygens/sph.hpp"
-#include "huygens/sph_scene.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
+#include "huygens/sph/system.hpp"
+#include "huygens/sph/solver.hpp"
 
 namespace huygens::bench {
 

@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "huygens/lbm_shallow.hpp"
-#include "huygens/npy.hpp"
-#include "huygens/report.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
-#include "huygens/validation.hpp"
+#include "huygens/lbm/shallow.hpp"
+#include "huygens/common/npy.hpp"
+#include "huygens/common/report.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
+#include "huygens/validation/validation.hpp"
 
 using namespace huygens;
 using nlohmann::json;

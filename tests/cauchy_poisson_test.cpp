@@ -1,5 +1,5 @@
 // The exact Cauchy-Poisson solution and the adaptive quadrature behind it.
-#include "huygens/cauchy_poisson.hpp"
+#include "huygens/validation/reference/cauchy_poisson.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Dispersion relation of paper 004 section 3 against its closed-form limits.
-#include "huygens/dispersion.hpp"
+#include "huygens/common/dispersion.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "huygens/finite.hpp"
+#include "huygens/common/finite.hpp"
 
 #include <gtest/gtest.h>
 

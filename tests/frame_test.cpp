@@ -1,7 +1,7 @@
 // FrameRing: newest-pair semantics, dropping, slots held by the consumer stay untouched,
 // the cubic Hermite sampling between the two newest frames, and a two-thread stress test
 // (frames carry a checksum of their fields; HUYGENS_STRESS_ITEMS scales the frame count).
-#include "huygens/frame.hpp"
+#include "huygens/pipeline/frame.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The Huygens propagator (paper 004 section 3): packed height transform, sources, cutoff,
 // energy, rotation, stage counting and non-finite containment.
-#include "huygens/huygens_propagator.hpp"
+#include "huygens/huygens/propagator.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "huygens/solver.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 using namespace huygens;
 using cd = std::complex<double>;

@@ -1,6 +1,6 @@
 // The "huygens" scene solver: drop scheduling with exact sub-step timing, UI drops through
 // Solver::apply, outputs and the per-stage counters.
-#include "huygens/huygens_solver.hpp"
+#include "huygens/huygens/solver.hpp"
 
 #include <gtest/gtest.h>
 

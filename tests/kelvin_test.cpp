@@ -5,7 +5,7 @@
 // (so the measurement follows the pattern, not a built-in number). Very near the critical
 // speed (0.9 sqrt(g h), theory 34.6 deg) the method reads 28.8 deg on this grid: the long
 // cusp waves need far larger distances; that regime is not claimed.
-#include "huygens/kelvin.hpp"
+#include "huygens/validation/reference/kelvin.hpp"
 
 #include <gtest/gtest.h>
 

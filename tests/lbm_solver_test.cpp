@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "huygens/npy.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/npy.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 using namespace huygens;
 using nlohmann::json;

@@ -1,4 +1,4 @@
-#include "huygens/npy.hpp"
+#include "huygens/common/npy.hpp"
 
 #include <gtest/gtest.h>
 

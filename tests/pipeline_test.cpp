@@ -19,13 +19,13 @@
 #include <utility>
 #include <vector>
 
-#include "huygens/fft.hpp"
-#include "huygens/finite.hpp"
-#include "huygens/huygens_solver.hpp"
-#include "huygens/npy.hpp"
-#include "huygens/runner.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/common/finite.hpp"
+#include "huygens/huygens/solver.hpp"
+#include "huygens/common/npy.hpp"
+#include "huygens/pipeline/runner.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 using namespace huygens;
 using nlohmann::json;

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "camera.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 using namespace huygens;
 

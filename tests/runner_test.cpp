@@ -2,7 +2,7 @@
 // every step, pacing, pause / step / resume / reset, clean stop, and exceptions from step()
 // reported to the consumer. Uses a tiny fake solver whose fields encode its step and the
 // drops it received, so every frame can be checked for content.
-#include "huygens/runner.hpp"
+#include "huygens/pipeline/runner.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Scene errors name the JSON path; the program exits 2 on each kind of error.
-#include "huygens/scene.hpp"
+#include "huygens/common/scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "huygens/solver.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 #include <sys/wait.h>
 

@@ -1,6 +1,6 @@
 // Ship waves of paper 004 eq. 2: the kernels' rigid-translation identity, alpha -> 0,
 // no waves from a stationary hull, step-size consistency, sub-cell positions, paths.
-#include "huygens/ship_waves.hpp"
+#include "huygens/huygens/ship_waves.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <numbers>
 #include <vector>
 
-#include "huygens/scene.hpp"
+#include "huygens/common/scene.hpp"
 
 using namespace huygens;
 using cd = std::complex<double>;

@@ -1,6 +1,6 @@
 // SPH of paper 000 / MCG03 (issue 7): kernels, neighbour grid, walls, stability, the
 // validation cases at test size, the solver's scene parsing and outputs.
-#include "huygens/sph.hpp"
+#include "huygens/sph/system.hpp"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -13,11 +13,11 @@
 #include <numbers>
 #include <numeric>
 
-#include "huygens/solver.hpp"
-#include "huygens/sph_grid.hpp"
-#include "huygens/sph_scene.hpp"
-#include "huygens/sph_surface.hpp"
-#include "huygens/sph_validation.hpp"
+#include "huygens/pipeline/solver.hpp"
+#include "huygens/sph/grid.hpp"
+#include "huygens/sph/solver.hpp"
+#include "huygens/sph/surface.hpp"
+#include "huygens/validation/sph_cases.hpp"
 
 using namespace huygens;
 

@@ -3,7 +3,7 @@
 // ThreadSanitizer run uses fewer) through rings of capacity 2, 3 and 8 with a consumer
 // that is alternately fast and deliberately slow, checking order and content (every item
 // carries a checksum of its payload).
-#include "huygens/spsc_queue.hpp"
+#include "huygens/pipeline/spsc_queue.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@
 #include <string>
 #include <thread>
 
-#include "huygens/command.hpp"
+#include "huygens/pipeline/command.hpp"
 
 using namespace huygens;
 

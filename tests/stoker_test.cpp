@@ -1,7 +1,7 @@
 // The analytic Stoker dam break: the middle state satisfies the fan invariant and the
 // Rankine-Hugoniot relations, the profile is continuous through the fan, and a weak dam
 // tends to a sound wave.
-#include "huygens/stoker.hpp"
+#include "huygens/lbm/stoker.hpp"
 
 #include <gtest/gtest.h>
 

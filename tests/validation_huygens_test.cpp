@@ -8,9 +8,9 @@
 
 #include <cstdio>
 
-#include "huygens/fft.hpp"
-#include "huygens/kelvin.hpp"
-#include "huygens/validation.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/validation/reference/kelvin.hpp"
+#include "huygens/validation/validation.hpp"
 
 using namespace huygens;
 

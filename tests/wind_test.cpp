@@ -1,6 +1,6 @@
 // Wind sea: JONSWAP spectrum and its wavenumber-plane Jacobian, determinism by seed,
 // a progressive (downwind only) sea, the realised variance, and drift-free advancing.
-#include "huygens/wind.hpp"
+#include "huygens/huygens/wind.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "huygens/scene.hpp"
+#include "huygens/common/scene.hpp"
 
 using namespace huygens;
 using cd = std::complex<double>;

@@ -17,7 +17,7 @@
 #include "accum_blur.hpp"
 #include "caustics.hpp"
 #include "gl/gl.hpp"
-#include "huygens/report.hpp"
+#include "huygens/common/report.hpp"
 
 using namespace huygens;
 using viz::CausticsArea;

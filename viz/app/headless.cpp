@@ -1,7 +1,7 @@
 #include "headless.hpp"
 
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 #include "scene_view.hpp"
 
 namespace huygens {

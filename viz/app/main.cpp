@@ -13,9 +13,9 @@
 
 #include "app.hpp"
 #include "gl.hpp"
-#include "huygens/report.hpp"
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/report.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 #include "scene_view.hpp"
 
 #ifndef HUYGENS_SCENES_DIR

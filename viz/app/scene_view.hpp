@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "huygens/scene.hpp"
-#include "huygens/solver.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/pipeline/solver.hpp"
 #include "refraction.hpp"
 #include "renderer.hpp"
 

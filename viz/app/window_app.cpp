@@ -21,9 +21,9 @@
 
 #include "app.hpp"
 #include "gl.hpp"
-#include "huygens/command.hpp"
-#include "huygens/runner.hpp"
-#include "huygens/scene.hpp"
+#include "huygens/pipeline/command.hpp"
+#include "huygens/pipeline/runner.hpp"
+#include "huygens/common/scene.hpp"
 #include "scene_view.hpp"
 
 namespace huygens {

@@ -1,0 +1,166 @@
+#pragma once
+// The "solver": "huygens" scene (DESIGN.md section 6) on the Huygens propagator of paper 004
+// section 3. Pipeline per full step (stages are timed and counted separately):
+//   propagate -> cutoff -> spectrum -> drops (only when the scene has drops) -> height
+// With the issue 3 features (each costs nothing when the scene does not name it):
+//   propagate -> cutoff -> ships (paper eq. 2, spatial) -> spectrum -> drops -> wind (ambient
+//   sea advanced in the spectral domain) -> height (StokesHeight: first order 1 transform, or
+//   eq. 3's second order 3 transforms, with the wind sea superposed) .
+// Displayed frames j = 1 .. D-1 of D per step are the cubic Hermite interpolants of eta and
+// etadot at the two ends of the last step (time_interp.hpp), with no transform.
+// Still sea (issue 4; HuygensScene::still_skip): without ships and wind, every 16 steps the
+// propagator's energy_bound() is compared with the energy of a 1e-7 m plane wave over the grid;
+// below it the state is zeroed and steps only advance time (stage "still", no transform) until
+// a timed drop or cmd::Drop wakes it. A cmd::Drop's height is made lazily (next step or read).
+// Test hook: inject_nonfinite_for_test (not reachable from a scene).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "huygens/huygens/propagator.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/huygens/ship_waves.hpp"
+#include "huygens/pipeline/solver.hpp"
+#include "huygens/huygens/stokes.hpp"
+#include "huygens/huygens/wind.hpp"
+
+namespace huygens {
+
+/// An elevation released from rest (initial "gaussian" or a timed drop).
+struct GaussianSource {
+  /// Release time (unit: s); 0 for initial conditions.
+  double t = 0;
+  /// Centre (unit: m), in the full grid's frame.
+  double x_m = 0, y_m = 0;
+  /// Standard deviation of the Gaussian (unit: m).
+  double sigma_m = 0.1;
+  /// Peak elevation (unit: m); a drop of depth d is a depression, amplitude -d.
+  double amplitude_m = 0.01;
+};
+
+/// A progressive plane wave present at t = 0.
+struct PlaneWaveSource {
+  /// Wavelength (unit: m).
+  double wavelength_m = 1.0;
+  /// Elevation amplitude (unit: m).
+  double amplitude_m = 0.01;
+  /// Direction of travel, counter-clockwise from +x (unit: degrees).
+  double direction_deg = 0.0;
+};
+
+/// Everything a Huygens scene specifies.
+struct HuygensScene {
+  HuygensParams params;
+  /// Displayed frames per full step (unit: 1); used by the renderer's time interpolation.
+  int display_per_step = 1;
+  std::vector<GaussianSource> initial_gaussians;
+  std::vector<PlaneWaveSource> initial_plane_waves;
+  /// Timed drops, sorted by time.
+  std::vector<GaussianSource> drops;
+  /// Second-order Stokes height (paper 004 eq. 3); false = first order.
+  bool stokes = false;
+  /// Ships (paper 004 eq. 2); empty = none (no patch, no plan, no stage).
+  std::vector<Ship> ships;
+  /// Ship patch side P (unit: cells): 2M, enlarged until the hull fits a quarter of it.
+  int ship_patch = 0;
+  /// Ambient JONSWAP wind sea; absent = calm.
+  bool has_wind = false;
+  WindParams wind;
+  /// Still-sea skip (issue 4): without ships and wind, when energy_bound() of the propagator
+  /// falls below the energy of a plane wave of amplitude still_amplitude_m over the grid,
+  ///   E_still = 1/2 rho (g + sigma k1^2/rho) a^2 L^2,  k1 = 2 pi / L,
+  /// the state is set to a flat sea at rest (spectrum and heights zeroed) and steps only
+  /// advance time (counted by the "still" stage) until a drop (timed or cmd::Drop) wakes it.
+  /// Not a scene key: tests switch it off to compare.
+  bool still_skip = true;
+  /// Amplitude of the still threshold's plane wave (unit: m).
+  double still_amplitude_m = 1e-7;
+  /// Full steps between two still checks (unit: steps); each check is one pass over Z^.
+  int still_check_every = 16;
+};
+
+/// Parses and checks a "huygens" scene; every error is a SceneError naming the JSON path.
+HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options = {});
+
+class HuygensSolver : public Solver {
+ public:
+  explicit HuygensSolver(const HuygensScene& scene);
+  void step() override;
+  double time() const override { return prop_.time(); }
+  std::int64_t steps() const override { return prop_.steps(); }
+  std::vector<OutputField> outputs() override;
+  nlohmann::json meta() const override;
+  const StageStats& stats() const override { return prop_.stats(); }
+  std::span<const float> height() override {
+    refresh_height();
+    return eta_view();
+  }
+  std::size_t height_rows() const override { return static_cast<std::size_t>(prop_.visible_size()); }
+  std::size_t height_cols() const override { return static_cast<std::size_t>(prop_.visible_size()); }
+  std::span<const float> height_rate() override {
+    refresh_height();
+    return etadot_view();
+  }
+  int display_per_step() const override { return scene_.display_per_step; }
+  /// Frame j (1 <= j < D) of the last step: the cubic Hermite interpolant at s = j / D between
+  /// the previous full step and the current one (needs steps() >= 1); j = 0 gives outputs().
+  std::vector<OutputField> display_outputs(int j) override;
+  /// N x N transforms per full step for the scene's features: the propagation (2 with the
+  /// round trip, 0 without) + the height (1 first order, 3 second order).
+  int transforms_per_step() const;
+  /// Supports cmd::Drop (a Gaussian depression released now; the height is recomputed lazily:
+  /// by the next step, or by the next height()/height_rate()/outputs() before it) and
+  /// cmd::ShipTarget (ShipWaves::steer at time(): the ship leaves its path and heads for the
+  /// target with bounded acceleration and speed; refused for an unknown ship, a non-finite
+  /// value or a target outside the grid).
+  bool apply(const Command& c) override;
+  /// The ships' poses at time() (ShipWaves::pose), at most out.size().
+  std::size_t ship_poses(std::span<ShipState> out) const override;
+  /// The ship stage (null without ships), for tests.
+  const ShipWaves* ship_waves() const { return ships_.get(); }
+
+  /// True while the still-sea skip holds (see HuygensScene::still_skip).
+  bool still() const { return still_; }
+  /// Energy threshold of the still-sea skip (unit: J); 0 when the skip is off or impossible.
+  double still_energy() const { return still_energy_; }
+  /// Test hook (tests only; not reachable from a scene): HuygensPropagator::inject_nonfinite_for_test.
+  void inject_nonfinite_for_test(const std::string& stage, std::int64_t step) {
+    prop_.inject_nonfinite_for_test(stage, step);
+  }
+
+  HuygensPropagator& propagator() { return prop_; }
+  const HuygensScene& scene() const { return scene_; }
+
+ private:
+  std::span<const float> eta_view() const { return stokes_ ? std::span<const float>(eta_.span()) : prop_.eta(); }
+  std::span<const float> etadot_view() const {
+    return stokes_ ? std::span<const float>(etadot_.span()) : prop_.etadot();
+  }
+  /// The height of the current state (prop_.height() or the StokesHeight stage).
+  void make_height(std::int64_t step);
+  /// Makes the height now if a command changed the state since it was last made.
+  void refresh_height() {
+    if (height_dirty_) {
+      make_height(prop_.steps());
+      height_dirty_ = false;
+    }
+  }
+  /// A timed drop falls into the coming step (t, t + dt].
+  bool drop_due() const;
+  /// Every still_check_every steps: enters the still state when the energy bound is below the threshold.
+  void check_still();
+
+  HuygensScene scene_;
+  HuygensPropagator prop_;
+  std::unique_ptr<ShipWaves> ships_;             // only with ships
+  std::unique_ptr<WindSea> wind_;                // only with wind
+  std::unique_ptr<StokesHeight> stokes_;         // only with stokes or wind (else the propagator's packed height)
+  AlignedBuffer<float> eta_, etadot_;            // StokesHeight outputs (only with stokes_)
+  AlignedBuffer<float> eta0_, etadot0_, frame_;  // previous full step + one displayed frame (only D > 1)
+  std::size_t next_drop_ = 0;
+  int st_drops_ = -1, st_ships_ = -1, st_wind_ = -1, st_stokes_ = -1, st_still_ = -1;
+  double still_energy_ = 0.0;
+  bool still_ = false, height_dirty_ = false;
+};
+
+}  // namespace huygens

@@ -1,0 +1,292 @@
+#pragma once
+// Lattice Boltzmann shallow-water solver, D2Q9 with BGK collision: paper 002 section 2
+// (eq. 1-4), after Zhou 2004 ("Lattice Boltzmann methods for shallow water flows", LABSWE).
+//
+// Lattice units inside (cell size dx = 1, step dt = 1, lattice speed e = dx/dt = 1); depths
+// stay in metres, so g enters as g_lat = g dt^2 / dx^2 (unit 1/m) and g_lat h = (c dt/dx)^2.
+// Links: 0 rest, 1 E(1,0), 2 N(0,1), 3 W(-1,0), 4 S(0,-1), 5 NE(1,1), 6 NW(-1,1), 7 SW(-1,-1),
+// 8 SE(1,-1); lambda_a = 1 on axis links, 1/4 on diagonals.
+//
+// Equilibrium, paper 002 eq. 2 (= Zhou 2004's equilibrium with e = 1):
+//   f0 = h (1 - 5 g h / 6 - 2 u.u / 3)
+//   fa = lambda_a h (g h / 6 + e_a.u / 3 + (e_a.u)^2 / 2 - u.u / 6),   a = 1..8
+// whose moments are sum fa = h, sum e_a fa = h u, sum e_a e_a fa = g h^2 / 2 I + h u u.
+// One step (eq. 1), pull form: f_a(x, t+1) = f*_a(x - e_a, t) + S_a, then h = sum f,
+// h u = sum e f (eq. 3-4) and f*_a = f_a - (f_a - f_a^eq) / tau + lambda_a h (e_a . a_ext) / 3.
+// Viscosity nu = (tau - 1/2) dx^2 / (3 dt) (Zhou 2004), so tau = 1/2 + 3 nu dt / dx^2.
+//
+// Bed slope: the force -g h grad z_b enters as the lattice-weighted term S_a = lambda_a (e_a.F) / 3
+// evaluated at the link midpoint (Zhou's centred scheme):
+//   S_a = -lambda_a g (h(x) + h(x - e_a)) (z_b(x) - z_b(x - e_a)) / 6.
+// For still water (h + z_b constant) this equals lambda_a g (h(x)^2 - h(x - e_a)^2) / 6, so every
+// arriving population is exactly the local equilibrium: still water stays still to rounding.
+// (Zhou's own form puts e_a.F / 6 on all 8 links: same first moment, but the arriving populations
+// are not the local equilibrium, so still water is not an exact fixed point.) The "naive" alternative,
+// F = -g h(x) (central difference of z_b at x), is kept for comparison.
+//
+// Boundaries are ghost cells: before each step a precomputed list of rules writes, for every
+// ghost or obstacle cell s and link a whose target x = s + e_a is fluid, the value x must pull:
+// halfway bounce-back f*_abar(x) (no-slip walls, obstacles), the mirrored population (free-slip
+// walls), the periodic image, or Zou-He values that give the cell the discharge (inflow) or the
+// depth (outflow) asked for, or a zero-gradient copy (outflow without a depth); the bed is taken
+// as flat across inflow and outflow columns. The bed term the kernel adds
+// on such a link is subtracted in the same rule, so walls feel no spurious slope force.
+//
+// Storage: structure of arrays, 9 float planes with a one-cell halo, two copies (pull from one,
+// write the other). Populations are stored shifted by the still-water equilibrium of the mean
+// depth H (f_a - f_a^eq(H, 0)), and the kernel works with h - H, so float rounding acts on the
+// disturbance rather than on the depth: mass and small waves keep ~7 digits of the disturbance.
+//
+// Dry cells are refused: every fluid cell must start at least min_depth_m deep, and a run in which
+// a cell falls below it stops with LbmDryError (this solver has no wetting and drying).
+#include <array>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "huygens/common/fft.hpp"
+#include "huygens/common/stats.hpp"
+
+namespace huygens {
+
+/// What a side of the rectangular domain does.
+enum class LbmSide : std::uint8_t {
+  wall,      ///< no-slip, halfway bounce-back
+  slip,      ///< free-slip, specular reflection
+  periodic,  ///< wraps to the opposite side (which must be periodic too)
+  inflow,    ///< given discharge per unit width (left side only)
+  outflow,   ///< given depth, or zero gradient when none is given (right side only)
+};
+
+/// How the bed slope enters the momentum equation.
+enum class LbmBedForce : std::uint8_t {
+  centred,  ///< well-balanced midpoint form (see the header comment)
+  naive,    ///< -g h(x) times the central difference of z_b at x (not well balanced)
+};
+
+/// Parameters of a run, in physical units.
+struct LbmParams {
+  /// Cells along x (columns).
+  int cols = 64;
+  /// Cells along y (rows).
+  int rows = 64;
+  /// Cell size dx (unit: m).
+  double cell_m = 0.1;
+  /// Time step dt (unit: s); the lattice speed is e = cell_m / dt_s.
+  double dt_s = 0.01;
+  /// Gravitational acceleration (unit: m/s^2).
+  double gravity_mps2 = 9.81;
+  /// Kinematic (eddy) viscosity nu (unit: m^2/s); sets tau = 1/2 + 3 nu dt / dx^2.
+  double viscosity_m2s = 1e-3;
+  /// Uniform external acceleration, x and y (unit: m/s^2); enters as the force h a.
+  std::array<double, 2> accel_mps2 = {0.0, 0.0};
+  /// Bed-slope force form.
+  LbmBedForce bed_force = LbmBedForce::centred;
+  /// Sides: left (x = 0), right, bottom (y = 0), top.
+  LbmSide left = LbmSide::wall, right = LbmSide::wall, bottom = LbmSide::wall, top = LbmSide::wall;
+  /// Discharge per unit width through an inflow side, along +x (unit: m^2/s).
+  double inflow_discharge_m2s = 0.0;
+  /// Depth held at an outflow side (unit: m); 0 = zero-gradient outflow.
+  double outflow_depth_m = 0.0;
+  /// Smallest depth a fluid cell may have (unit: m); shallower cells are refused as dry.
+  double min_depth_m = 1e-4;
+  /// Largest |u| + sqrt(g h) the flow is expected to reach beyond the initial state, e.g. from
+  /// the Stoker solution of a dam (unit: m/s); 0 = use the initial state only.
+  double expected_signal_speed_mps = 0.0;
+  /// Largest Froude number |u| / sqrt(g h) the flow is expected to reach beyond the initial
+  /// state, e.g. the Stoker middle state of a dam (dimensionless); 0 = initial state only.
+  double expected_froude = 0.0;
+};
+
+/// Largest Froude number accepted before the run. At a critical point (u = c) the equilibrium
+/// population against the flow is h (c^2/2 - c/3) in lattice units, negative unless c >= 2/3,
+/// which |u| + c < 0.8 forbids; measured dam breaks blow up from Fr = 0.96 (h_L/h_R = 6.7), so
+/// transcritical flows are refused with a margin.
+inline constexpr double kLbmMaxFroude = 0.9;
+
+/// Initial fields, row-major (rows, cols), physical units. Empty vectors mean zero.
+struct LbmFields {
+  /// Bed elevation z_b (unit: m).
+  std::vector<float> bed_m;
+  /// Water depth h (unit: m).
+  std::vector<float> depth_m;
+  /// Velocity along x (unit: m/s).
+  std::vector<float> ux_mps;
+  /// Velocity along y (unit: m/s).
+  std::vector<float> uy_mps;
+  /// 1 = obstacle (solid) cell.
+  std::vector<std::uint8_t> solid;
+};
+
+/// Refusal of a parameter set before the run: names the parameter and suggests a fix.
+class LbmRefused : public std::invalid_argument {
+ public:
+  LbmRefused(std::string parameter, const std::string& reason)
+      : std::invalid_argument(parameter + ": " + reason), parameter_(std::move(parameter)) {}
+  /// "viscosity_m2s", "dt_s", "cell_m", "depth_m", "left", ...
+  const std::string& parameter() const { return parameter_; }
+
+ private:
+  std::string parameter_;
+};
+
+/// A fluid cell fell below min_depth_m during the run (no wetting and drying).
+class LbmDryError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Derived lattice quantities (dimensionless unless stated).
+struct LbmLattice {
+  /// BGK relaxation time.
+  double tau = 1.0;
+  /// g_lat = g dt^2 / dx^2 (unit: 1/m), so g_lat h is the squared lattice wave speed.
+  double g_lat = 0.0;
+  /// Lattice speed e = dx / dt (unit: m/s).
+  double speed_mps = 1.0;
+  /// Largest (|u| + sqrt(g h)) / e of the initial state or the expected flow.
+  double signal_ratio = 0.0;
+  /// Smallest f0 / h of the initial state (>= 0 required).
+  double min_rest_fraction = 1.0;
+};
+
+/// The equilibrium of paper 002 eq. 2 in lattice units (e = 1): depth h (unit: m), lattice
+/// velocity (ux, uy) (u dt/dx) and g_lat = g dt^2/dx^2 (unit: 1/m); feq in metres.
+std::array<double, 9> lbm_equilibrium(double g_lat, double h, double ux, double uy);
+
+/// Checks a parameter set and its initial fields; throws LbmRefused naming the parameter:
+/// tau >= 0.55, (|u| + sqrt(g h)) dt/dx < 0.8, f0 >= 0 (g h < 1.2 in lattice units), Froude
+/// number <= kLbmMaxFroude, no dry fluid cell, consistent sides. Returns the lattice quantities.
+LbmLattice lbm_check(const LbmParams& p, const LbmFields& init);
+
+/// The solver state. Built from params and initial fields (after lbm_check); step() does no
+/// allocation, logging or I/O.
+class LbmShallow {
+ public:
+  LbmShallow(const LbmParams& p, const LbmFields& init);
+
+  /// One step: boundary fill, then one fused stream-collide pass (OpenMP over rows).
+  /// Throws NonFiniteError("stream_collide", step) or LbmDryError.
+  void step();
+  void run(std::int64_t n) {
+    for (std::int64_t i = 0; i < n; ++i) step();
+  }
+
+  const LbmParams& params() const { return p_; }
+  const LbmLattice& lattice() const { return lat_; }
+  std::int64_t steps() const { return steps_; }
+  /// Simulated time (unit: s).
+  double time_s() const { return static_cast<double>(steps_) * p_.dt_s; }
+  const StageStats& stats() const { return stats_; }
+
+  /// Total water volume over fluid cells, accumulated in double (unit: m^3 per metre of
+  /// width for a 1-row channel: sum h dx^2).
+  double volume_m3() const;
+  /// Depth h, row-major (rows, cols); 0 in obstacle cells (unit: m).
+  void depth(std::span<float> out) const;
+  /// Velocity (rows, cols, 2) = (u_x, u_y); 0 in obstacle cells (unit: m/s).
+  void velocity(std::span<float> out) const;
+  /// Bed elevation (rows, cols) (unit: m).
+  void bed(std::span<float> out) const;
+  /// Depth of one cell (unit: m).
+  float depth_at(int row, int col) const;
+  /// Velocity of one cell (unit: m/s).
+  std::array<float, 2> velocity_at(int row, int col) const;
+  bool solid_at(int row, int col) const { return solid_[idx(row, col)] != 0; }
+  /// Post-collision population of link a (0..8) at a cell (unit: m), for tests.
+  float population(int row, int col, int a) const {
+    return static_cast<float>(fa_[static_cast<std::size_t>(a) * plane_ + idx(row, col)] + shift_[a]);
+  }
+
+  /// Bytes the stream-collide pass reads and writes per fluid cell.
+  int bytes_per_cell() const;
+
+ private:
+  struct Rule {
+    std::uint32_t dst;  // population index written (plane a, ghost s)
+    std::uint32_t src;  // population index read (COPY), or the fluid cell x (INFLOW/OUTFLOW)
+    std::uint32_t x;    // fluid cell receiving the population
+    std::uint32_t s;    // ghost / obstacle cell
+    std::uint32_t up;   // true upstream cell (periodic image) or kNone
+    std::uint8_t a;     // link
+    std::uint8_t kind;  // 0 copy, 1 inflow, 2 outflow with depth
+  };
+  struct Span {
+    std::uint32_t begin, end;  // cell indices [begin, end) of one row
+  };
+
+  std::size_t idx(int row, int col) const {
+    return static_cast<std::size_t>(row + 1) * stride_ + kPad + static_cast<std::size_t>(col);
+  }
+  void build_rules();
+  void fill_ghosts();
+  template <int Mode>
+  void stream_collide(int& flagged);
+
+  static constexpr std::size_t kPad = 16;  // interior column 0 starts 64-byte aligned
+  static constexpr std::uint32_t kNone = 0xffffffffu;
+
+  LbmParams p_;
+  LbmLattice lat_;
+  std::size_t stride_ = 0, plane_ = 0;
+  AlignedBuffer<float> fa_, fb_;     // 9 planes each: post-collision populations
+  AlignedBuffer<float> ha_, hb_;     // depth at the current and next step
+  AlignedBuffer<float> z_;           // bed
+  std::vector<std::uint8_t> solid_;  // per lattice cell: 1 = not fluid (ghost or obstacle)
+  std::vector<Span> spans_;
+  std::vector<Rule> rules_;
+  float omega_ = 1.0f, g_ = 0.0f, ax_ = 0.0f, ay_ = 0.0f, hmin_ = 0.0f, href_ = 0.0f;
+  std::array<double, 9> shift_{};  // f_a = stored_a + shift_a = equilibrium of (href, u = 0)
+  bool has_bed_ = false;
+  std::size_t ncells_ = 0;  // fluid cells
+  std::int64_t steps_ = 0;
+  StageStats stats_;
+  int st_fill_ = 0, st_kernel_ = 0;
+};
+
+/// The one-dimensional wet-bed dam break of the validation (a 100 m channel of one row,
+/// periodic in y, walls at both ends; dam at 50 m, h_L = 1 m, h_R = h_L / ratio), run until the
+/// fan head or the shock is 5 m from a wall, against stoker_solve(). Defined in validation_lbm.cpp.
+struct LbmDamBreakResult {
+  /// sum |h - h_exact| / sum h_exact over all cells (cell-centre values) at the end.
+  double l1_relative = 0;
+  /// Wall time of the run (unit: s).
+  double seconds = 0;
+  std::int64_t steps = 0;
+  /// Simulated time at the end (unit: s).
+  double time_s = 0;
+  /// Non-empty when the parameters were refused before the run.
+  std::string refused;
+  /// Non-empty when the run stopped (non-finite value or a dry cell).
+  std::string stopped;
+  /// Steps completed when the run ended or stopped.
+  std::int64_t done_steps = 0;
+  /// Froude number of the Stoker middle state.
+  double froude = 0;
+};
+/// tau: BGK relaxation time; cfl: largest Stoker signal speed over the lattice speed.
+/// froude_check = false skips the transcritical refusal (to show what happens without it).
+LbmDamBreakResult lbm_dam_break_1d(double ratio, int cells, double tau = 0.55, double cfl = 0.5,
+                                   bool froude_check = true);
+
+/// Lake at rest over the Goutal-Maurel bump z_b = 0.2 - 0.05 (x - 10)^2 (8 < x < 12) in a 25 m
+/// channel (250 x 4 cells, walls), still surface at 0.7 m (0.5 m above the crest), after `steps`.
+struct LbmLakeResult {
+  /// Largest |u| (unit: m/s).
+  double max_speed_mps = 0;
+  /// Largest |h + z_b - 0.7| (unit: m).
+  double max_surface_error_m = 0;
+};
+LbmLakeResult lbm_lake_at_rest(std::int64_t steps, LbmBedForce force);
+
+/// Relative change of the total volume over `steps` in a closed rows x cols box (no-slip walls)
+/// with a bed mound and a released hump of water (accumulated in double).
+double lbm_mass_drift(int rows, int cols, std::int64_t steps);
+
+/// Speed of a small long-wave pulse (amplitude 1e-4 h, 1 m deep) over sqrt(g h), measured by
+/// the centroid of the right-going half; `cells` along a 1-row periodic channel.
+double lbm_wave_speed_ratio(int cells);
+
+}  // namespace huygens

@@ -1,0 +1,175 @@
+#pragma once
+// Frames from the simulation thread to the render thread (DESIGN.md 2), and the lock-free
+// ring of preallocated frame buffers that carries them.
+//
+// A frame is the visible heightfield eta (metres), its time derivative eta_dot (m/s), the
+// simulated time, the step index and a snapshot of the per-stage counters. The producer
+// (simulation thread) fills a free slot with one memcpy per field and publishes it; the
+// consumer (render thread) always gets the NEWEST frame and the one published just before
+// it, so it can interpolate in time between them (cubic Hermite of paper 004, section 3.5 /
+// DESIGN.md 3.5) for any display time. A slow consumer misses frames (they are dropped,
+// the producer never waits); with a slow producer the consumer keeps its last two frames
+// and never waits either.
+//
+// Protocol (a generalised triple buffer). One 64-bit atomic word holds the published pair
+// (newest slot, previous slot) and the set of slots the consumer holds (a bit mask). The
+// producer writes a slot that is neither published nor held -- it exists whenever there
+// are >= 5 slots, because the consumer holds at most 2 and the published pair is 2 more --
+// then publishes it with a release CAS that shifts newest -> previous and keeps the mask.
+// The consumer takes the published pair with an acq_rel CAS that replaces its mask by that
+// pair, which also releases the slots it held before. The producer's CAS can only fail
+// when the consumer has just taken a pair, so both sides are lock-free, no side ever
+// waits for the other, and nothing is allocated after construction.
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "huygens/common/fft.hpp"
+#include "huygens/pipeline/spsc_queue.hpp"
+#include "huygens/common/stats.hpp"
+
+namespace huygens {
+
+/// A snapshot of one stage's counters (the name stays with the solver's StageStats, same index).
+struct StageCounter {
+  /// Number of times the stage ran.
+  std::uint64_t calls = 0;
+  /// Total wall time (unit: ns).
+  std::uint64_t ns = 0;
+  /// Bytes of buffers the stage owns (unit: bytes).
+  std::uint64_t bytes = 0;
+  /// Full-grid (N x N) transforms, summed over calls.
+  std::uint64_t transforms = 0;
+};
+
+/// Where one ship is at a frame's time, as the solver has it (Solver::ship_poses): a ship
+/// steered by cmd::ShipTarget is drawn here, not where its scene path would put it.
+struct ShipState {
+  /// Hull centre in the full grid's frame (unit: m).
+  double x_m = 0, y_m = 0;
+  /// Heading from +x towards +y (unit: rad).
+  double heading_rad = 0;
+  /// Speed over the last step (unit: m/s).
+  double speed_mps = 0;
+};
+
+/// Most ships a frame carries (unit: ships); a solver with more reports the first ones.
+inline constexpr std::size_t kMaxFrameShips = 8;
+
+/// Everything of a frame except its fields (the producer fills this in).
+struct FrameInfo {
+  /// Full steps taken when the frame was made.
+  std::int64_t step = 0;
+  /// Simulated time of the fields (unit: s).
+  double time_s = 0;
+  /// Commands the runner had applied before this frame (to find the first frame that shows one).
+  std::uint64_t commands_applied = 0;
+  /// Ships in `ships` (unit: ships; at most kMaxFrameShips).
+  std::uint32_t ship_count = 0;
+  /// Poses of the solver's ships at time_s (fixed capacity: copied with the frame, no allocation).
+  std::array<ShipState, kMaxFrameShips> ships{};
+};
+
+struct Frame {
+  /// Publication number: 1 for the first frame published, +1 per frame.
+  std::uint64_t seq = 0;
+  FrameInfo info;
+  std::size_t rows = 0;
+  std::size_t cols = 0;
+  /// True when eta_dot holds the solver's time derivative (false: the solver has none).
+  bool has_rate = false;
+  /// Visible heightfield, rows x cols, C order (unit: m).
+  AlignedBuffer<float> eta;
+  /// Its time derivative, rows x cols (unit: m/s); meaningful only when has_rate.
+  AlignedBuffer<float> eta_dot;
+  /// Per-stage counters, one per stage of the solver's StageStats, same order.
+  std::vector<StageCounter> stages;
+};
+
+/// The consumer's view: the newest frame and the one published just before it.
+/// `prev` is null until two frames were published. Valid until the next acquire().
+struct FramePair {
+  const Frame* prev = nullptr;
+  const Frame* newest = nullptr;
+  explicit operator bool() const { return newest != nullptr; }
+
+  /// Interpolation parameter s in [0, 1] of display time t (unit: s) between prev and
+  /// newest; times outside are clamped (the consumer never extrapolates).
+  double phase(double t) const;
+  /// The heightfield at display time t (unit: s) into `out` (rows x cols; unit: m): the cubic
+  /// Hermite interpolant of eta and eta_dot between prev and newest (paper 004 section 3.5,
+  /// weights 20/27, 7/27, 4/27 dt, -2/27 dt at s = 1/3; time_interp.hpp); linear when a frame
+  /// has no rate, the newest frame alone when there is no prev.
+  void sample(double t, std::span<float> out) const;
+  /// Pose of ship i at display time t (clamped like sample()): linear in position and speed
+  /// between prev and newest, heading along the shorter arc; the newest frame's pose when prev
+  /// has no such ship. False when the newest frame has no ship i.
+  bool ship(std::size_t i, double t, ShipState& out) const;
+};
+
+class FrameRing {
+ public:
+  /// The fewest slots the protocol needs (2 held by the consumer, 2 published, 1 being written).
+  static constexpr std::size_t kMinSlots = 5;
+  /// The most slots the state word can describe.
+  static constexpr std::size_t kMaxSlots = 32;
+
+  /// Allocates `slots` frames of rows x cols (with an eta_dot buffer when `with_rate`) and
+  /// `stage_count` counters each. Throws std::invalid_argument for slots outside [5, 32].
+  FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count, std::size_t slots = kMinSlots,
+            bool with_rate = true);
+  FrameRing(const FrameRing&) = delete;
+  FrameRing& operator=(const FrameRing&) = delete;
+
+  std::size_t rows() const { return rows_; }
+  std::size_t cols() const { return cols_; }
+  std::size_t slots() const { return frames_.size(); }
+
+  // ---- producer (one thread) ----
+  /// A free slot to fill (never blocks; the same slot until publish()).
+  Frame& begin_write();
+  /// Publishes the slot begin_write() returned as the newest frame (sets its seq).
+  void publish();
+  /// begin_write + one memcpy per field + publish. `eta_dot` may be empty (has_rate = false);
+  /// stage counters beyond the ring's stage_count are not copied. Throws
+  /// std::invalid_argument, before touching the ring, when a field has the wrong size.
+  void publish(const FrameInfo& info, std::span<const float> eta, std::span<const float> eta_dot,
+               std::span<const StageStat> stages = {});
+  /// Frames published so far (producer's count; readable from any thread).
+  std::uint64_t published() const { return published_.load(std::memory_order_acquire); }
+
+  // ---- consumer (one thread) ----
+  /// The newest frame and the one before it. Never blocks; returns the same pair when
+  /// nothing new was published; an empty pair before the first publish.
+  FramePair acquire();
+  /// Frames the consumer never saw as newest because a newer one replaced them first.
+  std::uint64_t dropped() const { return dropped_; }
+
+ private:
+  static constexpr unsigned kNone = 0xFF;
+  static unsigned newest_of(std::uint64_t s) { return static_cast<unsigned>(s & 0xFF); }
+  static unsigned prev_of(std::uint64_t s) { return static_cast<unsigned>((s >> 8) & 0xFF); }
+  static std::uint32_t mask_of(std::uint64_t s) { return static_cast<std::uint32_t>(s >> 16); }
+  static std::uint64_t pack(unsigned newest, unsigned prev, std::uint32_t mask) {
+    return std::uint64_t{newest} | (std::uint64_t{prev} << 8) | (std::uint64_t{mask} << 16);
+  }
+  static std::uint32_t bit(unsigned slot) { return slot == kNone ? 0u : (1u << slot); }
+
+  std::size_t rows_, cols_;
+  std::vector<Frame> frames_;
+  // shared word: published pair + consumer mask
+  alignas(kCacheLine) std::atomic<std::uint64_t> state_;
+  // producer line
+  alignas(kCacheLine) std::atomic<std::uint64_t> published_{0};
+  unsigned writing_ = kNone, pub_newest_ = kNone, pub_prev_ = kNone;
+  // consumer line
+  alignas(kCacheLine) unsigned held_newest_ = kNone;
+  unsigned held_prev_ = kNone;
+  std::uint64_t last_seq_ = 0;
+  std::uint64_t dropped_ = 0;
+};
+
+}  // namespace huygens

@@ -1,0 +1,162 @@
+#pragma once
+// The simulation runner (DESIGN.md 2, paper 004 Figure 2: UI, simulation and visualization
+// on three threads). It owns a Solver on its own std::thread, applies UI commands at step
+// boundaries, and publishes a frame after every step into a FrameRing the render thread
+// reads without waiting. Exceptions from step() (NonFiniteError naming the stage) stop the
+// thread and are kept for the consumer: failed(), error(), rethrow_if_failed().
+//
+// Pacing. As fast as possible: step, publish, repeat. Real time: a display clock
+// D(now) = t_origin + time_scale * (now - wall_origin) says which simulated time the
+// render thread should show. The consumer can only interpolate between the two newest
+// frames, so frame n+1 is computed ahead and published when D reaches t_n; then the
+// display time always lies in [t_n, t_{n+1}] while the simulation keeps up. When a step
+// takes longer than its share of wall time, the consumer shows the newest frame, and the
+// clock is rebased (not raced to catch up) once the simulation is more than a step behind.
+//
+// Threads: the constructor, start(), stop() and solver() belong to the owning thread;
+// send() to one UI thread (single producer of commands); frames(), display_time(),
+// failed(), error() to one render thread (single consumer of frames).
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "huygens/pipeline/command.hpp"
+#include "huygens/pipeline/frame.hpp"
+#include "huygens/pipeline/solver.hpp"
+#include "huygens/pipeline/spsc_queue.hpp"
+
+namespace huygens {
+
+struct RunnerParams {
+  /// Pace to the wall clock (true) or step as fast as possible (false).
+  bool realtime = true;
+  /// Simulated seconds per wall-clock second when pacing to real time (unit: s/s).
+  double time_scale = 1.0;
+  /// Commands the UI may queue before send() refuses one (unit: commands).
+  std::size_t command_capacity = 256;
+  /// Frame buffers in the ring, >= FrameRing::kMinSlots (unit: frames).
+  std::size_t frame_slots = FrameRing::kMinSlots;
+  /// Stop after this many steps of the current solver, 0 = run until stop() (unit: steps).
+  std::int64_t max_steps = 0;
+  /// Start paused (the initial frame is published; StepOnce / Resume continue).
+  bool start_paused = false;
+  /// Longest an idle simulation thread sleeps before it looks at its commands again (unit: s).
+  double poll_s = 0.0005;
+  /// OpenMP threads of the simulation thread, 0 = OpenMP's default (OMP_NUM_THREADS). A new
+  /// std::thread does not inherit omp_set_num_threads() from the thread that made it.
+  int omp_threads = 0;
+};
+
+/// Why the simulation thread stopped on an exception.
+struct RunnerError {
+  /// Stage that produced the first non-finite value ("" when the error was not a NonFiniteError).
+  std::string stage;
+  /// Step at which it happened (-1 when unknown).
+  std::int64_t step = -1;
+  /// The exception's what().
+  std::string message;
+  bool non_finite = false;
+};
+
+class Runner {
+ public:
+  using Factory = std::function<std::unique_ptr<Solver>()>;
+
+  /// Runs `solver`; `reset` (optional) builds a fresh solver for the Reset command
+  /// (without it, Reset is offered to the solver's apply()).
+  explicit Runner(std::unique_ptr<Solver> solver, RunnerParams params = {}, Factory reset = {});
+  /// Stops and joins the thread.
+  ~Runner();
+  Runner(const Runner&) = delete;
+  Runner& operator=(const Runner&) = delete;
+
+  // ---- owning thread ----
+  /// Starts the simulation thread; it publishes the initial state as the first frame.
+  void start();
+  /// Asks the thread to stop at the next step boundary and joins it (idempotent).
+  void stop();
+  /// The solver, for the owning thread only while the simulation thread is not running.
+  Solver& solver();
+  /// Stage names, same order as Frame::stages (fixed at construction).
+  const std::vector<std::string>& stage_names() const { return stage_names_; }
+
+  // ---- UI thread (single producer) ----
+  /// Queues a command for the next step boundary; false when the queue is full (nothing queued).
+  bool send(const Command& c) { return commands_.try_push(c); }
+
+  // ---- render thread (single consumer) ----
+  /// The newest frame and the one before it; never waits.
+  FramePair frames() { return ring_.acquire(); }
+  /// The simulated time to display now (unit: s): the real-time clock, frozen while paused;
+  /// +infinity when running as fast as possible (FramePair::sample then shows the newest frame).
+  double display_time() const;
+  /// True once the simulation thread stopped on an exception; error() is then valid.
+  bool failed() const { return status_.load(std::memory_order_acquire) == kFailed; }
+  const RunnerError& error() const { return error_; }
+  /// Rethrows the exception that stopped the simulation thread (original type), if any.
+  void rethrow_if_failed() const;
+  /// True once the thread has ended (stop(), max_steps reached, or an exception).
+  bool finished() const { return status_.load(std::memory_order_acquire) != kRunning; }
+
+  // ---- any thread ----
+  bool paused() const { return paused_flag_.load(std::memory_order_acquire); }
+  /// Commands applied so far (by the runner or the solver).
+  std::uint64_t commands_applied() const { return applied_.load(std::memory_order_acquire); }
+  /// Commands the solver refused (Solver::apply returned false) or that named an unknown runner parameter.
+  std::uint64_t commands_rejected() const { return rejected_.load(std::memory_order_acquire); }
+  /// Frames published so far.
+  std::uint64_t frames_published() const { return ring_.published(); }
+
+ private:
+  enum Status : int { kRunning = 0, kFinished = 1, kFailed = 2 };
+
+  void run();
+  void apply_commands();
+  void apply(const Command& c);
+  void publish();
+  double clock_at(std::int64_t wall_ns) const;
+  void set_clock(std::int64_t wall_ns, double sim_time, double rate);
+
+  std::unique_ptr<Solver> solver_;
+  RunnerParams params_;
+  Factory reset_;
+  std::vector<std::string> stage_names_;
+  SpscQueue<Command> commands_;
+  FrameRing ring_;
+  std::thread thread_;
+
+  // simulation-thread state
+  bool paused_ = false;
+  bool realtime_ = true;
+  double time_scale_ = 1.0;
+  int step_once_ = 0;
+  bool reset_requested_ = false;
+  std::int64_t steps_at_reset_ = 0;
+
+  // display clock, written by the simulation thread, read by the render thread (a seqlock
+  // of atomics: the writer bumps seq to odd, stores, bumps to even; readers retry on change)
+  alignas(kCacheLine) std::atomic<std::uint64_t> clock_seq_{0};
+  std::atomic<std::int64_t> clock_wall_ns_{0};
+  std::atomic<double> clock_sim_{0};
+  /// simulated s per wall s; 0 = paused; < 0 = as fast as possible
+  std::atomic<double> clock_rate_{0};
+
+  alignas(kCacheLine) std::atomic<bool> stop_{false};
+  std::atomic<int> status_{kRunning};
+  std::atomic<bool> paused_flag_{false};
+  std::atomic<std::uint64_t> applied_{0};
+  std::atomic<std::uint64_t> rejected_{0};
+  RunnerError error_;
+  std::exception_ptr exception_;
+};
+
+/// Wall clock used by the runner's display clock (steady_clock; unit: ns).
+std::int64_t runner_now_ns();
+
+}  // namespace huygens

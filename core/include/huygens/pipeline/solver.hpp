@@ -1,0 +1,82 @@
+#pragma once
+// The interface every solver (Huygens, SPH, LBM) offers to the programs, the runner and
+// the renderer: step, time, output fields, per-stage statistics. Solvers are built from
+// a scene by make_solver(); each solver's factory lives with the solver.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "huygens/pipeline/command.hpp"
+#include "huygens/pipeline/frame.hpp"
+#include "huygens/common/finite.hpp"
+#include "huygens/common/scene.hpp"
+#include "huygens/common/stats.hpp"
+
+namespace huygens {
+
+/// A named output array for dumps: `name` is the file prefix (eta, h, u, pos), `shape`
+/// its C-order shape, `data` a view valid until the next step.
+struct OutputField {
+  std::string name;
+  std::vector<std::size_t> shape;
+  std::span<const float> data;
+};
+
+/// Options that come from the command line rather than the scene.
+struct RunOptions {
+  /// FFTW planning effort: false = FFTW_ESTIMATE (fast start), true = FFTW_MEASURE.
+  bool measure_plans = true;
+};
+
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  /// Advances one full step. Throws NonFiniteError naming the stage on a non-finite value.
+  virtual void step() = 0;
+  /// Simulated time (unit: s).
+  virtual double time() const = 0;
+  /// Full steps taken so far.
+  virtual std::int64_t steps() const = 0;
+  /// The fields a dump writes for the current state (may allocate: not called inside a step).
+  virtual std::vector<OutputField> outputs() = 0;
+  /// Grid, spacing, time step and visible region for meta.json.
+  virtual nlohmann::json meta() const = 0;
+  virtual const StageStats& stats() const = 0;
+  /// Heightfield of the visible region (rows = y, cols = x; unit: m) for the renderer.
+  virtual std::span<const float> height() = 0;
+  virtual std::size_t height_rows() const = 0;
+  virtual std::size_t height_cols() const = 0;
+  /// Time derivative of height() (unit: m/s), same shape, for the renderer's cubic time
+  /// interpolation; empty when the solver has none (the default).
+  virtual std::span<const float> height_rate() { return {}; }
+  /// Applies a UI command (drop, ship target, parameter, feature) between steps, never inside
+  /// step(); returns false when the solver does not support it (the default: none).
+  virtual bool apply(const Command&) { return false; }
+  /// Fills `out` with the poses of the solver's ships at time() (where they are, including a
+  /// ship steered by cmd::ShipTarget) and returns how many it wrote (at most out.size()); the
+  /// default has no ships. Called by the runner for every frame: no allocation.
+  virtual std::size_t ship_poses(std::span<ShipState> out) const {
+    (void)out;
+    return 0;
+  }
+  /// Displayed frames per full step D (unit: 1); 1 when the solver does not interpolate.
+  virtual int display_per_step() const { return 1; }
+  /// The fields of displayed frame j of D of the last full step (time (steps() - 1 + j/D) dt for
+  /// j >= 1, interpolated; j = 0 is outputs()). May allocate: not called inside a step.
+  virtual std::vector<OutputField> display_outputs(int j) { return j == 0 ? outputs() : std::vector<OutputField>{}; }
+};
+
+/// Builds the solver the scene names. Throws SceneError (JSON path) for a bad scene.
+std::unique_ptr<Solver> make_solver(const Scene& scene, const RunOptions& options = {});
+
+/// Per-solver factories (each defined with its solver).
+std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
+std::unique_ptr<Solver> make_sph_solver(const Scene& scene, const RunOptions& options);
+std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions& options);
+
+}  // namespace huygens

@@ -1,0 +1,34 @@
+#pragma once
+// The "sph" block of a scene (DESIGN.md section 6) parsed into SphParams and the surface
+// parameters; errors are SceneError with the JSON path. Example:
+//   { "solver": "sph",
+//     "sph": { "spacing_m": 0.01, "support_factor": 2.0, "rest_density_kgpm3": 1000,
+//              "viscosity_m2ps": 1e-4, "sound_speed_mps": null, "gravity_mps2": [0, 0, -9.81],
+//              "container_m": [0.2, 0.2, 0.2],
+//              "fluid": [ { "min_m": [0, 0, 0], "max_m": [0.2, 0.2, 0.075] } ],
+//              "obstacles": [ { "type": "box", "min_m": [..], "max_m": [..] },
+//                             { "type": "cylinder", "centre_m": [x, y], "radius_m": r, "z0_m": 0, "z1_m": z } ],
+//              "time": { "cfl": 0.15, "force": 0.18, "viscous": 0.03, "dt_max_s": 0.001 },
+//              "surface": { "cell_m": 0.01, "radius_factor": 2.0, "iso": null } } }
+#include <memory>
+
+#include "huygens/common/scene.hpp"
+#include "huygens/sph/system.hpp"
+#include "huygens/sph/surface.hpp"
+
+namespace huygens {
+
+class Solver;
+
+struct SphScene {
+  SphParams params;
+  /// Heightfield extraction; iso defaults to sph_flat_iso(radius, spacing).
+  SphSurfaceParams surface;
+};
+
+/// Parses and checks the scene's "sph" block (throws SceneError naming the JSON path).
+SphScene parse_sph_scene(const Scene& scene);
+/// The Solver for parsed parameters (throws std::invalid_argument for an unusable set-up).
+std::unique_ptr<Solver> make_sph_solver(const SphScene& scene);
+
+}  // namespace huygens

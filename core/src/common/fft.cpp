@@ -1,0 +1,117 @@
+#include "huygens/common/fft.hpp"
+
+#include <fftw3.h>
+#include <omp.h>
+
+#include <cstdlib>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <string>
+
+namespace huygens {
+
+namespace {
+// FFTW's planner is not thread-safe: every plan creation and destruction goes through this.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+void init_threads_once() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    fftwf_init_threads();
+    fftwf_plan_with_nthreads(omp_get_max_threads());
+  });
+}
+// 64-byte alignment (a cache line, an AVX-512 vector); size rounded up as aligned_alloc needs.
+void* aligned_alloc64(std::size_t bytes) { return std::aligned_alloc(64, (bytes + 63) / 64 * 64); }
+unsigned flags_of(PlanEffort e) {
+  switch (e) {
+    case PlanEffort::estimate: return FFTW_ESTIMATE;
+    case PlanEffort::measure: return FFTW_MEASURE;
+    case PlanEffort::patient: return FFTW_PATIENT;
+  }
+  return FFTW_MEASURE;
+}
+}  // namespace
+
+template <class T>
+AlignedBuffer<T>::AlignedBuffer(std::size_t n) : n_(n) {
+  if (n == 0) return;
+  p_ = static_cast<T*>(aligned_alloc64(n * sizeof(T)));
+  if (!p_) throw std::bad_alloc();
+  for (std::size_t i = 0; i < n; ++i) new (p_ + i) T{};
+}
+
+template <class T>
+AlignedBuffer<T>::~AlignedBuffer() {
+  if (p_) std::free(p_);
+}
+
+template <class T>
+AlignedBuffer<T>& AlignedBuffer<T>::operator=(AlignedBuffer&& o) noexcept {
+  if (this != &o) {
+    if (p_) std::free(p_);
+    p_ = o.p_;
+    n_ = o.n_;
+    o.p_ = nullptr;
+    o.n_ = 0;
+  }
+  return *this;
+}
+
+template class AlignedBuffer<float>;
+template class AlignedBuffer<double>;
+template class AlignedBuffer<cfloat>;
+template class AlignedBuffer<unsigned char>;
+
+int fft_set_threads(int threads) {
+  init_threads_once();
+  std::lock_guard lock(planner_mutex());
+  if (threads < 1) threads = 1;
+  fftwf_plan_with_nthreads(threads);
+  return threads;
+}
+
+const char* fft_version() { return fftwf_version; }
+
+Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort)
+    : rows_(rows), cols_(cols) {
+  init_threads_once();
+  std::lock_guard lock(planner_mutex());
+  // MEASURE/PATIENT overwrite the buffers while planning: plan on scratch copies.
+  fftwf_plan p = nullptr;
+  if (effort == PlanEffort::estimate) {
+    p = fftwf_plan_dft_2d(rows, cols, reinterpret_cast<fftwf_complex*>(in),
+                          reinterpret_cast<fftwf_complex*>(out), sign, flags_of(effort));
+  } else {
+    const std::size_t n = static_cast<std::size_t>(rows) * cols;
+    auto* a = static_cast<fftwf_complex*>(aligned_alloc64(n * sizeof(fftwf_complex)));
+    auto* b = in == out ? a : static_cast<fftwf_complex*>(aligned_alloc64(n * sizeof(fftwf_complex)));
+    p = fftwf_plan_dft_2d(rows, cols, a, b, sign, flags_of(effort));
+    if (b != a) std::free(b);
+    std::free(a);
+  }
+  if (!p) throw std::runtime_error("FFTW could not plan a " + std::to_string(rows) + " x " + std::to_string(cols) + " transform");
+  plan_ = p;
+  // Execution on the real buffers goes through fftwf_execute_dft (new-array execute),
+  // which needs the same alignment as the planning buffers: all are 64-byte aligned.
+  in_ = in;
+  out_ = out;
+}
+
+Fft2D::~Fft2D() {
+  if (!plan_) return;
+  std::lock_guard lock(planner_mutex());
+  fftwf_destroy_plan(static_cast<fftwf_plan>(plan_));
+}
+
+void Fft2D::execute() const { execute(in_, out_); }
+
+void Fft2D::execute(cfloat* in, cfloat* out) const {
+  fftwf_execute_dft(static_cast<fftwf_plan>(plan_), reinterpret_cast<fftwf_complex*>(in),
+                    reinterpret_cast<fftwf_complex*>(out));
+}
+
+}  // namespace huygens

@@ -1,0 +1,89 @@
+#include "huygens/common/npy.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace huygens {
+
+namespace {
+void rename_into_place(const std::string& tmp, const std::string& path) {
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
+}
+}  // namespace
+
+void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape) {
+  std::size_t count = 1;
+  for (auto s : shape) count *= s;
+  if (count != data.size()) throw std::invalid_argument("write_npy: shape does not match data size");
+  std::ostringstream dict;
+  dict << "{'descr': '<f4', 'fortran_order': False, 'shape': (";
+  for (std::size_t i = 0; i < shape.size(); ++i) dict << shape[i] << (shape.size() == 1 || i + 1 < shape.size() ? ", " : "");
+  dict << "), }";
+  std::string header = dict.str();
+  // magic (6) + version (2) + header length (2) + header + '\n' is padded to 64 bytes.
+  const std::size_t total = 10 + header.size() + 1;
+  header.append((64 - total % 64) % 64, ' ');
+  header.push_back('\n');
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+    const unsigned char magic[8] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0};
+    f.write(reinterpret_cast<const char*>(magic), 8);
+    const unsigned short len = static_cast<unsigned short>(header.size());
+    const unsigned char le[2] = {static_cast<unsigned char>(len & 0xff), static_cast<unsigned char>(len >> 8)};
+    f.write(reinterpret_cast<const char*>(le), 2);
+    f.write(header.data(), static_cast<std::streamsize>(header.size()));
+    f.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size_bytes()));
+    if (!f) throw std::runtime_error("write failed: " + tmp);
+  }
+  rename_into_place(tmp, path);
+}
+
+NpyArray read_npy(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw std::runtime_error("cannot read " + path);
+  char magic[10];
+  f.read(magic, 10);
+  if (!f || std::memcmp(magic, "\x93NUMPY", 6) != 0 || magic[6] != 1)
+    throw std::runtime_error(path + ": not a version 1 .npy file");
+  const std::size_t len = static_cast<unsigned char>(magic[8]) | (static_cast<unsigned char>(magic[9]) << 8);
+  std::string header(len, '\0');
+  f.read(header.data(), static_cast<std::streamsize>(len));
+  if (header.find("'<f4'") == std::string::npos || header.find("False") == std::string::npos)
+    throw std::runtime_error(path + ": only little-endian float32 C-order arrays are read");
+  NpyArray a;
+  const auto open = header.find("'shape': (");
+  const auto close = header.find(')', open);
+  std::istringstream dims(header.substr(open + 10, close - open - 10));
+  std::string tok;
+  std::size_t count = 1;
+  while (std::getline(dims, tok, ',')) {
+    if (tok.find_first_not_of(' ') == std::string::npos) continue;
+    a.shape.push_back(std::stoul(tok));
+    count *= a.shape.back();
+  }
+  a.data.resize(count);
+  f.read(reinterpret_cast<char*>(a.data.data()), static_cast<std::streamsize>(count * sizeof(float)));
+  if (!f) throw std::runtime_error(path + ": truncated data");
+  return a;
+}
+
+void write_file_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw std::runtime_error("cannot write " + tmp);
+    f << text;
+    if (!f) throw std::runtime_error("write failed: " + tmp);
+  }
+  rename_into_place(tmp, path);
+}
+
+}  // namespace huygens

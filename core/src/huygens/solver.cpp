@@ -1,0 +1,400 @@
+#include "huygens/huygens/solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <stdexcept>
+#include <variant>
+
+#include "huygens/common/finite.hpp"
+#include "huygens/pipeline/time_interp.hpp"
+
+namespace huygens {
+
+namespace {
+
+constexpr double kBig = 1e6;
+
+}  // namespace
+
+HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) {
+  const JsonIn root = scene.root();
+  root.allow_only(
+      {"solver", "description", "grid", "water", "time", "stokes", "initial", "drops", "ships", "wind", "render"});
+  if (root.has("description")) root.string("description", "");
+  HuygensScene out;
+  HuygensParams& p = out.params;
+  p.effort = options.measure_plans ? PlanEffort::measure : PlanEffort::estimate;
+
+  // grid: n (power of two), length_m, margin, cutoff
+  const JsonIn grid = root.object("grid");
+  grid.allow_only({"n", "length_m", "margin", "cutoff", "cutoff_time_s"});
+  const long long n = grid.integer("n", 16, 16384);
+  if ((n & (n - 1)) != 0) grid.fail("n", "must be a power of two (FFT grid), got " + std::to_string(n));
+  p.n = static_cast<int>(n);
+  p.length_m = grid.number("length_m", 1e-6, kBig);
+  const long long m = grid.integer("margin", 0, 16384);
+  if (2 * m >= n) grid.fail("margin", "margin too large for n = " + std::to_string(n) + ": 2 * margin must be < n");
+  p.margin = static_cast<int>(m);
+  p.absorber = grid.boolean("cutoff", true) ? Absorber::paper_quadratic : Absorber::off;
+  // 0 (default): paper 004's cutoff once per step; tau > 0: one paper cutoff per tau seconds
+  p.cutoff_time_s = grid.number("cutoff_time_s", 0.0, 0.0, 1e6);
+  if (p.absorber == Absorber::paper_quadratic && m < 1) grid.fail("margin", "the cutoff needs margin >= 1");
+
+  // water (all optional): depth_m null or absent = deep water
+  if (auto water = root.optional_object("water")) {
+    water->allow_only({"gravity", "surface_tension", "density", "depth_m"});
+    p.water.gravity = water->number("gravity", 9.81, 0.0, 1e3);
+    p.water.surface_tension = water->number("surface_tension", 0.072, 0.0, 10.0);
+    p.water.density = water->number("density", 1000.0, 1e-3, 1e5);
+    if (auto d = water->optional_number("depth_m", 0.0, kBig)) {
+      if (*d <= 0) water->fail("depth_m", "depth must be > 0 (null for deep water)");
+      p.water.depth_m = *d;
+    }
+    if (p.water.gravity == 0 && p.water.surface_tension == 0)
+      water->fail("gravity", "gravity and surface tension are both 0: no waves");
+  }
+
+  // time: dt > 0 (any value is stable), display_per_step
+  const JsonIn time = root.object("time");
+  time.allow_only({"dt", "display_per_step"});
+  p.dt = time.number("dt", 0.0, 1e3);
+  if (p.dt <= 0) time.fail("dt", "dt must be > 0");
+  out.display_per_step = static_cast<int>(time.integer("display_per_step", 1, 1, 1000));
+
+  // issue 3 features: each one the scene does not name costs nothing
+  out.stokes = root.boolean("stokes", false);
+  if (root.has("ships") && !root.raw()["ships"].is_null() && !root.raw()["ships"].is_array())
+    root.fail("ships", "expected an array of ships");
+  out.ships = parse_ships(root);
+  if (auto w = root.optional_object("wind")) {
+    out.wind = parse_wind(*w);
+    out.has_wind = true;
+  }
+  // the visualizer reads `render` (caustics, blur, ...); the solver only checks it is an object
+  (void)root.optional_object("render");
+
+  const double len = p.length_m;
+  auto position = [&](const JsonIn& o, const char* key) { return o.number(key, 0.0, len); };
+  for (const JsonIn& e : root.array("initial")) {
+    const std::string type = e.string("type", "", {"gaussian", "plane_wave"});
+    if (type.empty()) e.fail("type", "missing required string (\"gaussian\" or \"plane_wave\")");
+    if (type == "gaussian") {
+      e.allow_only({"type", "x_m", "y_m", "sigma_m", "amplitude_m"});
+      GaussianSource g;
+      g.x_m = position(e, "x_m");
+      g.y_m = position(e, "y_m");
+      g.sigma_m = e.number("sigma_m", 0.0, len);
+      if (g.sigma_m <= 0) e.fail("sigma_m", "sigma must be > 0");
+      g.amplitude_m = e.number("amplitude_m", -kBig, kBig);
+      out.initial_gaussians.push_back(g);
+    } else {
+      e.allow_only({"type", "wavelength_m", "amplitude_m", "direction_deg"});
+      PlaneWaveSource w;
+      w.wavelength_m = e.number("wavelength_m", 0.0, kBig);
+      if (w.wavelength_m < 2.0 * len / n)
+        e.fail("wavelength_m", "wavelength below two grid cells (" + std::to_string(2.0 * len / n) + " m)");
+      w.amplitude_m = e.number("amplitude_m", -kBig, kBig);
+      w.direction_deg = e.number("direction_deg", 0.0, -360.0, 360.0);
+      out.initial_plane_waves.push_back(w);
+    }
+  }
+  for (const JsonIn& e : root.array("drops")) {
+    e.allow_only({"t", "x_m", "y_m", "radius_m", "depth_m"});
+    GaussianSource g;
+    g.t = e.number("t", 0.0, 1e9);
+    g.x_m = position(e, "x_m");
+    g.y_m = position(e, "y_m");
+    g.sigma_m = e.number("radius_m", 0.0, len);
+    if (g.sigma_m <= 0) e.fail("radius_m", "radius must be > 0");
+    g.amplitude_m = -e.number("depth_m", -kBig, kBig);
+    out.drops.push_back(g);
+  }
+  std::stable_sort(out.drops.begin(), out.drops.end(),
+                   [](const GaussianSource& a, const GaussianSource& b) { return a.t < b.t; });
+  // source tables (2 N^2 floats) at construction for timed drops, which enter inside a step;
+  // a scene without them makes the tables on the first UI drop (between steps, see apply())
+  p.runtime_sources = !out.drops.empty();
+  // Stokes or wind: the StokesHeight stage makes the height; the propagator makes none
+  p.external_height = out.stokes || out.has_wind;
+  if (!out.ships.empty()) {
+    // ships add to the spatial field: force the FFT round trip even without the cutoff
+    p.spatial = true;
+    const double dx = p.length_m / p.n;
+    int patch = std::max(2, 2 * p.margin);
+    for (const Ship& sh : out.ships)
+      while (patch < p.n && 0.25 * patch * dx < 0.5 * std::max(sh.hull.length_m, sh.hull.beam_m) + 3.0 * sh.hull.blur())
+        patch += 2;
+    out.ship_patch = std::min(patch, p.n);
+    for (std::size_t i = 0; i < out.ships.size(); ++i) {
+      const HullParams& h = out.ships[i].hull;
+      if (0.25 * out.ship_patch * dx < 0.5 * std::max(h.length_m, h.beam_m) + 3.0 * h.blur())
+        root.fail("ships",
+                  "ship " + std::to_string(i) + ": the hull (with its blur) does not fit a quarter of the grid");
+    }
+  }
+  if (auto e = huygens_params_error(p); !e.empty()) root.fail_here(e);
+  if (!out.ships.empty()) {
+    // an unstable step (a ship moving more than a quarter of its patch per step) is refused here
+    try {
+      ShipWaves probe(p.water, p.n, p.length_m, out.ship_patch, out.ships, PlanEffort::estimate);
+      probe.check_step(p.dt);
+    } catch (const std::invalid_argument& e) {
+      root.fail("ships", e.what());
+    }
+  }
+  return out;
+}
+
+HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(scene_.params) {
+  const auto& p = scene_.params;
+  const std::size_t vv = static_cast<std::size_t>(prop_.visible_size()) * prop_.visible_size();
+  if (!scene_.ships.empty()) {
+    ships_ = std::make_unique<ShipWaves>(p.water, p.n, p.length_m, scene_.ship_patch, scene_.ships, p.effort);
+    ships_->check_step(p.dt);
+  }
+  if (scene_.has_wind) wind_ = std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt);
+  if (scene_.stokes || wind_) {
+    stokes_ = std::make_unique<StokesHeight>(p.water, p.n, p.length_m, scene_.stokes, p.effort, p.margin);
+    eta_ = AlignedBuffer<float>(vv);
+    etadot_ = AlignedBuffer<float>(vv);
+  }
+  if (scene_.display_per_step > 1) {
+    eta0_ = AlignedBuffer<float>(vv);
+    etadot0_ = AlignedBuffer<float>(vv);
+    frame_ = AlignedBuffer<float>(vv);
+  }
+  for (const auto& w : scene_.initial_plane_waves) prop_.add_plane_wave(w.wavelength_m, w.amplitude_m, w.direction_deg);
+  for (const auto& g : scene_.initial_gaussians) prop_.add_gaussian(g.x_m, g.y_m, g.sigma_m, g.amplitude_m);
+  // drops at t <= 0 are part of the initial state
+  while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t <= 0.0) {
+    const auto& d = scene_.drops[next_drop_++];
+    prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, -d.t);
+  }
+  // the drops stage exists for the scene's drops and for the UI's (registered here; it owns
+  // the source tables once they exist)
+  st_drops_ = prop_.stats().add("drops", prop_.source_bytes());
+  if (ships_) st_ships_ = prop_.stats().add("ships", ships_->bytes());
+  if (wind_) st_wind_ = prop_.stats().add("wind", wind_->bytes());
+  if (stokes_) st_stokes_ = prop_.stats().add(scene_.stokes ? "height_stokes" : "height_wind", stokes_->bytes());
+  if (scene_.still_skip && !ships_ && !wind_ && scene_.still_check_every > 0) {
+    // ships and wind keep the sea alive: no still state with them
+    const double k1 = 2.0 * std::numbers::pi / p.length_m, a = scene_.still_amplitude_m;
+    still_energy_ =
+        0.5 * (p.water.density * p.water.gravity + p.water.surface_tension * k1 * k1) * a * a * p.length_m * p.length_m;
+    st_still_ = prop_.stats().add("still", 0);
+  }
+  make_height(0);
+  if (!all_finite(eta_view())) throw NonFiniteError("initial", 0);
+  prop_.stats().reset_counts();
+}
+
+void HuygensSolver::make_height(std::int64_t step) {
+  if (!stokes_) {
+    prop_.height();
+    return;
+  }
+  const int n = prop_.n();
+  bool ok = true;
+  {
+    StageTimer timer(prop_.stats()[st_stokes_]);
+    const float scale = 1.0f / (static_cast<float>(n) * static_cast<float>(n));
+    // with wind: the sea W^(0) P is formed inside the height pass (read once, never written)
+    ok = wind_ ? stokes_->compute(prop_.spectrum_view().data(), scale, *wind_, eta_.data(), etadot_.data())
+               : stokes_->compute(prop_.spectrum_view().data(), scale, nullptr, eta_.data(), etadot_.data());
+    prop_.stats()[st_stokes_].transforms += static_cast<std::uint64_t>(stokes_->transforms_per_call());
+  }
+  if (!ok) throw NonFiniteError(prop_.stats()[st_stokes_].name, step);
+}
+
+int HuygensSolver::transforms_per_step() const {
+  return prop_.transforms_per_step() + (stokes_ ? stokes_->transforms_per_call() : 0);
+}
+
+bool HuygensSolver::drop_due() const {
+  if (next_drop_ >= scene_.drops.size()) return false;
+  const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt;
+  return scene_.drops[next_drop_].t <= t1 + 1e-9 * scene_.params.dt;
+}
+
+void HuygensSolver::check_still() {
+  if (st_still_ < 0 || prop_.steps() % scene_.still_check_every != 0) return;
+  if (!(prop_.energy_bound() < still_energy_)) return;
+  // below the threshold: a flat sea at rest (the residual is dropped, so that waking up later
+  // starts from exactly zero instead of a frozen, unrotated residual)
+  prop_.clear();
+  for (auto* b : {&eta_, &etadot_, &eta0_, &etadot0_}) std::fill(b->data(), b->data() + b->size(), 0.0f);
+  still_ = true;
+}
+
+void HuygensSolver::step() {
+  if (still_) {
+    if (!drop_due()) {
+      // still sea: no transform, no pass over the field; time advances
+      StageTimer timer(prop_.stats()[st_still_]);
+      prop_.end_step();
+      return;
+    }
+    still_ = false;  // a timed drop wakes it: the normal step below releases it
+  }
+  // after a cmd::Drop: eta0_ needs the current height; otherwise the step makes it
+  if (height_dirty_ && scene_.display_per_step > 1) refresh_height();
+  height_dirty_ = false;
+  if (scene_.display_per_step > 1) {
+    // keep the previous full step for the displayed frames in between: with the height stage
+    // the solver owns eta_, so the buffers trade places (make_height rewrites all of eta_);
+    // otherwise the propagator owns the height and it is copied
+    if (stokes_) {
+      std::swap(eta0_, eta_);
+      std::swap(etadot0_, etadot_);
+    } else {
+      const auto e = eta_view(), d = etadot_view();
+      std::memcpy(eta0_.data(), e.data(), e.size() * sizeof(float));
+      std::memcpy(etadot0_.data(), d.data(), d.size() * sizeof(float));
+    }
+  }
+  const double t0 = prop_.time(), dt = scene_.params.dt;
+  prop_.propagate();
+  prop_.cutoff();
+  if (ships_) {
+    // the ships write into the same buffer as propagate and cutoff: each patch is checked
+    // before it is added (every step; P^2 per ship), so a non-finite value from the kernels
+    // is named "ships" and never blamed on propagate
+    if (prop_.inject_due_for_test(st_ships_)) ships_->poison_next_add_for_test();
+    bool ok = false;
+    {
+      StageTimer timer(prop_.stats()[st_ships_]);
+      ok = ships_->add(prop_.field().data(), t0, dt);
+    }
+    if (!ok) throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
+  }
+  prop_.spectrum();
+  if (drop_due()) {
+    // drops released in (t, t + dt] enter with the phase they have gained by t + dt
+    const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt;
+    const double eps = 1e-9 * scene_.params.dt;
+    StageTimer timer(prop_.stats()[st_drops_]);
+    while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t <= t1 + eps) {
+      const auto& d = scene_.drops[next_drop_++];
+      prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, std::max(0.0, t1 - d.t));
+    }
+    if (prop_.inject_due_for_test(st_drops_)) prop_.spectrum_data()[1] = NAN;
+    // drops are rare: check their output in full
+    if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps() + 1);
+  }
+  if (wind_) {
+    StageTimer timer(prop_.stats()[st_wind_]);
+    wind_->advance();
+  }
+  make_height(prop_.steps() + 1);
+  prop_.end_step();
+  check_still();
+}
+
+std::vector<OutputField> HuygensSolver::display_outputs(int j) {
+  const int d = scene_.display_per_step;
+  if (j == 0 || d <= 1) return outputs();
+  refresh_height();
+  if (j < 0 || j >= d || prop_.steps() < 1) return {};
+  const auto e1 = eta_view(), d1 = etadot_view();
+  hermite_interpolate(eta0_.data(), etadot0_.data(), e1.data(), d1.data(), e1.size(), hermite_weights(j, d),
+                      scene_.params.dt, frame_.data());
+  const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
+  return {OutputField{"eta", {v, v}, frame_.span()}};
+}
+
+std::size_t HuygensSolver::ship_poses(std::span<ShipState> out) const {
+  if (!ships_) return 0;
+  const std::size_t k = std::min(out.size(), static_cast<std::size_t>(ships_->ships()));
+  for (std::size_t i = 0; i < k; ++i) {
+    const ShipPoseNow p = ships_->pose(static_cast<int>(i), prop_.time());
+    out[i] = ShipState{p.x_m, p.y_m, p.heading_rad, p.speed_mps};
+  }
+  return k;
+}
+
+bool HuygensSolver::apply(const Command& c) {
+  if (const auto* s = std::get_if<cmd::ShipTarget>(&c)) {
+    // between steps: the ship leaves its path now (no transform, no allocation)
+    if (!ships_) return false;
+    return ships_->steer(s->ship, prop_.time(), s->x_m, s->y_m, s->vx_mps, s->vy_mps);
+  }
+  const auto* d = std::get_if<cmd::Drop>(&c);
+  if (!d) return false;
+  const double len = scene_.params.length_m;
+  if (!(d->x_m >= 0 && d->x_m <= len && d->y_m >= 0 && d->y_m <= len && d->radius_m > 0 && std::isfinite(d->depth_m)))
+    return false;
+  // the first UI drop of a scene without timed drops makes the source tables (2 N^2 floats,
+  // one pass of the dispersion): here, between steps, on the simulation thread
+  prop_.stats()[st_drops_].bytes = prop_.reserve_sources();
+  StageTimer timer(prop_.stats()[st_drops_]);
+  prop_.add_gaussian(d->x_m, d->y_m, d->radius_m, -static_cast<double>(d->depth_m));
+  if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps());
+  // the height follows lazily (the next step makes it anyway; see refresh_height)
+  height_dirty_ = true;
+  still_ = false;
+  return true;
+}
+
+std::vector<OutputField> HuygensSolver::outputs() {
+  refresh_height();
+  const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
+  return {OutputField{"eta", {v, v}, eta_view()}};
+}
+
+nlohmann::json HuygensSolver::meta() const {
+  const auto& p = scene_.params;
+  const int m = p.margin, n = p.n;
+  const double dx = p.length_m / n;
+  return nlohmann::json{
+      {"solver", "huygens"},
+      {"n", n},
+      {"length_m", p.length_m},
+      {"dx", dx},
+      {"dt", p.dt},
+      {"margin", m},
+      {"display_per_step", scene_.display_per_step},
+      {"cutoff", p.absorber == Absorber::paper_quadratic},
+      {"cutoff_time_s", p.cutoff_time_s},
+      {"rotation", p.rotation == Rotation::lifting ? "lifting" : "complex"},
+      {"grid", {{"n", n}, {"length_m", p.length_m}, {"margin", m}, {"dx", dx}}},
+      {"water",
+       {{"gravity", p.water.gravity},
+        {"surface_tension", p.water.surface_tension},
+        {"density", p.water.density},
+        {"depth_m", p.water.deep() ? nlohmann::json(nullptr) : nlohmann::json(p.water.depth_m)}}},
+      {"visible",
+       {{"rows", {m, n - m}},
+        {"cols", {m, n - m}},
+        {"shape", {n - 2 * m, n - 2 * m}},
+        {"origin_m", {m * dx, m * dx}},
+        {"note",
+         "index ranges are half-open [start, end) into the full N x N grid; origin_m is (x, y) of cell (0, 0)"}}},
+      {"fields",
+       {{"eta", scene_.stokes ? "elevation to second order (paper 004 eq. 3: Re IFFT[i k/omega Z^] + Re chi^2) (m), "
+                                "rows = y, cols = x"
+                              : "first-order elevation Re IFFT[i k/omega Z^] (m), rows = y, cols = x"}}},
+      {"stokes", scene_.stokes},
+      {"ships", static_cast<int>(scene_.ships.size())},
+      {"ship_patch", scene_.ships.empty() ? 0 : scene_.ship_patch},
+      {"wind", scene_.has_wind ? nlohmann::json{{"speed_mps", scene_.wind.speed_mps},
+                                                {"direction_deg", scene_.wind.direction_deg},
+                                                {"seed", scene_.wind.seed},
+                                                {"fetch_m", scene_.wind.fetch_m},
+                                                {"gamma", scene_.wind.gamma},
+                                                {"spectrum", "JONSWAP"}}
+                               : nlohmann::json(nullptr)},
+      {"transforms_per_step", transforms_per_step()},
+      {"still_energy_j", still_energy_},
+      {"transforms_per_displayed_frame",
+       static_cast<double>(transforms_per_step()) / static_cast<double>(scene_.display_per_step)},
+  };
+}
+
+std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options) {
+  return std::make_unique<HuygensSolver>(parse_huygens_scene(scene, options));
+}
+
+}  // namespace huygens

@@ -1,0 +1,538 @@
+#include "huygens/lbm/shallow.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+
+#include "huygens/common/finite.hpp"
+
+namespace huygens {
+
+namespace {
+
+constexpr int kEx[9] = {0, 1, 0, -1, 0, 1, -1, -1, 1};
+constexpr int kEy[9] = {0, 0, 1, 0, -1, 1, 1, -1, -1};
+constexpr int kOpp[9] = {0, 3, 4, 1, 2, 7, 8, 5, 6};
+constexpr int kMirrorX[9] = {0, 3, 2, 1, 4, 6, 5, 8, 7};
+constexpr int kMirrorY[9] = {0, 1, 4, 3, 2, 8, 7, 6, 5};
+constexpr double kLambda[9] = {0, 1, 1, 1, 1, 0.25, 0.25, 0.25, 0.25};
+
+std::string g6(double x) {
+  std::ostringstream s;
+  s.precision(4);
+  s << x;
+  return s.str();
+}
+
+const char* side_name(int i) {
+  static const char* n[4] = {"left", "right", "bottom", "top"};
+  return n[i];
+}
+
+}  // namespace
+
+std::array<double, 9> lbm_equilibrium(double g, double h, double ux, double uy) {
+  std::array<double, 9> f{};
+  const double usq = ux * ux + uy * uy;
+  for (int a = 1; a < 9; ++a) {
+    const double eu = kEx[a] * ux + kEy[a] * uy;
+    f[a] = kLambda[a] * h * (g * h / 6.0 + eu / 3.0 + eu * eu / 2.0 - usq / 6.0);
+  }
+  f[0] = h * (1.0 - 5.0 * g * h / 6.0 - 2.0 * usq / 3.0);
+  return f;
+}
+
+LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
+  if (p.cols < 1 || p.rows < 1 || p.cols > 65536 || p.rows > 65536)
+    throw LbmRefused("cols", "grid must have 1..65536 rows and columns");
+  if (!(p.cell_m > 0) || !std::isfinite(p.cell_m)) throw LbmRefused("cell_m", "cell size must be > 0");
+  if (!(p.dt_s > 0) || !std::isfinite(p.dt_s)) throw LbmRefused("dt_s", "time step must be > 0");
+  if (!(p.gravity_mps2 > 0)) throw LbmRefused("gravity_mps2", "gravity must be > 0");
+  if (!(p.viscosity_m2s >= 0)) throw LbmRefused("viscosity_m2s", "viscosity must be >= 0");
+  if (!(p.min_depth_m > 0)) throw LbmRefused("min_depth_m", "the dry threshold must be > 0");
+  const std::size_t n = static_cast<std::size_t>(p.rows) * static_cast<std::size_t>(p.cols);
+  auto size_ok = [&](std::size_t s, const char* name) {
+    if (s != 0 && s != n)
+      throw LbmRefused(name, "field has " + std::to_string(s) + " values, the grid " + std::to_string(n));
+  };
+  size_ok(in.bed_m.size(), "bed_m");
+  size_ok(in.depth_m.size(), "depth_m");
+  size_ok(in.ux_mps.size(), "ux_mps");
+  size_ok(in.uy_mps.size(), "uy_mps");
+  size_ok(in.solid.size(), "solid");
+  if (in.depth_m.empty()) throw LbmRefused("depth_m", "an initial depth field is required");
+
+  // Sides: periodic in pairs, inflow on the left and outflow on the right only.
+  const LbmSide sides[4] = {p.left, p.right, p.bottom, p.top};
+  if ((p.left == LbmSide::periodic) != (p.right == LbmSide::periodic))
+    throw LbmRefused(p.left == LbmSide::periodic ? "right" : "left", "periodic sides come in pairs (left and right)");
+  if ((p.bottom == LbmSide::periodic) != (p.top == LbmSide::periodic))
+    throw LbmRefused(p.bottom == LbmSide::periodic ? "top" : "bottom", "periodic sides come in pairs (bottom and top)");
+  for (int i = 0; i < 4; ++i) {
+    if (sides[i] == LbmSide::inflow && i != 0)
+      throw LbmRefused(side_name(i), "inflow is supported on the left side only");
+    if (sides[i] == LbmSide::outflow && i != 1)
+      throw LbmRefused(side_name(i), "outflow is supported on the right side only");
+  }
+  if (p.outflow_depth_m < 0) throw LbmRefused("outflow_depth_m", "must be >= 0 (0 = zero gradient)");
+
+  LbmLattice lat;
+  const double dx = p.cell_m, dt = p.dt_s, g = p.gravity_mps2;
+  lat.speed_mps = dx / dt;
+  lat.g_lat = g * dt * dt / (dx * dx);
+  lat.tau = 0.5 + 3.0 * p.viscosity_m2s * dt / (dx * dx);
+
+  // Dry cells first (the wave speed needs h > 0), then f0 >= 0, then the signal speed.
+  double smax = 0, hmax = 0, umax = 0, frmax = 0;
+  std::size_t fluid = 0;
+  lat.min_rest_fraction = 1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!in.solid.empty() && in.solid[i]) continue;
+    ++fluid;
+    const double h = in.depth_m[i];
+    const double ux = in.ux_mps.empty() ? 0.0 : in.ux_mps[i];
+    const double uy = in.uy_mps.empty() ? 0.0 : in.uy_mps[i];
+    if (!std::isfinite(h) || !std::isfinite(ux) || !std::isfinite(uy))
+      throw LbmRefused("depth_m", "non-finite initial value at row " + std::to_string(i / p.cols) + ", col " +
+                                      std::to_string(i % p.cols));
+    if (h < p.min_depth_m)
+      throw LbmRefused("depth_m", "cell (row " + std::to_string(i / p.cols) + ", col " + std::to_string(i % p.cols) +
+                                      ") has depth " + g6(h) + " m < min_depth_m = " + g6(p.min_depth_m) +
+                                      " m: dry cells are not supported by this solver (no wetting and drying); "
+                                      "deepen the water there or mark the cell as an obstacle");
+    const double u = std::hypot(ux, uy);
+    frmax = std::max(frmax, u / std::sqrt(g * h));
+    smax = std::max(smax, u + std::sqrt(g * h));
+    hmax = std::max(hmax, h);
+    umax = std::max(umax, u);
+    const double ul = u * dt / dx;
+    lat.min_rest_fraction = std::min(lat.min_rest_fraction, 1.0 - 5.0 * lat.g_lat * h / 6.0 - 2.0 * ul * ul / 3.0);
+  }
+  if (fluid == 0) throw LbmRefused("solid", "no fluid cell left");
+  smax = std::max(smax, p.expected_signal_speed_mps);
+  if (p.left == LbmSide::inflow) smax = std::max(smax, p.inflow_discharge_m2s / std::max(hmax, p.min_depth_m));
+  lat.signal_ratio = smax * dt / dx;
+  const double dt_ok = 0.5 * dx / smax;  // a comfortable step: half the lattice speed
+  if (lat.min_rest_fraction < 0)
+    throw LbmRefused("dt_s",
+                     "the rest population f0 = h (1 - 5 g h / 6 - 2 u^2 / 3) (lattice units) is negative (g h = " +
+                         g6(lat.g_lat * hmax) + " > 1.2 at the deepest cell): use dt_s <= " + g6(dt_ok) +
+                         " s or cells of at least " + g6(2.0 * smax * dt) + " m");
+  if (lat.signal_ratio >= 0.8)
+    throw LbmRefused("dt_s", "(|u| + sqrt(g h)) dt/dx = " + g6(lat.signal_ratio) +
+                                 " >= 0.8 of the lattice speed (largest signal speed " + g6(smax) +
+                                 " m/s): use dt_s <= " + g6(dt_ok) + " s or cell_m >= " + g6(2.0 * smax * dt) + " m");
+  if (frmax > kLbmMaxFroude)
+    throw LbmRefused("depth_m",
+                     "the initial flow has Froude number |u|/sqrt(g h) = " + g6(frmax) + " > " + g6(kLbmMaxFroude) +
+                         ": transcritical flow is refused (the BGK equilibrium cannot stay positive at "
+                         "u = sqrt(g h) within the lattice-speed limit); lower the velocity or deepen the water");
+  if (p.expected_froude > kLbmMaxFroude)
+    throw LbmRefused("expected_froude",
+                     "the flow is expected to reach Froude number " + g6(p.expected_froude) + " > " +
+                         g6(kLbmMaxFroude) +
+                         ": transcritical flow is refused (the BGK equilibrium cannot stay positive at "
+                         "u = sqrt(g h) within the lattice-speed limit)");
+  if (lat.tau < 0.55) {
+    const double nu_min = 0.05 * dx * dx / (3.0 * dt);
+    const double dt_min = p.viscosity_m2s > 0 ? 0.05 * dx * dx / (3.0 * p.viscosity_m2s) : INFINITY;
+    std::string fix = "raise viscosity_m2s to >= " + g6(nu_min) + " m^2/s";
+    if (dt_min * smax / dx < 0.8)
+      fix += ", or use dt_s >= " + g6(dt_min) + " s";
+    else if (p.viscosity_m2s > 0)
+      fix += ", or refine to cell_m <= " + g6(60.0 * p.viscosity_m2s * dt / dx) + " m with dt_s scaled in proportion";
+    throw LbmRefused("viscosity_m2s",
+                     "BGK relaxation time tau = 1/2 + 3 nu dt/dx^2 = " + g6(lat.tau) + " < 0.55 (unstable): " + fix);
+  }
+  (void)umax;
+  return lat;
+}
+
+LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lbm_check(p, in)) {
+  const int nx = p.cols, ny = p.rows;
+  stride_ = (kPad + static_cast<std::size_t>(nx) + 1 + 15) / 16 * 16;
+  plane_ = stride_ * static_cast<std::size_t>(ny + 2) + 64;  // skew planes against cache-set aliasing
+  fa_ = AlignedBuffer<float>(9 * plane_);
+  fb_ = AlignedBuffer<float>(9 * plane_);
+  ha_ = AlignedBuffer<float>(plane_);
+  hb_ = AlignedBuffer<float>(plane_);
+  z_ = AlignedBuffer<float>(plane_);
+  solid_.assign(plane_, 1);
+
+  omega_ = static_cast<float>(1.0 / lat_.tau);
+  g_ = static_cast<float>(lat_.g_lat);
+  const double acc = p.dt_s * p.dt_s / p.cell_m;  // m/s^2 -> lattice units
+  ax_ = static_cast<float>(p.accel_mps2[0] * acc);
+  ay_ = static_cast<float>(p.accel_mps2[1] * acc);
+  hmin_ = static_cast<float>(p.min_depth_m);
+
+  // Bed everywhere in the lattice: ghosts take the nearest interior value.
+  const auto at = [&](const std::vector<float>& v, int r, int c) {
+    return v.empty() ? 0.0f : v[static_cast<std::size_t>(r) * nx + c];
+  };
+  for (int r = -1; r <= ny; ++r)
+    for (int c = -1; c <= nx; ++c) z_[idx(r, c)] = at(in.bed_m, std::clamp(r, 0, ny - 1), std::clamp(c, 0, nx - 1));
+  float zlo = z_[idx(0, 0)], zhi = zlo;
+  for (int r = 0; r < ny; ++r)
+    for (int c = 0; c < nx; ++c) {
+      zlo = std::min(zlo, z_[idx(r, c)]);
+      zhi = std::max(zhi, z_[idx(r, c)]);
+    }
+  has_bed_ = zhi > zlo;
+
+  // Fluid cells and their initial equilibrium populations, shifted by the still-water
+  // equilibrium of the mean depth.
+  const double vl = p.dt_s / p.cell_m;  // m/s -> lattice
+  double hsum = 0;
+  std::size_t nfluid = 0;
+  for (std::size_t i = 0; i < in.depth_m.size(); ++i)
+    if (in.solid.empty() || !in.solid[i]) {
+      hsum += in.depth_m[i];
+      ++nfluid;
+    }
+  href_ = static_cast<float>(hsum / static_cast<double>(nfluid));
+  shift_ = lbm_equilibrium(lat_.g_lat, href_, 0.0, 0.0);
+  for (int r = 0; r < ny; ++r)
+    for (int c = 0; c < nx; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * nx + c;
+      if (!in.solid.empty() && in.solid[i]) continue;
+      const std::size_t k = idx(r, c);
+      solid_[k] = 0;
+      const double h = in.depth_m[i];
+      const auto f = lbm_equilibrium(lat_.g_lat, h, at(in.ux_mps, r, c) * vl, at(in.uy_mps, r, c) * vl);
+      for (int a = 0; a < 9; ++a) fa_[a * plane_ + k] = fb_[a * plane_ + k] = static_cast<float>(f[a] - shift_[a]);
+      ha_[k] = hb_[k] = static_cast<float>(h);
+    }
+  // Row spans of fluid cells.
+  for (int r = 0; r < ny; ++r) {
+    int c = 0;
+    while (c < nx) {
+      while (c < nx && solid_[idx(r, c)]) ++c;
+      const int c0 = c;
+      while (c < nx && !solid_[idx(r, c)]) ++c;
+      if (c > c0)
+        spans_.push_back({static_cast<std::uint32_t>(idx(r, c0)), static_cast<std::uint32_t>(idx(r, c0) + (c - c0))});
+    }
+  }
+  for (const Span& sp : spans_) ncells_ += sp.end - sp.begin;
+  build_rules();
+
+  const std::uint64_t bytes = (fa_.size() + fb_.size() + ha_.size() + hb_.size() + z_.size()) * sizeof(float);
+  st_fill_ = stats_.add("boundary_fill", rules_.size() * sizeof(Rule));
+  st_kernel_ = stats_.add("stream_collide", bytes);
+}
+
+void LbmShallow::build_rules() {
+  const int nx = p_.cols, ny = p_.rows;
+  const LbmSide sides[4] = {p_.left, p_.right, p_.bottom, p_.top};
+  auto inside = [&](int r, int c) { return r >= 0 && r < ny && c >= 0 && c < nx; };
+  auto fluid = [&](int r, int c) { return inside(r, c) && !solid_[idx(r, c)]; };
+  for (int r = 0; r < ny; ++r)
+    for (int c = 0; c < nx; ++c) {
+      if (!fluid(r, c)) continue;
+      const std::uint32_t x = static_cast<std::uint32_t>(idx(r, c));
+      for (int a = 1; a < 9; ++a) {
+        int sr = r - kEy[a], sc = c - kEx[a];
+        if (fluid(sr, sc)) continue;
+        Rule rule{};
+        rule.a = static_cast<std::uint8_t>(a);
+        rule.x = x;
+        rule.s = static_cast<std::uint32_t>(idx(sr, sc));
+        rule.dst = static_cast<std::uint32_t>(a * plane_ + rule.s);
+        rule.up = kNone;
+        rule.kind = 0;
+        const std::uint32_t bounce = static_cast<std::uint32_t>(kOpp[a] * plane_ + x);
+        rule.src = bounce;
+        if (!inside(sr, sc)) {
+          // Wrap periodic directions first.
+          if ((sc < 0 || sc >= nx) && p_.left == LbmSide::periodic) sc = (sc + nx) % nx;
+          if ((sr < 0 || sr >= ny) && p_.bottom == LbmSide::periodic) sr = (sr + ny) % ny;
+          const bool xo = sc < 0 || sc >= nx, yo = sr < 0 || sr >= ny;
+          if (!xo && !yo) {
+            if (fluid(sr, sc)) {
+              rule.src = static_cast<std::uint32_t>(a * plane_ + idx(sr, sc));
+              rule.up = static_cast<std::uint32_t>(idx(sr, sc));
+            }
+          } else {
+            // A corner ghost belongs to the inflow / outflow side if there is one, else it bounces.
+            const int xside = sc < 0 ? 0 : 1;
+            const bool open_x = xo && (sides[xside] == LbmSide::inflow || sides[xside] == LbmSide::outflow);
+            if (xo && yo && !open_x) {
+              rules_.push_back(rule);
+              continue;
+            }
+            const int side = xo ? xside : (sr < 0 ? 2 : 3);
+            const LbmSide kind = sides[side];
+            if (kind == LbmSide::slip) {
+              const int mr = xo ? sr : sr + kEy[a], mc = xo ? sc + kEx[a] : sc;
+              const int b = xo ? kMirrorX[a] : kMirrorY[a];
+              if (fluid(mr, mc)) {
+                rule.src = static_cast<std::uint32_t>(b * plane_ + idx(mr, mc));
+                rule.up = static_cast<std::uint32_t>(idx(mr, mc));  // the link it really travelled
+              }
+            } else if (kind == LbmSide::inflow) {
+              rule.kind = 1;
+              rule.src = x;
+            } else if (kind == LbmSide::outflow) {
+              if (p_.outflow_depth_m > 0) {
+                rule.kind = 2;
+                rule.src = x;
+              } else {
+                const int mc = sc < 0 ? 0 : nx - 1;
+                if (fluid(sr, mc)) {
+                  rule.src = static_cast<std::uint32_t>(a * plane_ + idx(sr, mc));
+                  rule.up = static_cast<std::uint32_t>(idx(sr, mc));
+                }
+              }
+            }
+          }
+        }
+        rules_.push_back(rule);
+      }
+    }
+  std::stable_partition(rules_.begin(), rules_.end(), [](const Rule& r) { return r.kind == 0; });
+}
+
+void LbmShallow::fill_ghosts() {
+  float* f = fa_.data();
+  const float* h = ha_.data();
+  const float* z = z_.data();
+  const bool comp = has_bed_ && p_.bed_force == LbmBedForce::centred;
+  const double q = p_.inflow_discharge_m2s * p_.dt_s / p_.cell_m;  // h u_lat (unit: m)
+  for (const Rule& r : rules_) {  // copies first, then inflow/outflow (they read the copies)
+    float v;
+    if (r.kind == 0) {
+      v = f[r.src];
+    } else {
+      // Zou-He for shallow water: the unknown populations of x are set from the ones x pulls
+      // this step so that h u_x = q (inflow) or h = h_out (outflow) and h u_y is unchanged.
+      // On shifted populations the formulas are the same (opposite links share their shift).
+      const std::ptrdiff_t S = static_cast<std::ptrdiff_t>(stride_);
+      auto pulled = [&](int b) { return static_cast<double>(f[b * plane_ + r.x - (kEy[b] * S + kEx[b])]); };
+      const double ns = 0.5 * (pulled(4) - pulled(2));  // (f_S - f_N) / 2
+      double m;
+      if (r.kind == 1) {
+        m = q;
+        v = static_cast<float>(r.a == 1   ? pulled(3) + 2.0 * m / 3.0
+                               : r.a == 5 ? pulled(7) + m / 6.0 + ns
+                                          : pulled(6) + m / 6.0 - ns);
+      } else {
+        const double known = pulled(0) + pulled(2) + pulled(4) + 2.0 * (pulled(1) + pulled(5) + pulled(8));
+        m = known + href_ - p_.outflow_depth_m;  // h u = K - h_out
+        v = static_cast<float>(r.a == 3   ? pulled(1) - 2.0 * m / 3.0
+                               : r.a == 6 ? pulled(8) - m / 6.0 + ns
+                                          : pulled(5) - m / 6.0 - ns);
+      }
+    }
+    if (comp) {
+      const float k = static_cast<float>(kLambda[r.a]) * g_ * (1.0f / 6.0f);
+      v -= -k * (h[r.x] + h[r.s]) * (z[r.x] - z[r.s]);  // the kernel adds this back
+      if (r.up != kNone) v += -k * (h[r.x] + h[r.up]) * (z[r.x] - z[r.up]);
+    }
+    f[r.dst] = v;
+  }
+}
+
+// The fused pull stream-collide pass over fluid row spans. Mode 0: flat bed; 1: well-balanced
+// centred bed term; 2: naive bed term.
+template <int Mode>
+void LbmShallow::stream_collide(int& flagged) {
+  const std::ptrdiff_t S = static_cast<std::ptrdiff_t>(stride_);
+  const std::ptrdiff_t P = static_cast<std::ptrdiff_t>(plane_);
+  const float* src = fa_.data();
+  float* dst = fb_.data();
+  const float* __restrict hold = ha_.data();
+  float* __restrict hnew = hb_.data();
+  const float* __restrict z = z_.data();
+  const float w = omega_, g = g_, ax = ax_, ay = ay_, hmin = hmin_, href = href_;
+  const float k1 = g / 6.0f, k5 = g / 24.0f;
+  const Span* spans = spans_.data();
+  const int nspans = static_cast<int>(spans_.size());
+  int total = 0;
+  const bool par = ncells_ >= 16384;  // small lattices: a thread team costs more than it saves
+#pragma omp parallel for schedule(static) reduction(+ : total) if (par)
+  for (int k = 0; k < nspans; ++k) {
+    const std::ptrdiff_t b = spans[k].begin, e = spans[k].end;
+    // f_a(x) pulls f*_a(x - e_a): pa[c] = plane a at c - (ey S + ex).
+    const float* __restrict p0 = src;
+    const float* __restrict p1 = src + 1 * P - 1;
+    const float* __restrict p2 = src + 2 * P - S;
+    const float* __restrict p3 = src + 3 * P + 1;
+    const float* __restrict p4 = src + 4 * P + S;
+    const float* __restrict p5 = src + 5 * P - S - 1;
+    const float* __restrict p6 = src + 6 * P - S + 1;
+    const float* __restrict p7 = src + 7 * P + S + 1;
+    const float* __restrict p8 = src + 8 * P + S - 1;
+    float* __restrict d0 = dst;
+    float* __restrict d1 = dst + 1 * P;
+    float* __restrict d2 = dst + 2 * P;
+    float* __restrict d3 = dst + 3 * P;
+    float* __restrict d4 = dst + 4 * P;
+    float* __restrict d5 = dst + 5 * P;
+    float* __restrict d6 = dst + 6 * P;
+    float* __restrict d7 = dst + 7 * P;
+    float* __restrict d8 = dst + 8 * P;
+    float bad = 0.0f;
+#pragma omp simd reduction(+ : bad)
+    for (std::ptrdiff_t c = b; c < e; ++c) {
+      const float f0 = p0[c];
+      float f1 = p1[c], f2 = p2[c], f3 = p3[c], f4 = p4[c], f5 = p5[c], f6 = p6[c], f7 = p7[c], f8 = p8[c];
+      if constexpr (Mode == 1) {
+        // S_a = -lambda_a g (h(x) + h(x - e_a)) (z(x) - z(x - e_a)) / 6
+        const float hc = hold[c], zc = z[c];
+        f1 -= k1 * (hc + hold[c - 1]) * (zc - z[c - 1]);
+        f2 -= k1 * (hc + hold[c - S]) * (zc - z[c - S]);
+        f3 -= k1 * (hc + hold[c + 1]) * (zc - z[c + 1]);
+        f4 -= k1 * (hc + hold[c + S]) * (zc - z[c + S]);
+        f5 -= k5 * (hc + hold[c - S - 1]) * (zc - z[c - S - 1]);
+        f6 -= k5 * (hc + hold[c - S + 1]) * (zc - z[c - S + 1]);
+        f7 -= k5 * (hc + hold[c + S + 1]) * (zc - z[c + S + 1]);
+        f8 -= k5 * (hc + hold[c + S - 1]) * (zc - z[c + S - 1]);
+      } else if constexpr (Mode == 2) {
+        // F = -g h(x) grad z_b (central difference at x); S_a = lambda_a e_a.F / 3
+        const float gh = -0.5f * g * hold[c];
+        const float fx = gh * (z[c + 1] - z[c - 1]), fy = gh * (z[c + S] - z[c - S]);
+        f1 += fx * (1.0f / 3.0f);
+        f3 -= fx * (1.0f / 3.0f);
+        f2 += fy * (1.0f / 3.0f);
+        f4 -= fy * (1.0f / 3.0f);
+        f5 += (fx + fy) * (1.0f / 12.0f);
+        f7 -= (fx + fy) * (1.0f / 12.0f);
+        f6 += (fy - fx) * (1.0f / 12.0f);
+        f8 -= (fy - fx) * (1.0f / 12.0f);
+      }
+      // moments (eq. 3-4) of the shifted populations: dh = h - H exactly as precise as the wave
+      const float dh = ((f0 + f1) + (f2 + f3)) + ((f4 + f5) + (f6 + f7)) + f8;
+      const float h = href + dh;
+      const float mx = (f1 + f5 + f8) - (f3 + f6 + f7);
+      const float my = (f2 + f5 + f6) - (f4 + f7 + f8);
+      const float ih = h > hmin ? 1.0f / h : 0.0f;
+      bad += h >= hmin ? 0.0f : 1.0f;  // also counts NaN
+      const float ux = mx * ih, uy = my * ih;
+      // equilibrium (eq. 2) minus the shift: axis base g (h^2 - H^2)/6 - h u.u/6;
+      // rest = dh - sum of the others (so the shifted equilibria sum to dh: mass exact)
+      const float usq = ux * ux + uy * uy;
+      const float base = (g * dh * (h + href) - h * usq) * (1.0f / 6.0f);
+      const float hh = 0.5f * h, h3 = h * (1.0f / 3.0f);
+      const float q1 = base + hh * ux * ux, q2 = base + hh * uy * uy;
+      const float e1 = q1 + h3 * ux, e3 = q1 - h3 * ux;
+      const float e2 = q2 + h3 * uy, e4 = q2 - h3 * uy;
+      const float s5 = ux + uy, s6 = uy - ux;
+      const float q5 = 0.25f * (base + hh * s5 * s5), q6 = 0.25f * (base + hh * s6 * s6);
+      const float e5 = q5 + 0.25f * h3 * s5, e7 = q5 - 0.25f * h3 * s5;
+      const float e6 = q6 + 0.25f * h3 * s6, e8 = q6 - 0.25f * h3 * s6;
+      const float e0 = dh - (((e1 + e2) + (e3 + e4)) + ((e5 + e6) + (e7 + e8)));
+      // external force lambda_a h (e_a . a) / 3
+      const float gx = h3 * ax, gy = h3 * ay;
+      const float g5 = 0.25f * (gx + gy), g6 = 0.25f * (gy - gx);
+      // BGK (eq. 1)
+      d0[c] = f0 + w * (e0 - f0);
+      d1[c] = f1 + w * (e1 - f1) + gx;
+      d2[c] = f2 + w * (e2 - f2) + gy;
+      d3[c] = f3 + w * (e3 - f3) - gx;
+      d4[c] = f4 + w * (e4 - f4) - gy;
+      d5[c] = f5 + w * (e5 - f5) + g5;
+      d6[c] = f6 + w * (e6 - f6) + g6;
+      d7[c] = f7 + w * (e7 - f7) - g5;
+      d8[c] = f8 + w * (e8 - f8) - g6;
+      hnew[c] = h;
+    }
+    total += static_cast<int>(bad);
+  }
+  flagged = total;
+}
+
+void LbmShallow::step() {
+  {
+    StageTimer t(stats_[st_fill_]);
+    fill_ghosts();
+  }
+  int flagged = 0;
+  {
+    StageTimer t(stats_[st_kernel_]);
+    if (!has_bed_)
+      stream_collide<0>(flagged);
+    else if (p_.bed_force == LbmBedForce::centred)
+      stream_collide<1>(flagged);
+    else
+      stream_collide<2>(flagged);
+  }
+  std::swap(fa_, fb_);
+  std::swap(ha_, hb_);
+  ++steps_;
+  if (flagged) {
+    for (const Span& sp : spans_)
+      for (std::uint32_t c = sp.begin; c < sp.end; ++c)
+        if (!std::isfinite(ha_[c])) throw NonFiniteError("stream_collide", steps_);
+    for (const Span& sp : spans_)
+      for (std::uint32_t c = sp.begin; c < sp.end; ++c)
+        if (ha_[c] < hmin_) {
+          const std::size_t col = c % stride_ - kPad, row = c / stride_ - 1;
+          throw LbmDryError("step " + std::to_string(steps_) + ": cell (row " + std::to_string(row) + ", col " +
+                            std::to_string(col) + ") fell to depth " + g6(ha_[c]) +
+                            " m < min_depth_m = " + g6(p_.min_depth_m) + " m; this solver has no wetting and drying");
+        }
+  }
+}
+
+double LbmShallow::volume_m3() const {
+  // From the populations (h = H + sum of shifted populations), in double.
+  double sum = 0;
+  std::size_t cells = 0;
+  for (const Span& sp : spans_) {
+    for (int a = 0; a < 9; ++a) {
+      const float* f = fa_.data() + a * plane_;
+      for (std::uint32_t c = sp.begin; c < sp.end; ++c) sum += f[c];
+    }
+    cells += sp.end - sp.begin;
+  }
+  return (sum + static_cast<double>(href_) * static_cast<double>(cells)) * p_.cell_m * p_.cell_m;
+}
+
+void LbmShallow::depth(std::span<float> out) const {
+  for (int r = 0; r < p_.rows; ++r)
+    for (int c = 0; c < p_.cols; ++c) out[static_cast<std::size_t>(r) * p_.cols + c] = depth_at(r, c);
+}
+
+float LbmShallow::depth_at(int row, int col) const {
+  const std::size_t k = idx(row, col);
+  return solid_[k] ? 0.0f : ha_[k];
+}
+
+std::array<float, 2> LbmShallow::velocity_at(int row, int col) const {
+  const std::size_t k = idx(row, col);
+  if (solid_[k]) return {0.0f, 0.0f};
+  double h = href_, mx = 0, my = 0;
+  for (int a = 0; a < 9; ++a) {
+    const double f = fa_[a * plane_ + k];  // shifted populations
+    h += f;
+    mx += kEx[a] * f;
+    my += kEy[a] * f;
+  }
+  // Post-collision momentum includes the external force h a: remove it to get u of the step.
+  const double e = lat_.speed_mps;
+  return {static_cast<float>((mx / h - ax_) * e), static_cast<float>((my / h - ay_) * e)};
+}
+
+void LbmShallow::velocity(std::span<float> out) const {
+  for (int r = 0; r < p_.rows; ++r)
+    for (int c = 0; c < p_.cols; ++c) {
+      const auto u = velocity_at(r, c);
+      const std::size_t i = 2 * (static_cast<std::size_t>(r) * p_.cols + c);
+      out[i] = u[0];
+      out[i + 1] = u[1];
+    }
+}
+
+void LbmShallow::bed(std::span<float> out) const {
+  for (int r = 0; r < p_.rows; ++r)
+    for (int c = 0; c < p_.cols; ++c) out[static_cast<std::size_t>(r) * p_.cols + c] = z_[idx(r, c)];
+}
+
+int LbmShallow::bytes_per_cell() const {
+  // 9 populations read and written, the new depth written; a bed adds z and the old depth.
+  return has_bed_ ? 21 * 4 : 19 * 4;
+}
+
+}  // namespace huygens

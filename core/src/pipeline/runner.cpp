@@ -1,0 +1,235 @@
+#include "huygens/pipeline/runner.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+
+namespace huygens {
+
+namespace {
+
+std::unique_ptr<Solver> checked(std::unique_ptr<Solver> s) {
+  if (!s) throw std::invalid_argument("Runner: no solver");
+  return s;
+}
+
+void sleep_s(double s) {
+  std::this_thread::sleep_for(std::chrono::nanoseconds(static_cast<std::int64_t>(std::max(s, 0.0) * 1e9)));
+}
+
+}  // namespace
+
+std::int64_t runner_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+Runner::Runner(std::unique_ptr<Solver> solver, RunnerParams params, Factory reset)
+    : solver_(checked(std::move(solver))),
+      params_(params),
+      reset_(std::move(reset)),
+      commands_(params.command_capacity),
+      ring_(solver_->height_rows(), solver_->height_cols(), solver_->stats().all().size(), params.frame_slots,
+            !solver_->height_rate().empty()) {
+  if (!(params.time_scale > 0) || !std::isfinite(params.time_scale))
+    throw std::invalid_argument("Runner: time_scale must be a positive number");
+  if (!(params.poll_s > 0)) throw std::invalid_argument("Runner: poll_s must be positive");
+  for (const auto& s : solver_->stats().all()) stage_names_.push_back(s.name);
+  realtime_ = params.realtime;
+  time_scale_ = params.time_scale;
+  paused_ = params.start_paused;
+  paused_flag_.store(paused_, std::memory_order_release);
+}
+
+Runner::~Runner() { stop(); }
+
+void Runner::start() {
+  if (thread_.joinable() || status_.load() != kRunning) throw std::logic_error("Runner::start: already started");
+  thread_ = std::thread([this] { run(); });
+}
+
+void Runner::stop() {
+  stop_.store(true, std::memory_order_release);
+  if (thread_.joinable())
+    thread_.join();
+  else if (status_.load() == kRunning)
+    status_.store(kFinished);  // never started
+}
+
+Solver& Runner::solver() {
+  if (thread_.joinable() && !finished()) throw std::logic_error("Runner::solver: the simulation thread owns it");
+  return *solver_;
+}
+
+void Runner::rethrow_if_failed() const {
+  if (failed() && exception_) std::rethrow_exception(exception_);
+}
+
+// ---- display clock (seqlock of atomics; one writer: the simulation thread) ----
+
+void Runner::set_clock(std::int64_t wall_ns, double sim_time, double rate) {
+  const std::uint64_t s = clock_seq_.load(std::memory_order_relaxed);
+  clock_seq_.store(s + 1, std::memory_order_relaxed);
+  // release stores: a reader that sees any new field also sees the odd sequence number
+  clock_wall_ns_.store(wall_ns, std::memory_order_release);
+  clock_sim_.store(sim_time, std::memory_order_release);
+  clock_rate_.store(rate, std::memory_order_release);
+  clock_seq_.store(s + 2, std::memory_order_release);
+}
+
+double Runner::clock_at(std::int64_t now_ns) const {
+  for (;;) {
+    const std::uint64_t s1 = clock_seq_.load(std::memory_order_acquire);
+    const std::int64_t w = clock_wall_ns_.load(std::memory_order_acquire);
+    const double t = clock_sim_.load(std::memory_order_acquire);
+    const double r = clock_rate_.load(std::memory_order_acquire);
+    const std::uint64_t s2 = clock_seq_.load(std::memory_order_relaxed);
+    // retried only while the writer is inside set_clock (three stores, on pause/resume/scale changes)
+    if (s1 == s2 && (s1 & 1) == 0) {
+      if (r < 0) return std::numeric_limits<double>::infinity();
+      return t + r * static_cast<double>(now_ns - w) * 1e-9;
+    }
+  }
+}
+
+double Runner::display_time() const { return clock_at(runner_now_ns()); }
+
+// ---- simulation thread ----
+
+void Runner::publish() {
+  FrameInfo info{solver_->steps(), solver_->time(), applied_.load(std::memory_order_relaxed)};
+  // where the solver has its ships (a steered ship is not where its scene path says)
+  info.ship_count = static_cast<std::uint32_t>(std::min(solver_->ship_poses(info.ships), info.ships.size()));
+  ring_.publish(info, solver_->height(), solver_->height_rate(), solver_->stats().all());
+}
+
+void Runner::apply_commands() {
+  // in queue order; a StepOnce or Reset ends the batch so that it happens before the
+  // commands sent after it are applied
+  Command c;
+  while (commands_.try_pop(c)) {
+    apply(c);
+    if (step_once_ > 0 || reset_requested_) break;
+  }
+}
+
+void Runner::apply(const Command& c) {
+  bool ok = true;
+  const std::int64_t now = runner_now_ns();
+  const double rate = realtime_ ? time_scale_ : -1.0;
+  if (std::holds_alternative<cmd::Pause>(c)) {
+    if (!paused_) set_clock(now, std::min(clock_at(now), solver_->time()), 0.0);
+    paused_ = true;
+  } else if (std::holds_alternative<cmd::Resume>(c)) {
+    if (paused_) set_clock(now, clock_at(now), rate);
+    paused_ = false;
+  } else if (std::holds_alternative<cmd::StepOnce>(c)) {
+    if (paused_) ++step_once_;
+  } else if (std::holds_alternative<cmd::Reset>(c)) {
+    // with a factory the loop rebuilds the solver; otherwise the solver resets itself (or refuses)
+    ok = reset_ ? true : solver_->apply(c);
+    reset_requested_ = reset_requested_ || ok;
+  } else if (const auto* p = std::get_if<cmd::SetParam>(&c); p && p->name == "time_scale") {
+    ok = p->value > 0 && std::isfinite(p->value);
+    if (ok) {
+      time_scale_ = p->value;
+      if (realtime_ && !paused_) set_clock(now, clock_at(now), time_scale_);
+    }
+  } else if (const auto* t = std::get_if<cmd::Toggle>(&c); t && t->feature == "realtime") {
+    if (t->on != realtime_) {
+      realtime_ = t->on;
+      // into real time: continue the display from the newest frame; out of it: show the newest
+      const double from = realtime_ ? solver_->time() : clock_at(now);
+      set_clock(now, from, paused_ ? 0.0 : (realtime_ ? time_scale_ : -1.0));
+    }
+  } else {
+    ok = solver_->apply(c);
+  }
+  paused_flag_.store(paused_, std::memory_order_release);
+  (ok ? applied_ : rejected_).fetch_add(1, std::memory_order_acq_rel);
+}
+
+void Runner::run() {
+  if (params_.omp_threads > 0) omp_set_num_threads(params_.omp_threads);
+  try {
+    bool pending = false;  // a step computed and not yet published (real time holds it until due)
+    double last_time = solver_->time();
+    publish();
+    set_clock(runner_now_ns(), last_time, paused_ ? 0.0 : (realtime_ ? time_scale_ : -1.0));
+    std::int64_t steps_origin = solver_->steps();
+
+    while (!stop_.load(std::memory_order_acquire)) {
+      apply_commands();
+      if (reset_requested_) {
+        reset_requested_ = false;
+        if (reset_) {
+          std::unique_ptr<Solver> fresh = reset_();
+          if (!fresh || fresh->height_rows() != ring_.rows() || fresh->height_cols() != ring_.cols() ||
+              fresh->stats().all().size() != stage_names_.size())
+            throw std::runtime_error("Runner: the reset solver's frame shape or stages differ from the original");
+          solver_ = std::move(fresh);
+        }
+        pending = false;
+        steps_origin = solver_->steps();
+        last_time = solver_->time();
+        publish();
+        set_clock(runner_now_ns(), last_time, paused_ ? 0.0 : (realtime_ ? time_scale_ : -1.0));
+        continue;
+      }
+
+      if (!pending) {
+        if (paused_ && step_once_ == 0) {
+          sleep_s(params_.poll_s);
+          continue;
+        }
+        if (params_.max_steps > 0 && solver_->steps() - steps_origin >= params_.max_steps) break;
+        solver_->step();
+        pending = true;
+      }
+
+      // publish now: as fast as possible, or a single step while paused
+      if (!realtime_ || step_once_ > 0) {
+        publish();
+        last_time = solver_->time();
+        pending = false;
+        if (step_once_ > 0) {
+          --step_once_;
+          if (paused_) set_clock(runner_now_ns(), last_time, 0.0);
+        }
+        continue;
+      }
+      if (paused_) {
+        sleep_s(params_.poll_s);
+        continue;
+      }
+      // real time: publish frame n+1 when the display clock reaches t_n
+      const std::int64_t now = runner_now_ns();
+      const double d = clock_at(now);
+      if (d >= last_time) {
+        // more than a step behind: rebase the clock instead of racing to catch up
+        if (d > solver_->time()) set_clock(now, last_time, time_scale_);
+        publish();
+        last_time = solver_->time();
+        pending = false;
+        continue;
+      }
+      sleep_s(std::min(params_.poll_s, (last_time - d) / time_scale_));
+    }
+    status_.store(kFinished, std::memory_order_release);
+  } catch (const NonFiniteError& e) {
+    error_ = RunnerError{e.stage(), e.step(), e.what(), true};
+    exception_ = std::current_exception();
+    status_.store(kFailed, std::memory_order_release);
+  } catch (const std::exception& e) {
+    error_ = RunnerError{"", solver_ ? solver_->steps() : -1, e.what(), false};
+    exception_ = std::current_exception();
+    status_.store(kFailed, std::memory_order_release);
+  }
+}
+
+}  // namespace huygens

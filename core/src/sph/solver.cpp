@@ -1,0 +1,272 @@
+// The Solver for "solver": "sph" scenes: parses the scene's "sph" block, steps SphSystem and
+// extracts the heightfield (paper 000 eq. 5-6) when a frame or dump asks for it.
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "huygens/common/finite.hpp"
+#include "huygens/common/report.hpp"
+#include "huygens/pipeline/solver.hpp"
+#include "huygens/sph/system.hpp"
+#include "huygens/sph/solver.hpp"
+#include "huygens/sph/surface.hpp"
+
+namespace huygens {
+
+namespace {
+
+std::array<float, 3> vec3(const JsonIn& in, const std::string& key, double lo, double hi) {
+  if (!in.has(key)) in.fail(key, "required (an array of 3 numbers)");
+  const auto& v = in.raw()[key];
+  if (!v.is_array() || v.size() != 3) in.fail(key, "expected an array of 3 numbers");
+  std::array<float, 3> out{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::string p = in.child_path(key) + "[" + std::to_string(k) + "]";
+    if (!v[k].is_number()) throw SceneError(p, std::string("expected a number, got ") + v[k].type_name());
+    const double x = v[k].get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi)
+      throw SceneError(
+          p, "value " + std::to_string(x) + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    out[k] = static_cast<float>(x);
+  }
+  return out;
+}
+
+std::array<float, 2> vec2(const JsonIn& in, const std::string& key, double lo, double hi) {
+  if (!in.has(key)) in.fail(key, "required (an array of 2 numbers)");
+  const auto& v = in.raw()[key];
+  if (!v.is_array() || v.size() != 2) in.fail(key, "expected an array of 2 numbers");
+  std::array<float, 2> out{};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string p = in.child_path(key) + "[" + std::to_string(k) + "]";
+    if (!v[k].is_number()) throw SceneError(p, std::string("expected a number, got ") + v[k].type_name());
+    const double x = v[k].get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi) throw SceneError(p, "value out of range");
+    out[k] = static_cast<float>(x);
+  }
+  return out;
+}
+
+class SphSolver final : public Solver {
+ public:
+  explicit SphSolver(const SphScene& sc) : scene_(sc), sys_(sc.params) {
+    surface_stage_ = sys_.stats().add("surface");
+    sph_heightfield_init(scene_.surface, sc.params.container[0], sc.params.container[1], hf_);
+    sys_.stats()[surface_stage_].bytes = (hf_.height.size() + hf_.normal.size()) * sizeof(float);
+    pos_.assign(sys_.count() * 3, 0.f);
+  }
+
+  void step() override {
+    sys_.step();
+    surface_valid_ = false;
+  }
+  double time() const override { return sys_.time(); }
+  std::int64_t steps() const override { return sys_.steps(); }
+
+  std::vector<OutputField> outputs() override {
+    sys_.positions_by_id(pos_);
+    auto h = height();
+    return {OutputField{"pos", {sys_.count(), 3}, std::span<const float>(pos_)},
+            OutputField{"eta", {hf_.rows, hf_.cols}, h}};
+  }
+
+  nlohmann::json meta() const override {
+    const auto& p = sys_.params();
+    const auto& d = sys_.dt_stats();
+    auto hist = sys_.dt_history();
+    if (hist.size() > 256) hist.erase(hist.begin(), hist.end() - 256);
+    return {{"solver", "sph"},
+            {"particles", sys_.count()},
+            {"spacing_m", p.spacing},
+            {"support_m", sys_.support()},
+            {"particle_mass_kg", sys_.mass()},
+            {"rest_density_kgpm3", p.rest_density},
+            {"sound_speed_mps", sys_.sound_speed()},
+            {"viscosity_m2ps", p.viscosity},
+            {"artificial_viscosity", p.artificial_viscosity},
+            {"impact_alpha", p.impact_alpha},
+            {"impact_beta", p.impact_beta},
+            {"viscosity_total_m2ps", sys_.viscosity()},
+            {"container_m", p.container},
+            {"pressure_model", "weakly compressible, Tait equation of state"},
+            {"tait_gamma", p.tait_gamma},
+            {"grid", {{"rows", hf_.rows}, {"cols", hf_.cols}, {"dx", hf_.cell}}},
+            {"dx", hf_.cell},
+            {"visible", {{"row0", 0}, {"row1", hf_.rows}, {"col0", 0}, {"col1", hf_.cols}}},
+            {"eta_reference", "height of the iso-surface above the floor z = 0 (m); 0 where dry"},
+            {"pos_order", "particle id (stable across dumps)"},
+            {"surface", {{"iso", scene_.surface.iso}, {"radius_m", scene_.surface.radius}}},
+            {"dt",
+             {{"steps", d.count},
+              {"last_s", d.last},
+              {"min_s", d.min},
+              {"max_s", d.max},
+              {"mean_s", d.count ? d.sum / double(d.count) : 0.0},
+              {"limiter", d.limiter},
+              {"history_s", hist}}}};
+  }
+
+  const StageStats& stats() const override { return sys_.stats(); }
+
+  std::span<const float> height() override {
+    if (!surface_valid_) {
+      {
+        StageTimer t(sys_.stats()[surface_stage_]);
+        sph_extract_heightfield(scene_.surface, sys_.grid(), sys_.x().data(), sys_.y().data(), sys_.z().data(), hf_);
+      }
+      if (!all_finite(std::span<const float>(hf_.height))) throw NonFiniteError("surface", sys_.steps());
+      surface_valid_ = true;
+    }
+    return hf_.height;
+  }
+  /// Drop -> a downward velocity splash of speed depth sqrt(g / radius) (the depression made in the
+  /// time a gravity wave crosses the radius); SetParam "gravity_x|y|z" (m/s^2) tilts or shakes the
+  /// container through the gravity vector. Everything else is refused.
+  bool apply(const Command& c) override {
+    if (const auto* d = std::get_if<cmd::Drop>(&c)) {
+      const auto& g = sys_.gravity();
+      const float gm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      const float r = std::max(d->radius_m, sys_.params().spacing);
+      sys_.add_velocity_splash(d->x_m, d->y_m, r, d->depth_m * std::sqrt(gm / r));
+      return true;
+    }
+    if (const auto* sp = std::get_if<cmd::SetParam>(&c)) {
+      auto g = sys_.gravity();
+      int axis = sp->name == "gravity_x" ? 0 : sp->name == "gravity_y" ? 1 : sp->name == "gravity_z" ? 2 : -1;
+      if (axis < 0 || !std::isfinite(sp->value) || std::fabs(sp->value) > 1000.0) return false;
+      g[static_cast<std::size_t>(axis)] = static_cast<float>(sp->value);
+      sys_.set_gravity(g);
+      return true;
+    }
+    return false;
+  }
+  std::size_t height_rows() const override { return hf_.rows; }
+  std::size_t height_cols() const override { return hf_.cols; }
+
+ private:
+  SphScene scene_;
+  SphSystem sys_;
+  SphHeightfield hf_;
+  std::vector<float> pos_;
+  int surface_stage_ = -1;
+  bool surface_valid_ = false;
+};
+
+}  // namespace
+
+SphScene parse_sph_scene(const Scene& scene) {
+  const JsonIn root = scene.root();
+  root.allow_only({"solver", "sph", "description"});
+  const JsonIn s = root.object("sph");
+  s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2ps", "artificial_viscosity",
+                "impact_alpha", "impact_beta", "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles",
+                "time", "surface"});
+  SphScene out;
+  SphParams& p = out.params;
+  p.spacing = static_cast<float>(s.number("spacing_m", 1e-4, 10.0));
+  p.support_factor = static_cast<float>(s.number("support_factor", 2.0, 1.5, 4.0));
+  p.rest_density = static_cast<float>(s.number("rest_density_kgpm3", 1000.0, 1.0, 1e5));
+  p.viscosity = static_cast<float>(s.number("viscosity_m2ps", p.viscosity, 0.0, 10.0));
+  p.artificial_viscosity = static_cast<float>(s.number("artificial_viscosity", p.artificial_viscosity, 0.0, 1.0));
+  if (p.artificial_viscosity < SphParams::min_artificial_viscosity)
+    s.fail("artificial_viscosity", "below " + num(SphParams::min_artificial_viscosity, 3) +
+                                       " the poly6/spiky kernel mix pumps energy into the fluid (unstable); refused");
+  p.impact_alpha = static_cast<float>(s.number("impact_alpha", p.impact_alpha, 0.0, 1.0));
+  p.impact_beta = static_cast<float>(s.number("impact_beta", p.impact_beta, 0.0, 10.0));
+  if (auto c = s.optional_number("sound_speed_mps", 1e-3, 1e5)) p.sound_speed = static_cast<float>(*c);
+  if (s.has("gravity_mps2")) p.gravity = vec3(s, "gravity_mps2", -1000.0, 1000.0);
+  p.container = vec3(s, "container_m", 1e-4, 1e4);
+  for (int a = 0; a < 3; ++a)
+    if (p.container[a] < 2 * p.spacing)
+      throw SceneError(s.child_path("container_m") + "[" + std::to_string(a) + "]",
+                       "the container must be at least two particle spacings wide");
+
+  const auto blocks = s.array("fluid");
+  if (blocks.empty()) s.fail("fluid", "at least one fluid block is required");
+  double count = 0;
+  for (const auto& b : blocks) {
+    b.allow_only({"min_m", "max_m"});
+    SphFluidBlock fb;
+    fb.min = vec3(b, "min_m", 0.0, 1e4);
+    fb.max = vec3(b, "max_m", 0.0, 1e4);
+    for (int a = 0; a < 3; ++a) {
+      if (fb.max[a] <= fb.min[a]) b.fail("max_m", "max_m must exceed min_m on every axis");
+      if (fb.max[a] > p.container[a] + 1e-6f) b.fail("max_m", "the fluid block sticks out of the container");
+    }
+    count += double(fb.max[0] - fb.min[0]) * (fb.max[1] - fb.min[1]) * (fb.max[2] - fb.min[2]) /
+             (double(p.spacing) * p.spacing * p.spacing);
+    p.fluid.push_back(fb);
+  }
+  if (count > 2e7)
+    s.fail("fluid", "the fluid blocks hold about " + std::to_string(long(count)) +
+                        " particles; more than 2e7 is refused (memory)");
+  if (p.sound_speed > 0.f) {
+    float top = 0.f;
+    for (const auto& b : p.fluid) top = std::max(top, b.max[2]);
+    const float g = std::sqrt(p.gravity[0] * p.gravity[0] + p.gravity[1] * p.gravity[1] + p.gravity[2] * p.gravity[2]);
+    const float vref = std::sqrt(2.f * g * top);
+    if (p.sound_speed < 3.f * vref)
+      s.fail("sound_speed_mps", "below 3 sqrt(2 g H) = " + num(3 * vref, 4) +
+                                    " m/s the Mach number exceeds 0.3 and density errors exceed 10 %; refused");
+  }
+  for (const auto& o : s.array("obstacles")) {
+    SphObstacle ob;
+    const std::string type = o.string("type", "", {"box", "cylinder"});
+    if (type == "box") {
+      o.allow_only({"type", "min_m", "max_m"});
+      ob.type = SphObstacle::Type::box;
+      ob.min = vec3(o, "min_m", -1e4, 1e4);
+      ob.max = vec3(o, "max_m", -1e4, 1e4);
+      for (int a = 0; a < 3; ++a)
+        if (ob.max[a] <= ob.min[a]) o.fail("max_m", "max_m must exceed min_m on every axis");
+    } else {
+      o.allow_only({"type", "centre_m", "radius_m", "z0_m", "z1_m"});
+      ob.type = SphObstacle::Type::cylinder;
+      ob.centre = vec2(o, "centre_m", -1e4, 1e4);
+      ob.radius = static_cast<float>(o.number("radius_m", 1e-6, 1e4));
+      ob.z0 = static_cast<float>(o.number("z0_m", 0.0, -1e4, 1e4));
+      ob.z1 = static_cast<float>(o.number("z1_m", -1e4, 1e4));
+      if (ob.z1 <= ob.z0) o.fail("z1_m", "z1_m must exceed z0_m");
+    }
+    p.obstacles.push_back(ob);
+  }
+  if (auto t = s.optional_object("time")) {
+    t->allow_only({"cfl", "force", "viscous", "dt_max_s"});
+    p.cfl = static_cast<float>(t->number("cfl", p.cfl, 1e-3, 0.5));
+    p.force_factor = static_cast<float>(t->number("force", p.force_factor, 1e-3, 0.5));
+    p.viscous_factor = static_cast<float>(t->number("viscous", p.viscous_factor, 1e-3, 0.25));
+    p.dt_max = static_cast<float>(t->number("dt_max_s", p.dt_max, 1e-7, 1.0));
+  }
+  out.surface.cell = p.spacing;
+  out.surface.radius = p.support();
+  bool iso_given = false;
+  if (auto f = s.optional_object("surface")) {
+    f->allow_only({"cell_m", "radius_factor", "iso"});
+    out.surface.cell = static_cast<float>(f->number("cell_m", p.spacing, 1e-5, 1e4));
+    const double rf = f->number("radius_factor", p.support_factor, 0.5, 4.0);
+    if (rf > p.support_factor + 1e-6)
+      f->fail("radius_factor", "the iso-radius must not exceed the support radius (support_factor)");
+    out.surface.radius = static_cast<float>(rf * p.spacing);
+    if (auto iso = f->optional_number("iso", 1e-6, 1e6)) {
+      out.surface.iso = static_cast<float>(*iso);
+      iso_given = true;
+    }
+    const double cells = std::ceil(p.container[0] / out.surface.cell) * std::ceil(p.container[1] / out.surface.cell);
+    if (cells > 1.7e7) f->fail("cell_m", "the heightfield would have more than 1.7e7 columns");
+  }
+  if (!iso_given) out.surface.iso = sph_flat_iso(out.surface.radius, p.spacing);
+  return out;
+}
+
+std::unique_ptr<Solver> make_sph_solver(const SphScene& scene) { return std::make_unique<SphSolver>(scene); }
+
+std::unique_ptr<Solver> make_sph_solver(const Scene& scene, const RunOptions&) {
+  SphScene sc = parse_sph_scene(scene);
+  try {
+    return make_sph_solver(sc);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError("$.sph", e.what());
+  }
+}
+
+}  // namespace huygens

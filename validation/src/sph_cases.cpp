@@ -1,0 +1,386 @@
+// SPH validation cases (issue 7): kernels, hydrostatic column, Martin & Moyce dam break,
+// no leakage, heightfield extraction. `huygens validate` runs the full versions below; the
+// tests run the same functions at smaller sizes.
+#include "huygens/validation/sph_cases.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "huygens/common/report.hpp"
+#include "huygens/sph/system.hpp"
+#include "huygens/sph/surface.hpp"
+
+namespace huygens {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr float kG = 9.81f;
+
+double rel(double a, double b) { return std::fabs(a - b) / std::fabs(b); }
+
+// radial integral 4 pi int_0^h r^2 f(r) dr by the midpoint rule
+template <class F>
+double radial_integral(double h, F f) {
+  const int n = 200000;
+  double s = 0;
+  for (int i = 0; i < n; ++i) {
+    const double r = (i + 0.5) * h / n;
+    s += r * r * f(r);
+  }
+  return 4 * kPi * s * h / n;
+}
+
+}  // namespace
+
+std::string sph_martin_moyce_path() {
+  return std::string(HUYGENS_SOURCE_DIR) + "/../shared/data/martin_moyce_1952.csv";
+}
+
+std::vector<ValidationRow> sph_kernel_rows(float support_factor) {
+  const std::string c = "sph_kernels";
+  std::vector<ValidationRow> rows;
+  const float dx = 1.f, h = support_factor * dx;
+  SphKernels k(h);
+  // continuum normalisation of each kernel
+  rows.push_back(check(c, "poly6 integral (1)", radial_integral(h, [&](double r) { return k.poly6(float(r * r)); }), 1,
+                       rel(radial_integral(h, [&](double r) { return k.poly6(float(r * r)); }), 1), 1e-3));
+  const double isp = radial_integral(h, [&](double r) { return k.spiky(float(r)); });
+  rows.push_back(check(c, "spiky integral (1)", isp, 1, rel(isp, 1), 1e-3));
+  const double ivi = radial_integral(h, [&](double r) { return k.viscosity(float(r)); });
+  rows.push_back(check(c, "viscosity integral (1)", ivi, 1, rel(ivi, 1), 1e-3));
+  // Lattice sums (the issue's criterion: 1 % at the default spacing). Each kernel is checked in
+  // the role the solver uses it in, with the particle volume V = m / rho0 = dx^3 / S6 of the mass
+  // normalisation (S6 = poly6 lattice sum): poly6 VALUE (density), spiky GRADIENT (first moment
+  // -sum V W'(r) x^2 / r: the gradient of a linear field), viscosity LAPLACIAN (second moment
+  // 1/2 sum V x^2 lap W: the Laplacian of x^2). The VALUES of spiky (cusp at r = 0) and viscosity
+  // (singular at r = 0) are never used; their lattice sums converge to 1 only as h/dx grows
+  // (errors 24 % and 55 % at h = 2 dx, rows kept at 1 %), shown at h = 8 dx and 20 dx.
+  auto lattice = [](float hf, double& s6, double& ssp, double& svi, double& moment, double& lap2, double& anti) {
+    SphKernels kk(hf);
+    s6 = ssp = svi = moment = lap2 = anti = 0;
+    const int R = static_cast<int>(std::ceil(hf)) + 1;
+    for (int i = -R; i <= R; ++i)
+      for (int j = -R; j <= R; ++j)
+        for (int l = -R; l <= R; ++l) {
+          const float r2 = float(i * i + j * j + l * l), r = std::sqrt(r2);
+          s6 += kk.poly6(r2);
+          ssp += kk.spiky(r);
+          if (r > 0) svi += kk.viscosity(r);
+          lap2 += 0.5 * kk.viscosity_lap(r) * double(i * i);
+          if (r > 0 && r < hf) {
+            moment += -kk.spiky_dr(r) * float(i * i) / r;
+            const float gx = kk.spiky_dr(r) * float(i) / r, gmx = kk.spiky_dr(r) * float(-i) / r;
+            anti = std::max(anti, double(std::fabs(gx + gmx)));
+          }
+        }
+  };
+  double s6, ssp, svi, moment, lap2, anti;
+  lattice(h, s6, ssp, svi, moment, lap2, anti);
+  const std::string at = " at h = " + num(support_factor, 3) + " dx";
+  rows.push_back(check(c, "poly6 value lattice sum" + at + " (density) (1)", s6, 1, rel(s6, 1), 0.01));
+  // raw kernel moment with V = dx^3 (the solver divides the gradient by each particle's measured moment)
+  rows.push_back(
+      check(c, "spiky gradient first moment on the lattice, V = dx^3" + at + " (1)", moment, 1, rel(moment, 1), 0.05));
+  rows.push_back(
+      check(c, "viscosity Laplacian second moment, V = m/rho0" + at + " (1)", lap2 / s6, 1, rel(lap2 / s6, 1), 0.01));
+  rows.push_back(check(c, "spiky gradient antisymmetry |grad W(r) + grad W(-r)| (1/m^4)", anti, 0, anti, 1e-7));
+  rows.push_back(check(c, "spiky value lattice sum" + at + " (unused: cusp at 0) (1)", ssp, 1, rel(ssp, 1), 0.01));
+  rows.push_back(check(c, "viscosity value lattice sum without r = 0" + at + " (unused: singular) (1)", svi, 1,
+                       rel(svi, 1), 0.01));
+  double t6, tsp, tvi, tm, tl, ta;
+  lattice(8.f, t6, tsp, tvi, tm, tl, ta);
+  rows.push_back(check(c, "spiky value lattice sum at h = 8 dx (convergence) (1)", tsp, 1, rel(tsp, 1), 0.01));
+  lattice(20.f, t6, tsp, tvi, tm, tl, ta);
+  rows.push_back(check(c, "viscosity value lattice sum at h = 20 dx (convergence, error ~ 3 (dx/h)^2) (1)", tvi, 1,
+                       rel(tvi, 1), 0.01));
+  return rows;
+}
+
+std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double relax_s, double hold_s) {
+  const std::string c = "sph_hydrostatic";
+  const float dx = 0.005f;
+  SphParams p;
+  p.spacing = dx;
+  p.container = {nx * dx, nx * dx, 2.f * nz * dx};
+  p.fluid.push_back({{0, 0, 0}, {nx * dx, nx * dx, nz * dx}});
+  SphSystem s(p);
+  const double H = nz * dx;
+  s.set_damping(20.f);
+  while (s.time() < settle_s) s.step();
+  s.set_damping(0.f);
+  // free relaxation: out of the initial cubic lattice the particles rearrange into a stable packing
+  // (measured: speeds ~1e-2 sqrt(g H) for ~5 s, then ~2e-4; velocity damping only slows this down)
+  while (s.time() < settle_s + relax_s) s.step();
+  const double t0 = s.time();
+  float vmax = 0.f;
+  std::int64_t k = 0;
+  while (s.time() < t0 + hold_s) {
+    s.step();
+    if (++k % 16 == 0) vmax = std::max(vmax, s.max_speed());
+  }
+  vmax = std::max(vmax, s.max_speed());
+  s.refresh();
+  // pressure fit p(z) = a + b z over particles deeper than one support radius below the top
+  float ztop = 0.f;
+  for (float z : s.z()) ztop = std::max(ztop, z);
+  double sw = 0, sz = 0, sp = 0, szz = 0, szp = 0, comp = 0, mean_err = 0;
+  std::size_t ni = 0;
+  for (std::size_t i = 0; i < s.count(); ++i) {
+    const double rho_err = s.density()[i] / p.rest_density - 1.0;
+    comp = std::max(comp, rho_err);
+    if (s.z()[i] > ztop - s.support()) continue;
+    const double z = s.z()[i], pr = s.pressure()[i];
+    sw += 1;
+    sz += z;
+    sp += pr;
+    szz += z * z;
+    szp += z * pr;
+    mean_err += std::fabs(rho_err);
+    ++ni;
+  }
+  const double b = (sw * szp - sz * sp) / (sw * szz - sz * sz), a = (sp - b * sz) / sw;
+  // the weight per floor area: exact for any packing
+  const double expected = s.count() * double(s.mass()) * kG / (p.container[0] * p.container[1]);
+  std::vector<ValidationRow> rows;
+  rows.push_back(
+      check(c, "bottom pressure from the p(z) fit (Pa) vs weight/area", a, expected, rel(a, expected), 0.02));
+  rows.push_back(check(c, "pressure gradient -dp/dz (Pa/m) vs rho0 g", -b, p.rest_density * kG,
+                       rel(-b, p.rest_density * kG), 0.02));
+  rows.push_back(check(c, "max compression max(rho/rho0 - 1) (1)", comp, 0, comp, 0.01));
+  rows.push_back(check(c, "mean |rho/rho0 - 1| below the surface layer (1)", mean_err / std::max<std::size_t>(ni, 1), 0,
+                       mean_err / std::max<std::size_t>(ni, 1), 0.01));
+  const double ref = std::sqrt(kG * H);
+  rows.push_back(check(c, "max speed over " + num(hold_s, 3) + " s / sqrt(g H) (1)", vmax / ref, 0, vmax / ref, 0.01));
+  return rows;
+}
+
+namespace {
+
+struct DamRun {
+  std::vector<double> T, Z;
+  bool inside = true, finite = true;
+  double vmax_ratio = 0;
+};
+
+// dam break: column width a, height 2a, `na` particles across, 4 layers thick between free-slip walls
+DamRun run_dam(int na, double T_end, double t_end, float container_len) {
+  const float a = 0.05715f, dx = a / na;
+  SphParams p;
+  p.spacing = dx;
+  p.container = {container_len * a, 4 * dx, 4 * a};
+  p.fluid.push_back({{0, 0, 0}, {a, 4 * dx, 2 * a}});
+  SphSystem s(p);
+  DamRun out;
+  const double Ts = std::sqrt(2 * kG / a), vref = std::sqrt(2 * kG * 2 * a);
+  const double stop = std::max(T_end / Ts, t_end);
+  auto front = [&]() {
+    float fx = 0.f;
+    for (float x : s.x()) fx = std::max(fx, x);
+    return (fx + 0.5f * dx) / a;
+  };
+  out.T.push_back(0);
+  out.Z.push_back(front());
+  try {
+    while (s.time() < stop) {
+      s.step();
+      // every step: an impact's speed peak lasts a few steps (sampling every 8th step read 1.44 at
+      // 8 across where every step reads 1.49)
+      out.vmax_ratio = std::max(out.vmax_ratio, s.max_speed() / vref);
+      if (s.steps() % 8 == 0) {
+        out.T.push_back(s.time() * Ts);
+        out.Z.push_back(front());
+        for (std::size_t i = 0; i < s.count(); ++i) {
+          const bool in = s.x()[i] >= 0 && s.x()[i] <= p.container[0] && s.y()[i] >= 0 && s.y()[i] <= p.container[1] &&
+                          s.z()[i] >= 0 && s.z()[i] <= p.container[2];
+          out.inside = out.inside && in;
+        }
+      }
+    }
+  } catch (const std::exception&) {
+    out.finite = false;
+  }
+  return out;
+}
+
+double interp(const std::vector<double>& X, const std::vector<double>& Y, double x) {
+  auto it = std::lower_bound(X.begin(), X.end(), x);
+  if (it == X.begin()) return Y.front();
+  if (it == X.end()) return Y.back();
+  const std::size_t i = static_cast<std::size_t>(it - X.begin());
+  const double f = (x - X[i - 1]) / (X[i] - X[i - 1]);
+  return Y[i - 1] + f * (Y[i] - Y[i - 1]);
+}
+
+// The heightfield of paper 000 eq. 5-6 on cells of the particle spacing, with the support
+// radius and the iso value that puts a flat lattice's surface half a spacing above its top.
+SphHeightfield default_heightfield(const SphSystem& s, const SphParams& p, float dx, SphSurfaceParams& sp) {
+  sp.cell = dx;
+  sp.radius = s.support();
+  sp.iso = sph_flat_iso(sp.radius, dx);
+  SphHeightfield hf;
+  sph_heightfield_init(sp, p.container[0], p.container[1], hf);
+  sph_extract_heightfield(sp, s.grid(), s.x().data(), s.y().data(), s.z().data(), hf);
+  return hf;
+}
+
+}  // namespace
+
+std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::string& csv) {
+  const std::string c = "sph_dam_break";
+  std::ifstream f(csv);
+  if (!f) return {check(c, "cannot read " + csv, 0, 1, 1, 0)};
+  struct Pt {
+    std::string series;
+    double T, Z;
+  };
+  std::vector<Pt> pts;
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("a_in", 0) == 0) continue;
+    std::stringstream ss(line);
+    std::string a, t, z;
+    std::getline(ss, a, ',');
+    std::getline(ss, t, ',');
+    std::getline(ss, z, ',');
+    pts.push_back({a, std::stod(t), std::stod(z)});
+  }
+  const DamRun run = run_dam(na, T_end + 0.05, 0.0, 8.f);
+  std::vector<ValidationRow> rows;
+  for (const auto& pt : pts) {
+    if (pt.T > T_end || pt.T > 5.0) continue;
+    const double zs = interp(run.T, run.Z, pt.T);
+    rows.push_back(check(c, "front z/a at T = " + num(pt.T, 4) + " (series a = " + pt.series + " in)", zs, pt.Z,
+                         rel(zs, pt.Z), pt.T <= 3.0 ? 0.08 : 0.10));
+  }
+  if (!run.finite) rows.push_back(check(c, "run stayed finite", 0, 1, 1, 0));
+  return rows;
+}
+
+std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float container_len) {
+  const std::string c = "sph_no_leakage";
+  const DamRun run = run_dam(na, 0.0, t_end, container_len);
+  const std::string at =
+      " (" + std::to_string(na) + " across a, box " + num(container_len, 3) + " a long, " + num(t_end, 3) + " s)";
+  std::vector<ValidationRow> rows;
+  rows.push_back(
+      check(c, "particles outside the container (count > 0 = 1)" + at, run.inside ? 0 : 1, 0, run.inside ? 0 : 1, 0));
+  rows.push_back(check(c, "non-finite values (1 = yes)" + at, run.finite ? 0 : 1, 0, run.finite ? 0 : 1, 0));
+  rows.push_back(check(c, "max speed / sqrt(2 g H)" + at, run.vmax_ratio, 0, run.vmax_ratio, 1.5));
+  return rows;
+}
+
+std::vector<ValidationRow> sph_heightfield_rows(int n, int depth, double settle_s, float slope) {
+  const std::string c = "sph_heightfield";
+  std::vector<ValidationRow> rows;
+  const float dx = 0.005f;
+  // flat settled pool
+  {
+    SphParams p;
+    p.spacing = dx;
+    p.container = {n * dx, n * dx, 3.f * depth * dx};
+    p.fluid.push_back({{0, 0, 0}, {n * dx, n * dx, depth * dx}});
+    SphSystem s(p);
+    s.set_damping(20.f);
+    while (s.time() < settle_s) s.step();
+    s.refresh();
+    SphSurfaceParams sp;
+    const SphHeightfield hf = default_heightfield(s, p, dx, sp);
+    double mean = 0;
+    for (float v : hf.height) mean += v;
+    mean /= double(hf.height.size());
+    const double expected = double(s.count()) * dx * dx * dx / (p.container[0] * p.container[1]);
+    rows.push_back(check(c, "flat settled pool: mean height (m) vs volume/area", mean, expected,
+                         std::fabs(mean - expected), 0.5 * dx));
+    // normals over the interior columns: within R of a wall phi lacks the particles beyond it and the
+    // extracted surface dips (a known limit of eq. 5 at container walls)
+    double nz_min = 1;
+    const std::size_t m = static_cast<std::size_t>(std::ceil(sp.radius / sp.cell));
+    for (std::size_t r = m; r + m < hf.rows; ++r)
+      for (std::size_t col = m; col + m < hf.cols; ++col)
+        nz_min = std::min(nz_min, double(hf.normal[3 * (r * hf.cols + col) + 2]));
+    rows.push_back(
+        check(c, "flat settled pool: min normal z over columns >= R from the walls (1)", nz_min, 1, 1 - nz_min, 0.1));
+  }
+  // tilted free surface: a lattice filling z < z0 + slope x (static particles)
+  {
+    const int nxl = 2 * n;
+    SphParams p;
+    p.spacing = dx;
+    p.container = {nxl * dx, n * dx, (depth + slope * nxl + 4) * dx};
+    SphSystem s(p);
+    std::vector<float> X, Y, Z;
+    const float z0 = depth * dx;
+    for (int i = 0; i < nxl; ++i)
+      for (int j = 0; j < n; ++j)
+        for (int k = 0; k < 4 * depth + nxl; ++k) {
+          const float x = (i + 0.5f) * dx, y = (j + 0.5f) * dx, z = (k + 0.5f) * dx;
+          if (z < z0 + slope * x) {
+            X.push_back(x);
+            Y.push_back(y);
+            Z.push_back(z);
+          }
+        }
+    s.set_particles(X, Y, Z);
+    SphSurfaceParams sp;
+    const SphHeightfield hf = default_heightfield(s, p, dx, sp);
+    // least-squares slope over interior columns (two support radii from the x walls)
+    double sw = 0, sx = 0, sh = 0, sxx = 0, sxh = 0;
+    for (std::size_t r = 0; r < hf.rows; ++r)
+      for (std::size_t col = 0; col < hf.cols; ++col) {
+        const double x = (col + 0.5) * dx;
+        if (x < 2 * s.support() || x > p.container[0] - 2 * s.support()) continue;
+        const double hv = hf.height[r * hf.cols + col];
+        sw += 1;
+        sx += x;
+        sh += hv;
+        sxx += x * x;
+        sxh += x * hv;
+      }
+    const double b = (sw * sxh - sx * sh) / (sw * sxx - sx * sx);
+    rows.push_back(check(c, "tilted surface: fitted slope dh/dx (1)", b, slope, rel(b, slope), 0.05));
+    // mean normal over the same interior columns (the lattice surface is a staircase column by column)
+    double nxs = 0;
+    int cnt = 0;
+    for (std::size_t r = 0; r < hf.rows; ++r)
+      for (std::size_t col = 0; col < hf.cols; ++col) {
+        const double x = (col + 0.5) * dx;
+        if (x < 2 * s.support() || x > p.container[0] - 2 * s.support()) continue;
+        nxs += hf.normal[3 * (r * hf.cols + col)];
+        ++cnt;
+      }
+    nxs /= std::max(cnt, 1);
+    const double nx_expected = -slope / std::sqrt(1.0 + slope * slope);
+    rows.push_back(
+        check(c, "tilted surface: mean normal x component (1)", nxs, nx_expected, std::fabs(nxs - nx_expected), 0.05));
+  }
+  return rows;
+}
+
+std::vector<ValidationCase> sph_validation_cases() {
+  return {
+      {"sph_kernels", "sph", "poly6/spiky/viscosity normalisation on a lattice and in the continuum; antisymmetry",
+       [] { return sph_kernel_rows(2.0f); }},
+      {"sph_hydrostatic", "sph",
+       "column 6 x 6 x 16 settled (1 s damped, 5 s free), then 10 s: bottom pressure, density error, stillness",
+       [] { return sph_hydrostatic_rows(6, 16, 1.0, 5.0, 10.0); }},
+      {"sph_dam_break", "sph", "surge front vs Martin & Moyce (1952), both series, 16 particles across a, T <= 5",
+       [] { return sph_dam_break_rows(16, 5.0, sph_martin_moyce_path()); }},
+      {"sph_no_leakage", "sph",
+       "dam break: no particle leaves the box, finite, max speed < 1.5 sqrt(2 g H); 10 s at 8 across in a 4a box, "
+       "and the shipped scene's set-up (16 across, 8a box) over its wall impact (1 s; stress:sph runs it 10 s)",
+       [] {
+         auto rows = sph_leakage_rows(8, 10.0, 4.f);
+         auto shipped = sph_leakage_rows(16, 1.0, 8.f);
+         rows.insert(rows.end(), shipped.begin(), shipped.end());
+         return rows;
+       }},
+      {"sph_heightfield", "sph", "heightfield of eq. 5-6: flat settled pool height = volume/area, tilted slope",
+       [] { return sph_heightfield_rows(16, 8, 0.5, 0.25f); }},
+  };
+}
+
+}  // namespace huygens
