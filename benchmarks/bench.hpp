@@ -1,6 +1,6 @@
 #pragma once
 // Shared pieces of huygens-bench: the section registry, the context a section reports
-// into, and timing helpers. Speed claims are ratios measured in the same run (DESIGN.md 7).
+// into, and timing helpers. Speed claims are ratios measured in the same run (docs/design.md 7).
 #include <algorithm>
 #include <chrono>
 #include <functional>

@@ -2,7 +2,7 @@
 // user would otherwise pick, on the same problems, in the same run, on one thread each:
 //   huygens         the propagator (paper 004 eq. 1, periodic: spectral rotation + height
 //                   transform) stepping at dt = display_per_step / 60 s, the frames between steps
-//                   made by the cubic Hermite interpolant (DESIGN.md 3.5), 60 frames per second;
+//                   made by the cubic Hermite interpolant (docs/design.md 3.5), 60 frames per second;
 //   fd-leapfrog     eta_tt = c^2 lap eta, explicit (baseline_fd.hpp), at its CFL limit;
 //   fd-kass-miller  the same equation with Kass and Miller's implicit ADI scheme (1990);
 //   iwave           Tessendorf's 13 x 13 kernel for sqrt(-lap) (baseline_iwave.hpp).

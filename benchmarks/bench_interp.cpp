@@ -1,5 +1,5 @@
 // Section "interp": run time against error of the displayed frames (paper 004 section 3,
-// DESIGN.md 3.5). The display runs at 60 Hz; the solver takes full steps of dt = D / 60 s and
+// docs/design.md 3.5). The display runs at 60 Hz; the solver takes full steps of dt = D / 60 s and
 // fills the D - 1 frames in between by the cubic Hermite interpolant of eta and eta_dot
 // (display_per_step = D). Reference: the same sea stepped at 1/60 s (the Huygens step is exact in
 // time for the linear field, so D = 1 is the reference itself). For each D: time per displayed

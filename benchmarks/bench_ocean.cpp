@@ -2,7 +2,7 @@
 // with second-order Stokes) against the raw FFTW transforms it performs, and its stages in
 // units of one raw N x N transform; cost per displayed frame at display_per_step = 3.
 //
-// How the ratio is measured (DESIGN.md 7), so that it can be trusted on a shared machine:
+// How the ratio is measured (docs/design.md 7), so that it can be trusted on a shared machine:
 // * the baseline is a "raw twin": a second propagator and height stage of the same size and
 //   parameters, whose plans are the step's own plans (same sizes, directions, in-/out-of-place,
 //   alignment, flags and thread count: FFTW's in-process wisdom returns the same algorithm),

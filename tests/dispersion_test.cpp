@@ -27,7 +27,7 @@ TEST(Dispersion, CapillaryLimit) {
 TEST(Dispersion, MinimumPhaseSpeed) {
   Water w;
   // (4 g sigma / rho)^(1/4) = 0.2306 m/s at lambda = 2 pi sqrt(sigma / (rho g)) = 1.702 cm
-  // for sigma = 0.072 N/m (DESIGN.md rounds these to 0.231 m/s and 1.71 cm).
+  // for sigma = 0.072 N/m (docs/design.md rounds these to 0.231 m/s and 1.71 cm).
   EXPECT_NEAR(min_phase_speed(w), 0.23055, 1e-5);
   const double km = min_phase_speed_wavenumber(w);
   EXPECT_NEAR(2 * M_PI / km, 0.017022, 1e-6);

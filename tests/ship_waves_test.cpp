@@ -81,7 +81,7 @@ Ship straight_ship(double y, double speed, double x0 = 4.0) {
 
 TEST(ShipKernels, RigidTranslationIdentity) {
   // Phi1^ + Phi2^ e^{-i beta} = beta (e^{-i beta} - e^{-i w}) / (beta - w), and that is the exact
-  // integral over the step of the time derivative of the profile (DESIGN.md 3.3).
+  // integral over the step of the time derivative of the profile (docs/design.md 3.3).
   const double cases[][2] = {{0.3, 1.1}, {-2.0, 0.7}, {5.0, 4.9999}, {1.0, 1.0}, {0.0, 2.0}, {3.0, 0.1}, {-0.2, 6.0}};
   for (const auto& c : cases) {
     const double beta = c[0], w = c[1];

@@ -1,5 +1,5 @@
 #pragma once
-// Headless capture (DESIGN.md 5.4): a scene stepped synchronously with its fixed time step
+// Headless capture (docs/design.md 5.4): a scene stepped synchronously with its fixed time step
 // and seeds, rendered into an offscreen target with no window and no display server
 // (the caller makes a GL context current: gl::HeadlessContext, EGL surfaceless). The same
 // options give the same image.

@@ -1,4 +1,4 @@
-// huygens-viz: the visualizer (DESIGN.md section 5, paper 004 section 4).
+// huygens-viz: the visualizer (docs/design.md section 5, paper 004 section 4).
 //   huygens-viz [SCENE]                                   interactive window (GLFW, GL 3.3 core)
 //   huygens-viz SCENE --headless --frames N [--time T] --screenshot FILE.png
 //   huygens-viz [SCENE] --benchmark                       per-pass render times (headless)

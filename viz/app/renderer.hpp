@@ -1,5 +1,5 @@
 #pragma once
-// The scene renderer of huygens-viz (DESIGN.md section 5.1, paper 004 section 4): the
+// The scene renderer of huygens-viz (docs/design.md section 5.1, paper 004 section 4): the
 // ground plane, the water surface as a subsampled mesh with per-pixel normals from a
 // full-resolution height-difference texture, refraction of the ground (linearised texture
 // coordinates or exact Snell per pixel), Fresnel sky reflection and sun glint, depth

@@ -46,7 +46,7 @@ struct SceneGeometry {
 };
 
 /// Reads the geometry of `scene` for the solver (before its first step). Uses grid.n,
-/// grid.length_m, grid.margin (DESIGN.md 6); other solvers are placed at the origin with
+/// grid.length_m, grid.margin (docs/design.md 6); other solvers are placed at the origin with
 /// the spacing their meta() reports ("dx"), else 1 cm, and the ground at their mean
 /// initial height below the rest level.
 SceneGeometry scene_geometry(const Scene& scene, Solver& solver);

@@ -1,5 +1,5 @@
 // The interactive window of huygens-viz: GLFW (GL 3.3 core, loaded by libepoxy), the
-// simulation on its own thread (Runner, DESIGN.md 2), the renderer drawing the newest
+// simulation on its own thread (Runner, docs/design.md 2), the renderer drawing the newest
 // frames interpolated to the display time, Dear ImGui for the panel, mouse and keys.
 #include "gl.hpp"  // epoxy before any other GL header
 #define GLFW_INCLUDE_NONE

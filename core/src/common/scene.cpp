@@ -132,6 +132,29 @@ std::string JsonIn::string(const std::string& key, const std::string& fallback,
   fail(key, "\"" + s + "\" is not one of " + list);
 }
 
+void JsonIn::read_numbers(const std::string& key, double* out, std::size_t count, double lo, double hi) const {
+  const std::string want = "an array of " + std::to_string(count) + " numbers";
+  if (!has(key)) fail(key, "required (" + want + ")");
+  const json& v = (*j_)[key];
+  if (!v.is_array() || v.size() != count) fail(key, "expected " + want);
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::string p = child_path(key) + "[" + std::to_string(k) + "]";
+    if (!v[k].is_number()) throw SceneError(p, std::string("expected a number, got ") + v[k].type_name());
+    const double x = v[k].get<double>();
+    if (!std::isfinite(x) || x < lo || x > hi)
+      throw SceneError(p, "value " + std::to_string(x) + " is out of range [" + std::to_string(lo) + ", " +
+                              std::to_string(hi) + "]");
+    out[k] = x;
+  }
+}
+
+void JsonIn::reject_renamed(std::initializer_list<std::pair<const char*, const char*>> renamed) const {
+  for (const auto& [old_key, new_key] : renamed)
+    if (has(old_key))
+      fail(old_key, std::string("this key is now \"") + new_key +
+                        "\" (every dimensional key carries its SI unit suffix, docs/design.md section 6)");
+}
+
 JsonIn Scene::root() const { return JsonIn(*doc, "$"); }
 
 Scene parse_scene_text(const std::string& text, const std::string& name) {

@@ -1,5 +1,5 @@
 #pragma once
-// Linear dispersion of gravity-capillary water waves (paper 004 section 3; DESIGN.md 3.1):
+// Linear dispersion of gravity-capillary water waves (paper 004 section 3; docs/design.md 3.1):
 //   omega(k) = sqrt((g k + (sigma/rho) k^3) tanh(k h)),  deep water (h = infinity): tanh -> 1.
 #include <cmath>
 #include <limits>

@@ -1,6 +1,6 @@
 #pragma once
 // Thin RAII wrapper over FFTW single precision (fftw3f + fftw3f_omp): 64-byte aligned
-// buffers and 2D complex-to-complex plans made once (DESIGN.md 3.2). Execution never
+// buffers and 2D complex-to-complex plans made once (docs/design.md 3.2). Execution never
 // allocates. FFTW's convention: forward X_k = sum x_n e^{-2 pi i k n / N}, the inverse is
 // unnormalised (the caller folds 1/N^2 into its spectral multiplier).
 #include <complex>

@@ -1,5 +1,5 @@
 #pragma once
-// Cheap checks for non-finite values after a stage (DESIGN.md 7, failure containment).
+// Cheap checks for non-finite values after a stage (docs/design.md 7, failure containment).
 // Vectorised: sums x - x over the array (0 for finite x, NaN for NaN or infinity).
 #include <cstdint>
 #include <span>

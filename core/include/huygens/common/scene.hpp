@@ -1,14 +1,17 @@
 #pragma once
-// Scene files (DESIGN.md section 6): JSON parsed into plain parameter structs. Every
+// Scene files (docs/design.md section 6): JSON parsed into plain parameter structs. Every
 // error names the JSON path of the offending value ("$.grid.n", "$.initial[2].x_m")
 // and is reported by the programs with exit code 2.
 #include <nlohmann/json_fwd.hpp>
 
+#include <array>
+#include <cstddef>
 #include <initializer_list>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace huygens {
@@ -56,12 +59,24 @@ class JsonIn {
   long long integer(const std::string& key, long long fallback, long long lo, long long hi) const;
   /// A required integer in [lo, hi].
   long long integer(const std::string& key, long long lo, long long hi) const;
+  /// A required array of N numbers, each in [lo, hi]; an error names the element
+  /// ("$.sph.container_m[1]"). The one vector reader of every solver's scene block.
+  template <std::size_t N>
+  std::array<double, N> vec(const std::string& key, double lo, double hi) const {
+    std::array<double, N> out{};
+    read_numbers(key, out.data(), N, lo, hi);
+    return out;
+  }
   bool boolean(const std::string& key, bool fallback) const;
+  /// Throws for a key of an older scene format ({old, new} pairs), naming its new name.
+  void reject_renamed(std::initializer_list<std::pair<const char*, const char*>> renamed) const;
   /// A string, one of `allowed` when that is not empty; `fallback` when absent.
   std::string string(const std::string& key, const std::string& fallback,
                      std::initializer_list<const char*> allowed = {}) const;
 
   [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
+  /// Reads the array under `key` into out[0..count) (see vec()).
+  void read_numbers(const std::string& key, double* out, std::size_t count, double lo, double hi) const;
   [[noreturn]] void fail_here(const std::string& reason) const;
 
  private:

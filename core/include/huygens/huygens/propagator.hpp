@@ -1,5 +1,5 @@
 #pragma once
-// The Huygens propagator of paper 004 section 3 (DESIGN.md 3.2-3.4, /work/notes/convention.md).
+// The Huygens propagator of paper 004 section 3 (docs/design.md 3.2-3.4, /work/notes/convention.md).
 //
 // State: the complex wave field Z (the paper's wave field used as velocity potential, m^2/s)
 // on an N x N periodic grid of side L. One full step of dt:

@@ -1,5 +1,5 @@
 #pragma once
-// Ship waves of paper 004, eq. 2 (DESIGN.md 3.3): the waves a hull generates while it
+// Ship waves of paper 004, eq. 2 (docs/design.md 3.3): the waves a hull generates while it
 // moves along a straight line at velocity v during [t, t + dt], observed at t + dt,
 //   dZ^(k) = C(k) [ Phi1^(k) E^_t(k) + Phi2^(k) E^_{t+dt}(k) ],
 //   Phi1^ = e^{-i w} ( -1 + i w (e^{-i a} + i a - 1) / a^2 ),

@@ -1,5 +1,5 @@
 #pragma once
-// The "solver": "huygens" scene (DESIGN.md section 6) on the Huygens propagator of paper 004
+// The "solver": "huygens" scene (docs/design.md section 6) on the Huygens propagator of paper 004
 // section 3. Pipeline per full step (stages are timed and counted separately):
 //   propagate -> cutoff -> spectrum -> drops (only when the scene has drops) -> height
 // With the issue 3 features (each costs nothing when the scene does not name it):

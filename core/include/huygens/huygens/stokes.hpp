@@ -1,6 +1,6 @@
 #pragma once
 // Displayed height from the wave field used as velocity potential (paper 004 eq. 3,
-// DESIGN.md 3.4). For one mode Z = a e^{i theta} (theta = k.x - omega t) eq. 3 reads
+// docs/design.md 3.4). For one mode Z = a e^{i theta} (theta = k.x - omega t) eq. 3 reads
 //   eta = i k/omega a e^{i theta} - a^2 k^3 / (2 omega^2) e^{2 i theta}.
 // Generalisation to any field (exact for a single progressive mode):
 //   eta1 = Re IFFT[i k/omega Z^],     etadot1 = Re IFFT[k Z^],

@@ -1,6 +1,6 @@
 #pragma once
 // Wind sea (paper 004 section 3, "a pseudo-random spectrum of wind waves" added in the
-// Fourier domain; DESIGN.md 3.3). Spectrum: JONSWAP (Hasselmann et al. 1973), chosen over
+// Fourier domain; docs/design.md 3.3). Spectrum: JONSWAP (Hasselmann et al. 1973), chosen over
 // Phillips because its level and peak follow from the wind speed and fetch (Phillips'
 // constant A is arbitrary), and it reduces to Pierson-Moskowitz for a developed sea:
 //   S(omega) = alpha g^2 omega^-5 exp(-5/4 (omega_p/omega)^4) gamma^exp(-(omega-omega_p)^2/(2 s^2 omega_p^2)),

@@ -1,9 +1,9 @@
 #pragma once
-// Commands from the UI thread to the simulation thread (DESIGN.md 2): a small POD variant
+// Commands from the UI thread to the simulation thread (docs/design.md 2): a small POD variant
 // that travels over an SpscQueue<Command> and is applied by the runner at a step boundary.
 // Every alternative is trivially copyable (no strings, no heap), so pushing one is a plain
 // copy of a few dozen bytes. Positions are in metres in the full grid's frame (origin at
-// the corner of cell 0,0; x along columns), as in scene files (DESIGN.md 6).
+// the corner of cell 0,0; x along columns), as in scene files (docs/design.md 6).
 #include <cstdint>
 #include <cstring>
 #include <iterator>
@@ -32,7 +32,7 @@ struct CommandName {
 
 namespace cmd {
 
-/// Drop a stone: a sudden Gaussian elevation disturbance (DESIGN.md 3.3) at (x, y).
+/// Drop a stone: a sudden Gaussian elevation disturbance (docs/design.md 3.3) at (x, y).
 struct Drop {
   /// Centre, x (unit: m).
   float x_m = 0;

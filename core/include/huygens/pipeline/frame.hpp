@@ -1,5 +1,5 @@
 #pragma once
-// Frames from the simulation thread to the render thread (DESIGN.md 2), and the lock-free
+// Frames from the simulation thread to the render thread (docs/design.md 2), and the lock-free
 // ring of preallocated frame buffers that carries them.
 //
 // A frame is the visible heightfield eta (metres), its time derivative eta_dot (m/s), the
@@ -7,7 +7,7 @@
 // (simulation thread) fills a free slot with one memcpy per field and publishes it; the
 // consumer (render thread) always gets the NEWEST frame and the one published just before
 // it, so it can interpolate in time between them (cubic Hermite of paper 004, section 3.5 /
-// DESIGN.md 3.5) for any display time. A slow consumer misses frames (they are dropped,
+// docs/design.md 3.5) for any display time. A slow consumer misses frames (they are dropped,
 // the producer never waits); with a slow producer the consumer keeps its last two frames
 // and never waits either.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The simulation runner (DESIGN.md 2, paper 004 Figure 2: UI, simulation and visualization
+// The simulation runner (docs/design.md 2, paper 004 Figure 2: UI, simulation and visualization
 // on three threads). It owns a Solver on its own std::thread, applies UI commands at step
 // boundaries, and publishes a frame after every step into a FrameRing the render thread
 // reads without waiting. Exceptions from step() (NonFiniteError naming the stage) stop the

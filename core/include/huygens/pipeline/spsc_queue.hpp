@@ -1,5 +1,5 @@
 #pragma once
-// A lock-free single-producer / single-consumer FIFO ring (DESIGN.md 2): commands travel
+// A lock-free single-producer / single-consumer FIFO ring (docs/design.md 2): commands travel
 // UI -> simulation over it, and it is the building block the stress tests hammer.
 //
 // Lamport's ring with monotonic 64-bit counters: the producer owns `tail_`, the consumer

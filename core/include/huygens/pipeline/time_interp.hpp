@@ -1,6 +1,6 @@
 #pragma once
 // Cubic time interpolation of displayed frames between full steps (paper 004 section 3,
-// DESIGN.md 3.5): the cubic Hermite interpolant of eta and etadot at both ends,
+// docs/design.md 3.5): the cubic Hermite interpolant of eta and etadot at both ends,
 //   eta(t + s dt) = h00(s) eta0 + h01(s) eta1 + dt (h10(s) etadot0 + h11(s) etadot1),
 //   h00 = 2s^3 - 3s^2 + 1,  h01 = -2s^3 + 3s^2,  h10 = s^3 - 2s^2 + s,  h11 = s^3 - s^2.
 // At s = 1/3: 20/27, 7/27, 4/27 dt, -2/27 dt (the paper's weights). Exact for cubics in t;

@@ -1,5 +1,5 @@
 #pragma once
-// The "sph" block of a scene (DESIGN.md section 6) parsed into SphParams and the surface
+// The "sph" block of a scene (docs/design.md section 6) parsed into SphParams and the surface
 // parameters; errors are SceneError with the JSON path. Example:
 //   { "solver": "sph",
 //     "sph": { "spacing_m": 0.01, "support_factor": 2.0, "rest_density_kgpm3": 1000,

@@ -1,6 +1,6 @@
 #pragma once
 // The exact linear (Cauchy-Poisson) ring wave of an axisymmetric Gaussian elevation released
-// from rest, for validating the Huygens propagator (paper 004 section 3; DESIGN.md 3.3):
+// from rest, for validating the Huygens propagator (paper 004 section 3; docs/design.md 3.3):
 //   eta(r, t) = (1 / 2 pi) int_0^inf k eta0^(k) cos(omega(k) t) J0(k r) dk,
 //   eta0(r) = A exp(-r^2 / (2 sigma^2))  =>  eta0^(k) = 2 pi sigma^2 A exp(-k^2 sigma^2 / 2)
 // (2D Fourier transform int eta0 e^{-i k.x} d^2x of a radial function is its Hankel transform
