@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "huygens/common/report.hpp"
+#include "huygens/common/stats.hpp"  // median_seconds
 
 namespace huygens::bench {
 
@@ -33,12 +34,14 @@ struct Context {
 
 using Section = std::function<void(Context&)>;
 
-/// Runs fn `reps` times (after one warm-up) and returns the median wall time in seconds.
-double median_seconds(int reps, const std::function<void()>& fn);
-
 /// Pareto-optimal rows of a (time, error) set: true where no other row is at least as fast and
 /// at least as accurate, and better in one of the two. Non-finite values are never optimal.
 std::vector<bool> pareto_front(const std::vector<double>& time, const std::vector<double>& error);
+
+/// A shipped scene's text by its file name ("default.json"), compiled into huygens-bench
+/// (benchmarks/CMakeLists.txt, huygens_embed): the bench reads nothing from the source tree.
+/// Throws std::runtime_error for a scene that was not embedded.
+std::string shipped_scene(const std::string& name);
 
 inline double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -288,6 +289,255 @@ std::string time_str(double t) { return std::isfinite(t) ? num(t, 3) : "-"; }
 
 const std::vector<std::string> kMethods = {"huygens", "fd-leapfrog", "fd-kass-miller", "iwave"};
 
+// ---- the cases: each problem and the configurations swept on it ------------------------------
+// Grid sizes per method (huygens: times display_per_step; Kass-Miller and iWave: times the
+// substep factor).
+struct Sweep {
+  std::vector<int> huygens_n, fd_n, km_n, iw_n;
+  std::vector<int> dps = {1, 4, 16}, km_sub = {1, 4}, iw_sub = {1, 4};
+};
+
+struct AccuracyCase {
+  Problem pb;
+  Sweep quick, full;
+};
+
+// Deep water, gravity-capillary (g = 9.81, 0.072 N/m, 1000 kg/m^3).
+std::vector<AccuracyCase> accuracy_cases() {
+  const Water w;
+  const Problem ring{.name = "ring",
+                     .water = w,
+                     .fd_speed = phase_speed(w, 1.0 / Problem{}.sigma_m),
+                     .fd_speed_note = "phase speed at k = 1/sigma"};
+  const Problem plane{.name = "plane",
+                      .kind = Kind::plane,
+                      .length_m = 4.0,
+                      .duration_s = 8.0,
+                      .water = w,
+                      .wavelength_m = 1.0,
+                      .fd_speed = phase_speed(w, 2 * kPi / 1.0),
+                      .fd_speed_note = "exact phase speed of the wave"};
+  Problem cap = plane;
+  cap.name = "capillary";
+  cap.length_m = 0.04;
+  cap.duration_s = 32 * kFrameDt;
+  cap.wavelength_m = 0.01;
+  cap.fd_speed = phase_speed(w, 2 * kPi / cap.wavelength_m);
+  return {
+      {ring,
+       {.huygens_n = {256, 512}, .fd_n = {256, 512}, .km_n = {256}, .iw_n = {256}},
+       {.huygens_n = {256, 512, 1024}, .fd_n = {256, 512, 1024}, .km_n = {256, 512}, .iw_n = {256, 512}}},
+      {plane,
+       {.huygens_n = {16, 64}, .fd_n = {64, 128, 256}, .km_n = {64, 128}, .iw_n = {64, 128}, .km_sub = {1, 16}},
+       {.huygens_n = {16, 64, 256},
+        .fd_n = {64, 128, 256, 512, 1024},
+        .km_n = {64, 128, 256, 512},
+        .iw_n = {64, 128, 256, 512},
+        .km_sub = {1, 4, 16}}},
+      {cap,
+       {.huygens_n = {16, 64}, .fd_n = {64, 128}, .km_n = {64, 128}, .iw_n = {64, 128}, .iw_sub = {1}},
+       {.huygens_n = {16, 64}, .fd_n = {64, 128, 256}, .km_n = {64, 128}, .iw_n = {64, 128}, .iw_sub = {1}}},
+  };
+}
+
+// Every run of a sweep, in table order: huygens, fd-leapfrog, fd-kass-miller, iwave.
+std::vector<Result> run_sweep(const Problem& pb, const Sweep& sw, Reference& ref) {
+  std::vector<std::function<Result()>> runs;
+  for (int n : sw.huygens_n)
+    for (int d : sw.dps) runs.push_back([&, n, d] { return run_huygens(pb, ref, n, d); });
+  for (int n : sw.fd_n) runs.push_back([&, n] { return run_fd(pb, ref, n, FdScheme::leapfrog, 1); });
+  for (int n : sw.km_n)
+    for (int s : sw.km_sub) runs.push_back([&, n, s] { return run_fd(pb, ref, n, FdScheme::kass_miller, s); });
+  for (int n : sw.iw_n)
+    for (int s : sw.iw_sub) runs.push_back([&, n, s] { return run_iwave(pb, ref, n, s); });
+  Progress bar("accuracy " + pb.name, static_cast<long>(runs.size()));
+  std::vector<Result> rs;
+  for (const auto& run : runs) {
+    rs.push_back(run());
+    bar.update(static_cast<long>(rs.size()));
+  }
+  return rs;
+}
+
+// Every result of every problem, and each problem's largest |reference| / A.
+struct Runs {
+  std::vector<Result> all;
+  std::map<std::string, double> ref_max;
+  /// The cheapest run of method m on problem pbn with error <= target (time/sim s), or inf.
+  double cheapest(const std::string& pbn, const std::string& m, double target) const {
+    double best = kInf;
+    for (const auto& r : all)
+      if (r.problem == pbn && r.method == m && r.err <= target) best = std::min(best, r.tps);
+    return best;
+  }
+};
+
+// The accuracy checks: a table row each, a failure counted by the context.
+struct Checks {
+  Context& ctx;
+  Table rows{{"check", "measured", "tolerance", "result"}};
+  void operator()(bool ok, const std::string& what, double measured, const std::string& tol) {
+    rows.add({what, err_str(measured), tol, ok ? "pass" : "FAIL"});
+    ctx.expect(ok, "accuracy: " + what);
+  }
+};
+
+void report_problem(Context& ctx, const Problem& pb, const std::vector<Result>& rs) {
+  std::vector<double> ts, es;
+  for (const auto& r : rs) {
+    ts.push_back(r.tps);
+    es.push_back(r.err);
+  }
+  const auto front = pareto_front(ts, es);
+  Table t({"problem", "method", "n", "knob", "dt s", "time/sim s", "error", "pareto", "note"});
+  for (std::size_t i = 0; i < rs.size(); ++i) {
+    const auto& r = rs[i];
+    t.add({r.problem, r.method, std::to_string(r.n), r.knob, num(r.dt, 4), time_str(r.tps), err_str(r.err),
+           front[i] ? "*" : "", r.note});
+  }
+  std::string title = "run time against error, " + pb.name + " (";
+  if (pb.kind == Kind::ring)
+    title += fmt("Cauchy-Poisson ring sigma %.2g m, %.0f m periodic, t = %.1f s", pb.sigma_m, pb.length_m, pb.duration_s);
+  else
+    title += fmt("plane wave lambda %.3g m, %.3g m periodic, t = %.1f s", pb.wavelength_m, pb.length_m, pb.duration_s);
+  title += fmt("; FD c = %.4g m/s, %s; one thread; * = Pareto front)", pb.fd_speed, pb.fd_speed_note.c_str());
+  ctx.report("accuracy", title, t);
+}
+
+// The Huygens core at display_per_step = 1 within the tolerance of `huygens validate` (1e-4 of
+// A); the FD leapfrog a correct second-order scheme where its physics holds (plane waves).
+void check_problem(Checks& check, const Problem& pb, const std::vector<Result>& rs) {
+  for (const auto& r : rs) {
+    if (r.method != "huygens" || r.knob != "display_per_step=1") continue;
+    if (pb.kind == Kind::ring)
+      check(r.err <= 1e-4, fmt("huygens ring n=%d dps=1: max error / A (exact Cauchy-Poisson)", r.n), r.err, "1e-4");
+    else
+      check(r.err <= 1e-4,
+            fmt("huygens %s n=%d dps=1: max error / A after %.0f periods", pb.name.c_str(), r.n,
+                pb.duration_s * omega(pb.water, 2 * kPi / pb.wavelength_m) / (2 * kPi)),
+            r.err, "1e-4");
+  }
+  if (pb.name != "plane") return;
+  std::vector<const Result*> lf;
+  for (const auto& r : rs)
+    if (r.method == "fd-leapfrog") lf.push_back(&r);
+  for (std::size_t i = 1; i < lf.size(); ++i)
+    if (lf[i - 1]->err > 1e-3)
+      check(lf[i]->err < 0.5 * lf[i - 1]->err,
+            fmt("fd-leapfrog plane converges: error n=%d / error n=%d", lf[i]->n, lf[i - 1]->n),
+            lf[i]->err / lf[i - 1]->err, "< 0.5");
+}
+
+std::string reached(double t) { return std::isfinite(t) ? num(t, 3) : "not reached"; }
+std::string ratio_str(double a, double b) { return std::isfinite(a) && std::isfinite(b) ? num(a / b, 3) : "-"; }
+
+// Equal error: the cheapest configuration of each method that reaches a target.
+void report_equal_error(Context& ctx, const std::vector<AccuracyCase>& cases, const Runs& runs) {
+  Table eq({"problem", "target error", "huygens time/sim s", "fd-leapfrog", "fd-kass-miller", "iwave",
+            "fd-leapfrog / huygens", "iwave / huygens"});
+  for (const auto& c : cases)
+    for (double target : {0.3, 0.1, 0.03, 0.01, 0.003, 0.001}) {
+      const std::string& p = c.pb.name;
+      if (target >= 0.5 * runs.ref_max.at(p)) continue;  // an error half the signal is no solution
+      const double h = runs.cheapest(p, "huygens", target), f = runs.cheapest(p, "fd-leapfrog", target),
+                   k = runs.cheapest(p, "fd-kass-miller", target), w = runs.cheapest(p, "iwave", target);
+      eq.add({p, num(target, 2), time_str(h), reached(f), reached(k), reached(w), ratio_str(f, h), ratio_str(w, h)});
+    }
+  ctx.report("accuracy",
+             "equal error: wall seconds per simulated second of the cheapest configuration reaching the target "
+             "(targets below half the signal)",
+             eq);
+}
+
+// The headline: the smallest error the FD leapfrog reached, and the cheapest Huygens run at or
+// below it; an error as large as the signal itself is no solution (no ratio then).
+void report_headline(Context& ctx, const std::vector<AccuracyCase>& cases, const Runs& runs) {
+  Table hl({"problem", "error reached by both", "fd-leapfrog time/sim s", "huygens time/sim s", "fd / huygens"});
+  for (const auto& c : cases) {
+    const std::string& p = c.pb.name;
+    double fd_best = kInf, fd_time = kInf;
+    for (const auto& r : runs.all)
+      if (r.problem == p && r.method == "fd-leapfrog" && r.err < fd_best) {
+        fd_best = r.err;
+        fd_time = r.tps;
+      }
+    const double h = runs.cheapest(p, "huygens", fd_best), ref = runs.ref_max.at(p);
+    const std::string ratio = fd_best >= 0.5 * ref
+                                  ? fmt("FD does not converge (its best error is %.0f%% of the signal)", 100 * fd_best / ref)
+                                  : ratio_str(fd_time, h);
+    hl.add({p, err_str(fd_best), time_str(fd_time), time_str(h), ratio});
+  }
+  ctx.report("accuracy", "headline: Huygens vs finite differences at equal error (FD's best error; one thread each)",
+             hl);
+}
+
+// Equal wall time: the smallest error each method reaches within 1, 10 and 100 times the
+// cheapest Huygens run.
+void report_equal_time(Context& ctx, const std::vector<AccuracyCase>& cases, const Runs& runs) {
+  Table et({"problem", "budget time/sim s", "huygens error", "fd-leapfrog", "fd-kass-miller", "iwave"});
+  for (const auto& c : cases) {
+    const double hmin = runs.cheapest(c.pb.name, "huygens", kInf);
+    for (double mult : {1.0, 10.0, 100.0}) {
+      const double budget = hmin * mult;
+      std::vector<std::string> row{c.pb.name, num(budget, 3)};
+      for (const auto& m : kMethods) {
+        double best = kInf;
+        for (const auto& r : runs.all)
+          if (r.problem == c.pb.name && r.method == m && r.tps <= budget) best = std::min(best, r.err);
+        row.push_back(std::isfinite(best) ? num(best, 3) : "none that fast");
+      }
+      et.add(row);
+    }
+  }
+  ctx.report("accuracy", "equal wall time: the smallest error each method reaches within the budget", et);
+}
+
+// Why a method stops improving on a problem.
+std::string why_it_breaks(const std::string& m, const Problem& pb) {
+  if (m == "huygens") return "exact dispersion; error = float rounding + interpolation";
+  if (m.rfind("fd", 0) == 0)
+    return pb.kind == Kind::ring ? "one speed c: a dispersive ring cannot be represented"
+                                 : "c tuned to this wave; numerical dispersion O((k dx)^2)";
+  return pb.name == "capillary" ? "gravity only: omega^2 = g k misses sigma k^3 / rho"
+                                : "kernel taper exp(-k^2 dx^2) and truncation to 13 x 13";
+}
+
+// Where each breaks: the best error each method reaches on each problem.
+void report_breaks(Context& ctx, const std::vector<AccuracyCase>& cases, const Runs& runs) {
+  Table br({"problem", "max |reference| / A", "method", "best error", "at n", "knob", "time/sim s", "why"});
+  for (const auto& c : cases)
+    for (const auto& m : kMethods) {
+      const Result* best = nullptr;
+      for (const auto& r : runs.all)
+        if (r.problem == c.pb.name && r.method == m && (!best || r.err < best->err)) best = &r;
+      if (!best) continue;
+      br.add({c.pb.name, num(runs.ref_max.at(c.pb.name), 3), m, err_str(best->err), std::to_string(best->n),
+              best->knob, time_str(best->tps), why_it_breaks(m, c.pb)});
+    }
+  ctx.report("accuracy", "where each breaks: the best error each method reached on each problem", br);
+}
+
+// The iWave kernel's symbol along x against the exact operator k (Tessendorf's kernel and the
+// same with the zero-sum change).
+void report_iwave_symbol(Context& ctx) {
+  IwaveParams ip;
+  const auto g = iwave_kernel(ip);
+  IwaveParams raw = ip;
+  raw.zero_sum = true;
+  const auto g_raw = iwave_kernel(raw);
+  double sum_raw = 0;
+  for (double v : g) sum_raw += v;
+  Table ks({"cells per wavelength", "k dx", "G^(k) / (k dx) (Tessendorf)", "with the zero-sum change",
+            "omega error (%)"});
+  for (double cpw : {64.0, 32.0, 16.0, 8.0, 4.0}) {
+    const double kd = 2 * kPi / cpw;
+    const double s = iwave_symbol(g, ip.half, kd), s_raw = iwave_symbol(g_raw, ip.half, kd);
+    ks.add({num(cpw, 3), num(kd, 4), num(s / kd, 4), num(s_raw / kd, 4), num(100 * (std::sqrt(s / kd) - 1), 3)});
+  }
+  ctx.report("accuracy",
+             fmt("iWave kernel symbol along x vs the exact k (sum of the 13x13 kernel = %.4f / cell)", sum_raw), ks);
+}
+
 }  // namespace
 
 void bench_accuracy(Context& ctx) {
@@ -295,251 +545,23 @@ void bench_accuracy(Context& ctx) {
   const int threads_before = omp_get_max_threads();
   fft_set_threads(1);
   omp_set_num_threads(1);
-  const bool q = ctx.quick;
-
-  Water water;  // deep, gravity-capillary
-  std::vector<Problem> problems;
-  {
-    Problem ring;
-    ring.name = "ring";
-    ring.water = water;
-    ring.fd_speed = phase_speed(water, 1.0 / ring.sigma_m);
-    ring.fd_speed_note = "phase speed at k = 1/sigma";
-    problems.push_back(ring);
-    Problem plane;
-    plane.name = "plane";
-    plane.kind = Kind::plane;
-    plane.length_m = 4.0;
-    plane.duration_s = 8.0;
-    plane.wavelength_m = 1.0;
-    plane.water = water;
-    plane.fd_speed = phase_speed(water, 2 * kPi / plane.wavelength_m);
-    plane.fd_speed_note = "exact phase speed of the wave";
-    problems.push_back(plane);
-    Problem cap = plane;
-    cap.name = "capillary";
-    cap.length_m = 0.04;
-    cap.duration_s = 32 * kFrameDt;
-    cap.wavelength_m = 0.01;
-    cap.fd_speed = phase_speed(water, 2 * kPi / cap.wavelength_m);
-    problems.push_back(cap);
+  const std::vector<AccuracyCase> cases = accuracy_cases();
+  Runs runs;
+  Checks check{ctx};
+  for (const auto& c : cases) {
+    Reference ref(c.pb);
+    const std::vector<Result> rs = run_sweep(c.pb, ctx.quick ? c.quick : c.full, ref);
+    report_problem(ctx, c.pb, rs);
+    runs.ref_max[c.pb.name] = ref.reference_max();
+    runs.all.insert(runs.all.end(), rs.begin(), rs.end());
+    check_problem(check, c.pb, rs);
   }
-
-  std::vector<Result> all;
-  std::map<std::string, double> ref_max;
-  Table expect_rows({"check", "measured", "tolerance", "result"});
-  auto expect = [&](bool ok, const std::string& what, double measured, const std::string& tol) {
-    expect_rows.add({what, err_str(measured), tol, ok ? "pass" : "FAIL"});
-    ctx.expect(ok, "accuracy: " + what);
-  };
-
-  for (const Problem& pb : problems) {
-    Reference ref(pb);
-    std::vector<Result> rs;
-    std::vector<int> hn, fdn, kmn, iwn, dps = {1, 4, 16};
-    std::vector<int> km_sub = {1, 4}, iw_sub = {1, 4};
-    if (pb.name == "ring") {
-      hn = q ? std::vector<int>{256, 512} : std::vector<int>{256, 512, 1024};
-      fdn = q ? std::vector<int>{256, 512} : std::vector<int>{256, 512, 1024};
-      kmn = q ? std::vector<int>{256} : std::vector<int>{256, 512};
-      iwn = q ? std::vector<int>{256} : std::vector<int>{256, 512};
-    } else if (pb.name == "plane") {
-      hn = q ? std::vector<int>{16, 64} : std::vector<int>{16, 64, 256};
-      fdn = q ? std::vector<int>{64, 128, 256} : std::vector<int>{64, 128, 256, 512, 1024};
-      kmn = q ? std::vector<int>{64, 128} : std::vector<int>{64, 128, 256, 512};
-      km_sub = q ? std::vector<int>{1, 16} : std::vector<int>{1, 4, 16};
-      iwn = q ? std::vector<int>{64, 128} : std::vector<int>{64, 128, 256, 512};
-    } else {
-      hn = {16, 64};
-      fdn = q ? std::vector<int>{64, 128} : std::vector<int>{64, 128, 256};
-      kmn = {64, 128};
-      iwn = {64, 128};
-      iw_sub = {1};
-    }
-    long total = 0;
-    total = static_cast<long>(hn.size() * dps.size() + fdn.size() + kmn.size() * km_sub.size() +
-                              iwn.size() * iw_sub.size());
-    Progress bar("accuracy " + pb.name, total);
-    long done = 0;
-    for (int n : hn)
-      for (int d : dps) {
-        rs.push_back(run_huygens(pb, ref, n, d));
-        bar.update(++done);
-      }
-    for (int n : fdn) {
-      rs.push_back(run_fd(pb, ref, n, FdScheme::leapfrog, 1));
-      bar.update(++done);
-    }
-    for (int n : kmn)
-      for (int s : km_sub) {
-        rs.push_back(run_fd(pb, ref, n, FdScheme::kass_miller, s));
-        bar.update(++done);
-      }
-    for (int n : iwn)
-      for (int s : iw_sub) {
-        rs.push_back(run_iwave(pb, ref, n, s));
-        bar.update(++done);
-      }
-    std::vector<double> ts, es;
-    for (const auto& r : rs) {
-      ts.push_back(r.tps);
-      es.push_back(r.err);
-    }
-    const auto front = pareto_front(ts, es);
-    Table t({"problem", "method", "n", "knob", "dt s", "time/sim s", "error", "pareto", "note"});
-    for (std::size_t i = 0; i < rs.size(); ++i) {
-      const auto& r = rs[i];
-      t.add({r.problem, r.method, std::to_string(r.n), r.knob, num(r.dt, 4), time_str(r.tps), err_str(r.err),
-             front[i] ? "*" : "", r.note});
-    }
-    std::string title = "run time against error, " + pb.name + " (";
-    if (pb.kind == Kind::ring)
-      title +=
-          fmt("Cauchy-Poisson ring sigma %.2g m, %.0f m periodic, t = %.1f s", pb.sigma_m, pb.length_m, pb.duration_s);
-    else
-      title +=
-          fmt("plane wave lambda %.3g m, %.3g m periodic, t = %.1f s", pb.wavelength_m, pb.length_m, pb.duration_s);
-    title += fmt("; FD c = %.4g m/s, %s; one thread; * = Pareto front)", pb.fd_speed, pb.fd_speed_note.c_str());
-    ctx.report("accuracy", title, t);
-    ref_max[pb.name] = ref.reference_max();
-    all.insert(all.end(), rs.begin(), rs.end());
-
-    // accuracy checks on the Huygens core (the same tolerances as `huygens validate`)
-    for (const auto& r : rs) {
-      if (r.method != "huygens") continue;
-      if (pb.kind == Kind::ring && r.knob == "display_per_step=1")
-        expect(r.err <= 1e-4, fmt("huygens ring n=%d dps=1: max error / A (exact Cauchy-Poisson)", r.n), r.err, "1e-4");
-      if (pb.kind == Kind::plane && r.knob == "display_per_step=1")
-        expect(r.err <= 1e-4,
-               fmt("huygens %s n=%d dps=1: max error / A after %.0f periods", pb.name.c_str(), r.n,
-                   pb.duration_s * omega(pb.water, 2 * kPi / pb.wavelength_m) / (2 * kPi)),
-               r.err, "1e-4");
-    }
-    // the FD baseline is a correct second-order scheme where its physics holds (plane waves)
-    if (pb.name == "plane") {
-      std::vector<const Result*> lf;
-      for (const auto& r : rs)
-        if (r.method == "fd-leapfrog") lf.push_back(&r);
-      for (std::size_t i = 1; i < lf.size(); ++i)
-        if (lf[i - 1]->err > 1e-3)
-          expect(lf[i]->err < 0.5 * lf[i - 1]->err,
-                 fmt("fd-leapfrog plane converges: error n=%d / error n=%d", lf[i]->n, lf[i - 1]->n),
-                 lf[i]->err / lf[i - 1]->err, "< 0.5");
-    }
-  }
-
-  // ---- equal error: the cheapest configuration of each method that reaches a target ----------
-  Table eq({"problem", "target error", "huygens time/sim s", "fd-leapfrog", "fd-kass-miller", "iwave",
-            "fd-leapfrog / huygens", "iwave / huygens"});
-  auto cheapest = [&](const std::string& pbn, const std::string& m, double target) {
-    double best = kInf;
-    for (const auto& r : all)
-      if (r.problem == pbn && r.method == m && r.err <= target) best = std::min(best, r.tps);
-    return best;
-  };
-  for (const Problem& pb : problems)
-    for (double target : {0.3, 0.1, 0.03, 0.01, 0.003, 0.001}) {
-      if (target >= 0.5 * ref_max[pb.name]) continue;  // an error half the signal is no solution
-      const double h = cheapest(pb.name, "huygens", target);
-      const double f = cheapest(pb.name, "fd-leapfrog", target), k = cheapest(pb.name, "fd-kass-miller", target),
-                   w = cheapest(pb.name, "iwave", target);
-      eq.add({pb.name, num(target, 2), time_str(h), std::isfinite(f) ? num(f, 3) : "not reached",
-              std::isfinite(k) ? num(k, 3) : "not reached", std::isfinite(w) ? num(w, 3) : "not reached",
-              std::isfinite(f) && std::isfinite(h) ? num(f / h, 3) : "-",
-              std::isfinite(w) && std::isfinite(h) ? num(w / h, 3) : "-"});
-    }
-  ctx.report("accuracy",
-             "equal error: wall seconds per simulated second of the cheapest configuration reaching the target "
-             "(targets below half the signal)",
-             eq);
-
-  // ---- the headline: Huygens vs finite differences at equal error ------------------------------
-  {
-    Table hl({"problem", "error reached by both", "fd-leapfrog time/sim s", "huygens time/sim s", "fd / huygens"});
-    for (const Problem& pb : problems) {
-      // the smallest error the FD leapfrog reached, and the cheapest Huygens run at or below it
-      double fd_best = kInf, fd_time = kInf;
-      for (const auto& r : all)
-        if (r.problem == pb.name && r.method == "fd-leapfrog" && r.err < fd_best) {
-          fd_best = r.err;
-          fd_time = r.tps;
-        }
-      const double h = cheapest(pb.name, "huygens", fd_best);
-      // an error as large as the signal itself is no solution: no ratio then
-      if (fd_best >= 0.5 * ref_max[pb.name]) {
-        hl.add(
-            {pb.name, err_str(fd_best), time_str(fd_time), time_str(h),
-             fmt("FD does not converge (its best error is %.0f%% of the signal)", 100 * fd_best / ref_max[pb.name])});
-        continue;
-      }
-      hl.add({pb.name, err_str(fd_best), time_str(fd_time), time_str(h),
-              std::isfinite(h) && std::isfinite(fd_time) ? num(fd_time / h, 3) : "-"});
-    }
-    ctx.report("accuracy", "headline: Huygens vs finite differences at equal error (FD's best error; one thread each)",
-               hl);
-  }
-
-  // ---- equal wall time: the best error within a budget --------------------------------------
-  Table et({"problem", "budget time/sim s", "huygens error", "fd-leapfrog", "fd-kass-miller", "iwave"});
-  for (const Problem& pb : problems) {
-    const double hmin = cheapest(pb.name, "huygens", kInf);
-    for (double mult : {1.0, 10.0, 100.0}) {
-      const double budget = hmin * mult;
-      std::vector<std::string> row{pb.name, num(budget, 3)};
-      for (const auto& m : kMethods) {
-        double best = kInf;
-        for (const auto& r : all)
-          if (r.problem == pb.name && r.method == m && r.tps <= budget) best = std::min(best, r.err);
-        row.push_back(std::isfinite(best) ? num(best, 3) : "none that fast");
-      }
-      et.add(row);
-    }
-  }
-  ctx.report("accuracy", "equal wall time: the smallest error each method reaches within the budget", et);
-
-  // ---- where each breaks: the best error each method reaches on each problem ------------------
-  Table br({"problem", "max |reference| / A", "method", "best error", "at n", "knob", "time/sim s", "why"});
-  for (const Problem& pb : problems)
-    for (const auto& m : kMethods) {
-      const Result* best = nullptr;
-      for (const auto& r : all)
-        if (r.problem == pb.name && r.method == m && (!best || r.err < best->err)) best = &r;
-      if (!best) continue;
-      std::string why;
-      if (m == "huygens")
-        why = "exact dispersion; error = float rounding + interpolation";
-      else if (m.rfind("fd", 0) == 0)
-        why = pb.kind == Kind::ring ? "one speed c: a dispersive ring cannot be represented"
-                                    : "c tuned to this wave; numerical dispersion O((k dx)^2)";
-      else
-        why = pb.name == "capillary" ? "gravity only: omega^2 = g k misses sigma k^3 / rho"
-                                     : "kernel taper exp(-k^2 dx^2) and truncation to 13 x 13";
-      br.add({pb.name, num(ref_max[pb.name], 3), m, err_str(best->err), std::to_string(best->n), best->knob,
-              time_str(best->tps), why});
-    }
-  ctx.report("accuracy", "where each breaks: the best error each method reached on each problem", br);
-
-  // ---- the iWave kernel's symbol against the exact operator k ---------------------------------
-  {
-    IwaveParams ip;
-    const auto g = iwave_kernel(ip);
-    IwaveParams raw = ip;
-    raw.zero_sum = true;
-    const auto g_raw = iwave_kernel(raw);
-    double sum_raw = 0;
-    for (double v : g) sum_raw += v;
-    Table ks(
-        {"cells per wavelength", "k dx", "G^(k) / (k dx) (Tessendorf)", "with the zero-sum change", "omega error (%)"});
-    for (double cpw : {64.0, 32.0, 16.0, 8.0, 4.0}) {
-      const double kd = 2 * kPi / cpw;
-      const double s = iwave_symbol(g, ip.half, kd), s_raw = iwave_symbol(g_raw, ip.half, kd);
-      ks.add({num(cpw, 3), num(kd, 4), num(s / kd, 4), num(s_raw / kd, 4), num(100 * (std::sqrt(s / kd) - 1), 3)});
-    }
-    ctx.report("accuracy",
-               fmt("iWave kernel symbol along x vs the exact k (sum of the 13x13 kernel = %.4f / cell)", sum_raw), ks);
-  }
-  ctx.report("accuracy", "accuracy checks", expect_rows);
-
+  report_equal_error(ctx, cases, runs);
+  report_headline(ctx, cases, runs);
+  report_equal_time(ctx, cases, runs);
+  report_breaks(ctx, cases, runs);
+  report_iwave_symbol(ctx);
+  ctx.report("accuracy", "accuracy checks", check.rows);
   fft_set_threads(threads_before);
   omp_set_num_threads(threads_before);
 }

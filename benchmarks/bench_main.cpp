@@ -8,9 +8,11 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <stdexcept>
 #include <thread>
 
 #include "bench.hpp"
+#include "bench_scenes.hpp"
 #include "huygens/common/fft.hpp"
 
 namespace huygens::bench {
@@ -27,16 +29,10 @@ void Context::expect(bool ok, const std::string& what) {
   std::printf("ACCURACY CHECK FAILED: %s\n", what.c_str());
 }
 
-double median_seconds(int reps, const std::function<void()>& fn) {
-  fn();
-  std::vector<double> t;
-  for (int i = 0; i < reps; ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    fn();
-    t.push_back(seconds_since(t0));
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
+std::string shipped_scene(const std::string& name) {
+  const std::string_view text = embedded::bench_scenes(name);
+  if (text.empty()) throw std::runtime_error("huygens-bench: scene '" + name + "' is not embedded");
+  return std::string(text);
 }
 
 std::vector<bool> pareto_front(const std::vector<double>& time, const std::vector<double>& error) {

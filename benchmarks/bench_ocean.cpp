@@ -23,11 +23,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <complex>
 #include <ctime>
 #include <functional>
-#include <memory>
-#include <numbers>
 #include <vector>
 
 #include "bench.hpp"
@@ -97,198 +94,6 @@ Paired paired(int warm, int reps, const std::function<void()>& a, const std::fun
   return p;
 }
 
-// ---- the previous implementation (HEAD before the speed work), kept as an in-run baseline ----
-// A verbatim copy of the former StokesHeight::compute (full N x N tables, one pass for X and a
-// second loop for chi/chidot per row, each row and its mirror read separately) and of the former
-// WindSea::advance (a separate pass over the whole sea with a full N x N step table), so that
-// "before" and "after" are timed in the same run on the same machine state.
-struct HeadHeight {
-  HeadHeight(const Water& water, int n, double length_m, bool second_order, int margin)
-      : n_(n),
-        m0_(margin),
-        second(second_order),
-        k(static_cast<std::size_t>(n) * n),
-        kw(static_cast<std::size_t>(n) * n),
-        sq(second_order ? static_cast<std::size_t>(n) * n : 0),
-        x(static_cast<std::size_t>(n) * n),
-        chi(second_order ? static_cast<std::size_t>(n) * n : 0),
-        chid(second_order ? static_cast<std::size_t>(n) * n : 0),
-        inverse(n, n, x.data(), x.data(), Fft2D::backward, PlanEffort::measure) {
-    const double dk = 2.0 * std::numbers::pi / length_m;
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c) {
-        const double kx = dk * (c < n / 2 ? c : c - n), ky = dk * (r < n / 2 ? r : r - n);
-        const double kk = std::hypot(kx, ky);
-        const std::size_t m = static_cast<std::size_t>(r) * n + c;
-        const double om = omega(water, kk);
-        k[m] = static_cast<float>(kk);
-        kw[m] = kk > 0.0 ? static_cast<float>(kk / om) : 0.0f;
-        if (second) sq[m] = static_cast<float>(std::sqrt(0.5 * kk));
-      }
-  }
-  bool compute(const cfloat* zhat, float zscale, const cfloat* extra, float* eta, float* etadot) {
-    const int n = n_;
-    cfloat* X = x.data();
-    cfloat* C = chi.data();
-    cfloat* D = chid.data();
-    const float* K = k.data();
-    const float* KW = kw.data();
-    const float* SQ = sq.data();
-    const bool sec = second;
-    const int m0 = m0_, v = n - 2 * m0_;
-
-    // spectra: X = H[i k/omega Y] + i H[k Y]; chi^ = i (k/omega) sqrt(k/2) Y; chidot^ = k sqrt(k/2) Y.
-    // With y = Y(k) = (a, b) and w = Y(-k) = (c, d) on interleaved floats:
-    //   X = (-(m (b + d) + k (b - d)) / 2, (m (a - c) + k (a + c)) / 2),  m = k/omega,
-    //   chi^ = m s (-b, a),  chidot^ = k s (a, b),  s = sqrt(k/2).
-    const float* zf = reinterpret_cast<const float*>(zhat);
-    const float* ef = reinterpret_cast<const float*>(extra);
-    float* xf = reinterpret_cast<float*>(X);
-    float* cf = reinterpret_cast<float*>(C);
-    float* df = reinterpret_cast<float*>(D);
-    const float zs = zscale;
-    const bool has_extra = extra != nullptr;
-#pragma omp parallel for schedule(static) if (n >= 256)
-    for (int r = 0; r < n; ++r) {
-      const int mr = (n - r) % n;
-      const std::size_t o = static_cast<std::size_t>(r) * n, mo = static_cast<std::size_t>(mr) * n;
-      const float* zu = zf + 2 * o;
-      const float* zw = zf + 2 * mo;
-      const float* eu = has_extra ? ef + 2 * o : nullptr;
-      const float* ew = has_extra ? ef + 2 * mo : nullptr;
-      float* xo = xf + 2 * o;
-      const float* kk = K + o;
-      const float* mm = KW + o;
-      // column 0 is its own mirror; columns 1..n-1 mirror to n - c (a reversed run GCC vectorises)
-      auto one = [&](int c, int cn) {
-        float a = zs * zu[2 * c], b = zs * zu[2 * c + 1], cc = zs * zw[2 * cn], d = zs * zw[2 * cn + 1];
-        if (has_extra) {
-          a += eu[2 * c];
-          b += eu[2 * c + 1];
-          cc += ew[2 * cn];
-          d += ew[2 * cn + 1];
-        }
-        const float m = mm[c], k = kk[c];
-        xo[2 * c] = -0.5f * (m * (b + d) + k * (b - d));
-        xo[2 * c + 1] = 0.5f * (m * (a - cc) + k * (a + cc));
-      };
-      one(0, 0);
-      if (has_extra) {
-#pragma omp simd
-        for (int c = 1; c < n; ++c) {
-          const int cn = n - c;
-          const float a = zs * zu[2 * c] + eu[2 * c], b = zs * zu[2 * c + 1] + eu[2 * c + 1];
-          const float cc = zs * zw[2 * cn] + ew[2 * cn], d = zs * zw[2 * cn + 1] + ew[2 * cn + 1];
-          const float m = mm[c], k = kk[c];
-          xo[2 * c] = -0.5f * (m * (b + d) + k * (b - d));
-          xo[2 * c + 1] = 0.5f * (m * (a - cc) + k * (a + cc));
-        }
-      } else {
-#pragma omp simd
-        for (int c = 1; c < n; ++c) {
-          const int cn = n - c;
-          const float a = zs * zu[2 * c], b = zs * zu[2 * c + 1], cc = zs * zw[2 * cn], d = zs * zw[2 * cn + 1];
-          const float m = mm[c], k = kk[c];
-          xo[2 * c] = -0.5f * (m * (b + d) + k * (b - d));
-          xo[2 * c + 1] = 0.5f * (m * (a - cc) + k * (a + cc));
-        }
-      }
-      if (sec) {
-        const float* sq = SQ + o;
-        float* co = cf + 2 * o;
-        float* dq = df + 2 * o;
-#pragma omp simd
-        for (int c = 0; c < n; ++c) {
-          float a = zs * zu[2 * c], b = zs * zu[2 * c + 1];
-          if (has_extra) {
-            a += eu[2 * c];
-            b += eu[2 * c + 1];
-          }
-          const float ms = mm[c] * sq[c], ks = kk[c] * sq[c];
-          co[2 * c] = -ms * b;
-          co[2 * c + 1] = ms * a;
-          dq[2 * c] = ks * a;
-          dq[2 * c + 1] = ks * b;
-        }
-      }
-    }
-    inverse.execute();
-    // outputs with a fused non-finite test (x - x is non-zero only for NaN or inf)
-    float acc = 0.0f;
-    if (!sec) {
-#pragma omp parallel for schedule(static) if (n >= 256) reduction(+ : acc)
-      for (int r = 0; r < v; ++r) {
-        const std::size_t o = static_cast<std::size_t>(r + m0) * n + m0, q = static_cast<std::size_t>(r) * v;
-        const float* xs = reinterpret_cast<const float*>(X + o);
-#pragma omp simd reduction(+ : acc)
-        for (int c = 0; c < v; ++c) {
-          eta[q + c] = xs[2 * c];
-          etadot[q + c] = xs[2 * c + 1];
-          acc += (xs[2 * c] - xs[2 * c]) + (xs[2 * c + 1] - xs[2 * c + 1]);
-        }
-      }
-      return acc == 0.0f;
-    }
-    inverse.execute(C, C);
-    inverse.execute(D, D);
-#pragma omp parallel for schedule(static) if (n >= 256) reduction(+ : acc)
-    for (int r = 0; r < v; ++r) {
-      const std::size_t o = static_cast<std::size_t>(r + m0) * n + m0, q = static_cast<std::size_t>(r) * v;
-      const float* xs = reinterpret_cast<const float*>(X + o);
-      const float* cs = reinterpret_cast<const float*>(C + o);
-      const float* ds = reinterpret_cast<const float*>(D + o);
-#pragma omp simd reduction(+ : acc)
-      for (int c = 0; c < v; ++c) {
-        const float cr = cs[2 * c], ci = cs[2 * c + 1], dr = ds[2 * c], di = ds[2 * c + 1];
-        const float e = xs[2 * c] + cr * cr - ci * ci, d = xs[2 * c + 1] + 2.0f * (cr * dr - ci * di);
-        eta[q + c] = e;
-        etadot[q + c] = d;
-        acc += (e - e) + (d - d);
-      }
-    }
-    return acc == 0.0f;
-  }
-  int n_, m0_;
-  bool second;
-  AlignedBuffer<float> k, kw, sq;
-  AlignedBuffer<cfloat> x, chi, chid;
-  Fft2D inverse;
-};
-
-struct HeadWind {
-  HeadWind(const WindSea& sea, const Water& water, int n, double length_m, double dt)
-      : sea_(sea), cur(static_cast<std::size_t>(n) * n), step(static_cast<std::size_t>(n) * n) {
-    const double dk = 2.0 * std::numbers::pi / length_m;
-    for (int r = 0; r < n; ++r)
-      for (int c = 0; c < n; ++c) {
-        const double om = omega(water, std::hypot(dk * (c < n / 2 ? c : c - n), dk * (r < n / 2 ? r : r - n)));
-        step[static_cast<std::size_t>(r) * n + c] = cfloat(std::exp(std::complex<double>(0.0, -om * dt)));
-      }
-    sea.spectrum_at(0.0, cur.data());
-    dt_ = dt;
-  }
-  void advance() {
-    ++steps_;
-    if (steps_ % 256 == 0) {
-      sea_.spectrum_at(static_cast<double>(steps_) * dt_, cur.data());
-      return;
-    }
-    const std::size_t total = cur.size();
-    float* c = reinterpret_cast<float*>(cur.data());
-    const float* st = reinterpret_cast<const float*>(step.data());
-#pragma omp parallel for simd schedule(static) if (total > 65536)
-    for (std::size_t m = 0; m < total; ++m) {
-      const float a = c[2 * m], b = c[2 * m + 1], cc = st[2 * m], d = st[2 * m + 1];
-      c[2 * m] = a * cc - b * d;
-      c[2 * m + 1] = a * d + b * cc;
-    }
-  }
-  const WindSea& sea_;
-  AlignedBuffer<cfloat> cur, step;
-  double dt_ = 0.0;
-  long long steps_ = 0;
-};
-
 Ship bench_ship(double length_m) {
   Ship s;
   s.path = ShipPath({{0.0, 0.3 * length_m, 0.5 * length_m}, {1e4, 0.3 * length_m + 1.2e4, 0.5 * length_m}});
@@ -297,32 +102,22 @@ Ship bench_ship(double length_m) {
 
 // The solver's step wired by hand on the public stages (the order of HuygensSolver::step).
 struct Pipeline {
-  Pipeline(const HuygensParams& hp, bool second, const WindParams& wp, int patch, bool head_stages = false)
+  Pipeline(const HuygensParams& hp, bool second, const WindParams& wp, int patch)
       : prop(hp),
         st(hp.water, hp.n, hp.length_m, second, PlanEffort::measure, hp.margin),
         sw(hp.water, hp.n, hp.length_m, patch, {bench_ship(hp.length_m)}, PlanEffort::measure),
         sea(wp, hp.water, hp.n, hp.length_m, hp.dt),
         eta(static_cast<std::size_t>(prop.visible_size()) * prop.visible_size()),
         etad(eta.size()),
-        dt(hp.dt) {
-    if (head_stages) {
-      head = std::make_unique<HeadHeight>(hp.water, hp.n, hp.length_m, second, hp.margin);
-      head_wind = std::make_unique<HeadWind>(sea, hp.water, hp.n, hp.length_m, hp.dt);
-    }
-  }
+        dt(hp.dt) {}
   void step() {
     const float inv = 1.0f / (static_cast<float>(prop.n()) * static_cast<float>(prop.n()));
     prop.propagate();
     prop.cutoff();
     sw.add(prop.field().data(), t, dt);
     prop.spectrum();
-    if (head) {
-      head_wind->advance();
-      head->compute(prop.spectrum_view().data(), inv, head_wind->cur.data(), eta.data(), etad.data());
-    } else {
-      sea.advance();
-      st.compute(prop.spectrum_view().data(), inv, sea, eta.data(), etad.data());  // as HuygensSolver
-    }
+    sea.advance();
+    st.compute(prop.spectrum_view().data(), inv, sea, eta.data(), etad.data());  // as HuygensSolver
     prop.end_step();
     t += dt;
   }
@@ -340,158 +135,165 @@ struct Pipeline {
   WindSea sea;
   AlignedBuffer<float> eta, etad;
   double dt, t = 0.0;
-  std::unique_ptr<HeadHeight> head;  // the previous height and wind stages (in-run baseline)
-  std::unique_ptr<HeadWind> head_wind;
 };
+
+// One row of the sweep: a grid size at a thread count, and the parameters every table shares.
+struct ShipsCase {
+  int n = 0, threads = 1, reps = 20, warm = 5, margin = 64;
+  double dt = 0, len = 0;
+  HuygensParams hp;
+  WindParams wp;
+  std::string ns, ts;  // n and threads as printed
+};
+
+ShipsCase ships_case(const Context& ctx, int n, int threads) {
+  ShipsCase c;
+  c.n = n;
+  c.threads = threads;
+  c.dt = 3.0 / 60.0;
+  c.len = 15.0 * n / 512.0;                                       // dx = 15/512 m as in the default scene
+  c.margin = 64;                                                  // the paper's M (patch 2M = 128)
+  c.reps = ctx.quick ? 20 : (n <= 256 ? 80 : n <= 512 ? 40 : 20);  // blocks of 4 calls each
+  c.wp.speed_mps = 6.0;
+  c.wp.direction_deg = 20.0;
+  c.wp.seed = 42;
+  c.hp.n = n;
+  c.hp.length_m = c.len;
+  c.hp.margin = c.margin;
+  c.hp.dt = c.dt;
+  c.hp.water = Water{};
+  c.hp.spatial = true;
+  c.hp.check_every = 16;  // as a scene runs (the solver's default)
+  c.hp.external_height = true;
+  c.hp.effort = PlanEffort::measure;
+  c.ns = std::to_string(n);
+  c.ts = std::to_string(threads);
+  return c;
+}
+
+std::string quartiles(const Paired& p) { return num(p.ratio_q(0.25), 3) + "-" + num(p.ratio_q(0.75), 3); }
+
+// Stages, each paired with one raw inverse N x N transform (the height plan's problem).
+void ships_stage_rows(const ShipsCase& c, Table& stages) {
+  Pipeline twin1(c.hp, false, c.wp, 2 * c.margin);  // its first-order height plan is the unit
+  auto unit = [&] { twin1.st.raw_transforms(); };
+  auto stage_row = [&](const std::string& name, int transforms, const std::function<void()>& fn) {
+    const Paired p = paired(c.warm, c.reps, fn, unit);
+    stages.add({c.ns, c.ts, name, num(1e3 * median(p.wa), 3), std::to_string(transforms), num(1e3 * median(p.wb), 3),
+                num(p.ratio(), 3), quartiles(p)});
+  };
+  Pipeline pl(c.hp, true, c.wp, 2 * c.margin);
+  for (int i = 0; i < c.warm; ++i) pl.step();
+  const float inv = 1.0f / (static_cast<float>(c.n) * static_cast<float>(c.n));
+  stage_row("propagate (rotation + 1 IFFT)", 1, [&] { pl.prop.propagate(); });
+  // the cutoff repeated on the same field would drive the margin into subnormals: time it
+  // with the propagation that refills the field (its own cost is the difference)
+  stage_row("propagate + cutoff", 1, [&] {
+    pl.prop.propagate();
+    pl.prop.cutoff();
+  });
+  stage_row(fmt("ship patch (P = %d, 1 ship)", 2 * c.margin), 0, [&] {
+    pl.sw.add(pl.prop.field().data(), pl.t, c.dt);
+    pl.t += c.dt;
+  });
+  stage_row("spectrum (1 FFT)", 1, [&] { pl.prop.spectrum(); });
+  stage_row("wind advance", 0, [&] { pl.sea.advance(); });
+  Pipeline p1(c.hp, false, c.wp, 2 * c.margin);
+  for (int i = 0; i < c.warm; ++i) p1.step();
+  stage_row("height, 1st order + wind", 1, [&] {
+    p1.st.compute(pl.prop.spectrum_view().data(), inv, pl.sea.spectrum(), pl.eta.data(), pl.etad.data());
+  });
+  stage_row("height, 2nd-order Stokes + wind", 3, [&] {
+    pl.st.compute(pl.prop.spectrum_view().data(), inv, pl.sea.spectrum(), pl.eta.data(), pl.etad.data());
+  });
+  AlignedBuffer<float> e1(pl.eta.size()), d1(pl.eta.size()), out(pl.eta.size());
+  const HermiteWeights hw = hermite_weights(1, 3);
+  stage_row("cubic interpolation (1 frame)", 0, [&] {
+    hermite_interpolate(pl.eta.data(), pl.etad.data(), e1.data(), d1.data(), pl.eta.size(), hw, c.dt, out.data());
+  });
+}
+
+// A step table row: step (a) against its raw transforms (b); `in_step` and the displayed frame
+// (step plus two interpolated frames at display_per_step = 3) are "-" when not measured.
+void add_step_row(const ShipsCase& c, Table& step, const std::string& name, const Paired& p, int tr,
+                  const std::string& in_step, double t_between) {
+  const double ts = median(p.wa);
+  step.add({c.ns, c.ts, name, num(1e3 * ts, 3), num(1e3 * median(p.wb), 3), std::to_string(tr), num(p.ratio(), 3),
+            quartiles(p), num(ts / median(p.wb), 3), num(median(p.ca) / median(p.cb), 3), in_step,
+            t_between >= 0 ? num(1e3 * (ts + 2.0 * t_between) / 3.0, 3) : "-", num(tr / 3.0, 3),
+            std::to_string(c.reps)});
+}
+
+// Composite full steps (first order, second-order Stokes) against their raw twins.
+void ships_step_rows(const ShipsCase& c, Table& step) {
+  for (const bool second : {false, true}) {
+    Pipeline pl(c.hp, second, c.wp, 2 * c.margin), raw(c.hp, second, c.wp, 2 * c.margin);
+    for (int i = 0; i < c.warm; ++i) pl.step();
+    std::vector<double> in_step;
+    std::uint64_t f0 = 0;
+    const Paired p = paired(
+        c.warm, c.reps,
+        [&] {
+          f0 = pl.fft_ns();
+          const auto t0 = std::chrono::steady_clock::now();
+          pl.step();
+          in_step.push_back(seconds_since(t0) / (1e-9 * static_cast<double>(pl.fft_ns() - f0)));
+        },
+        [&] { raw.raw(); });
+    double t_interp = -1.0;
+    if (second) {
+      AlignedBuffer<float> e1(pl.eta.size()), d1(pl.eta.size()), out(pl.eta.size());
+      const HermiteWeights hw = hermite_weights(1, 3);
+      t_interp = median_seconds(c.reps, [&] {
+        hermite_interpolate(pl.eta.data(), pl.etad.data(), e1.data(), d1.data(), pl.eta.size(), hw, c.dt, out.data());
+      });
+    }
+    add_step_row(c, step, second ? "ship + wind + 2nd-order Stokes" : "ship + wind + 1st order", p, pl.transforms(),
+                 num(median(in_step), 3), t_interp);
+  }
+}
+
+// The integrated solver (HuygensSolver from a scene: ship + wind + Stokes, display_per_step = 3):
+// Solver::step and Solver::display_outputs(j), against a raw twin made from the solver's own
+// parameters.
+void ships_solver_row(const ShipsCase& c, Table& step) {
+  const double len = c.len;
+  const std::string text = fmt(R"({"solver": "huygens", "grid": {"n": %d, "length_m": %.17g, "margin": %d},
+          "time": {"dt": %.17g, "display_per_step": 3}, "stokes": true,
+          "wind": {"speed_mps": 6, "direction_deg": 20, "seed": 42},
+          "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
+                     "path": [{"t": 0, "x_m": %.17g, "y_m": %.17g}, {"t": 10000, "x_m": %.17g, "y_m": %.17g}]}]})",
+                               c.n, len, c.margin, c.dt, 0.3 * len, 0.5 * len, 0.3 * len + 1.2e4, 0.5 * len);
+  RunOptions ro;
+  ro.measure_plans = true;
+  HuygensSolver solver(parse_huygens_scene(parse_scene_text(text), ro));
+  const HuygensParams& sp = solver.scene().params;
+  Pipeline raw(sp, true, c.wp, solver.scene().ship_patch);
+  const Paired p = paired(
+      c.warm, c.reps, [&] { solver.step(); }, [&] { raw.raw(); });
+  const double t_disp = median_seconds(c.reps, [&] { (void)solver.display_outputs(1); });
+  add_step_row(c, step, "HuygensSolver: ship + wind + 2nd-order Stokes", p, solver.transforms_per_step(), "-", t_disp);
+}
 
 }  // namespace
 
 void bench_ships(Context& ctx) {
   const std::vector<int> sizes = ctx.quick ? std::vector<int>{256, 512} : std::vector<int>{256, 512, 1024};
   const std::vector<int> thread_counts = ctx.threads.empty() ? std::vector<int>{omp_get_max_threads()} : ctx.threads;
-  const double dt = 3.0 / 60.0;
-  Water water;
-  WindParams wp;
-  wp.speed_mps = 6.0;
-  wp.direction_deg = 20.0;
-  wp.seed = 42;
   Table stages(
       {"n", "threads", "stage", "ms/call", "NxN transforms", "raw FFT ms", "stage / raw FFT", "pair ratio q25-q75"});
   Table step({"n", "threads", "pipeline", "ms/full step", "raw FFTs ms", "transforms/step", "step/raw (wall)",
               "q25-q75", "step/raw (ratio of medians)", "step/raw (CPU)", "step/in-step FFT", "ms/displayed frame",
               "transforms/frame", "reps"});
-  Table ab({"n", "threads", "ms/step now", "ms/step previous stages", "now / previous", "q25-q75", "reps"});
   for (const int threads : thread_counts)
     for (int n : sizes) {
       // the same thread count for every plan and pass of this row (plans made after this)
       fft_set_threads(threads);
       omp_set_num_threads(threads);
-      const double len = 15.0 * n / 512.0;                                     // dx = 15/512 m as in the default scene
-      const int margin = 64;                                                   // the paper's M (patch 2M = 128)
-      const int reps = ctx.quick ? 20 : (n <= 256 ? 80 : n <= 512 ? 40 : 20);  // blocks of 4 calls each
-      const int warm = 5;
-      HuygensParams hp;
-      hp.n = n;
-      hp.length_m = len;
-      hp.margin = margin;
-      hp.dt = dt;
-      hp.water = water;
-      hp.spatial = true;
-      hp.check_every = 16;  // as a scene runs (the solver's default)
-      hp.external_height = true;
-      hp.effort = PlanEffort::measure;
-      const std::string ns = std::to_string(n);
-
-      // ---- stages, each paired with one raw inverse N x N transform (the height plan's problem)
-      Pipeline twin1(hp, false, wp, 2 * margin);  // its first-order height plan is the unit
-      auto unit = [&] { twin1.st.raw_transforms(); };
-      auto stage_row = [&](const std::string& name, int transforms, const std::function<void()>& fn) {
-        const Paired p = paired(warm, reps, fn, unit);
-        stages.add({ns, std::to_string(threads), name, num(1e3 * median(p.wa), 3), std::to_string(transforms),
-                    num(1e3 * median(p.wb), 3), num(p.ratio(), 3),
-                    num(p.ratio_q(0.25), 3) + "-" + num(p.ratio_q(0.75), 3)});
-      };
-      {
-        Pipeline pl(hp, true, wp, 2 * margin);
-        for (int i = 0; i < warm; ++i) pl.step();
-        const float inv = 1.0f / (static_cast<float>(n) * static_cast<float>(n));
-        stage_row("propagate (rotation + 1 IFFT)", 1, [&] { pl.prop.propagate(); });
-        // the cutoff repeated on the same field would drive the margin into subnormals: time it
-        // with the propagation that refills the field (its own cost is the difference)
-        stage_row("propagate + cutoff", 1, [&] {
-          pl.prop.propagate();
-          pl.prop.cutoff();
-        });
-        stage_row(fmt("ship patch (P = %d, 1 ship)", 2 * margin), 0, [&] {
-          pl.sw.add(pl.prop.field().data(), pl.t, dt);
-          pl.t += dt;
-        });
-        stage_row("spectrum (1 FFT)", 1, [&] { pl.prop.spectrum(); });
-        stage_row("wind advance", 0, [&] { pl.sea.advance(); });
-        Pipeline p1(hp, false, wp, 2 * margin);
-        for (int i = 0; i < warm; ++i) p1.step();
-        stage_row("height, 1st order + wind", 1, [&] {
-          p1.st.compute(pl.prop.spectrum_view().data(), inv, pl.sea.spectrum(), pl.eta.data(), pl.etad.data());
-        });
-        stage_row("height, 2nd-order Stokes + wind", 3, [&] {
-          pl.st.compute(pl.prop.spectrum_view().data(), inv, pl.sea.spectrum(), pl.eta.data(), pl.etad.data());
-        });
-        AlignedBuffer<float> e1(pl.eta.size()), d1(pl.eta.size()), out(pl.eta.size());
-        const HermiteWeights hw = hermite_weights(1, 3);
-        stage_row("cubic interpolation (1 frame)", 0, [&] {
-          hermite_interpolate(pl.eta.data(), pl.etad.data(), e1.data(), d1.data(), pl.eta.size(), hw, dt, out.data());
-        });
-      }
-
-      // ---- composite full steps against their raw twins; "previous stages" = the same step with
-      // the former height and wind stages (HeadHeight, HeadWind), as an in-run before/after
-      double t_interp = 0.0;
-      for (int variant = 0; variant < 3; ++variant) {
-        const bool second = variant >= 1, head = variant == 2;
-        Pipeline pl(hp, second, wp, 2 * margin, head), raw(hp, second, wp, 2 * margin);
-        for (int i = 0; i < warm; ++i) pl.step();
-        std::vector<double> in_step;
-        std::uint64_t f0 = 0;
-        const Paired p = paired(
-            warm, reps,
-            [&] {
-              f0 = pl.fft_ns();
-              const auto t0 = std::chrono::steady_clock::now();
-              pl.step();
-              if (!head) in_step.push_back(seconds_since(t0) / (1e-9 * static_cast<double>(pl.fft_ns() - f0)));
-            },
-            [&] { raw.raw(); });
-        if (variant == 1) {
-          AlignedBuffer<float> e1(pl.eta.size()), d1(pl.eta.size()), out(pl.eta.size());
-          const HermiteWeights hw = hermite_weights(1, 3);
-          t_interp = median_seconds(reps, [&] {
-            hermite_interpolate(pl.eta.data(), pl.etad.data(), e1.data(), d1.data(), pl.eta.size(), hw, dt, out.data());
-          });
-        }
-        const int tr = pl.transforms();
-        const double ts = median(p.wa);
-        const std::string name = head     ? "previous stages: ship + wind + 2nd-order Stokes"
-                                 : second ? "ship + wind + 2nd-order Stokes"
-                                          : "ship + wind + 1st order";
-        step.add({ns, std::to_string(threads), name, num(1e3 * ts, 3), num(1e3 * median(p.wb), 3), std::to_string(tr),
-                  num(p.ratio(), 3), num(p.ratio_q(0.25), 3) + "-" + num(p.ratio_q(0.75), 3), num(ts / median(p.wb), 3),
-                  num(median(p.ca) / median(p.cb), 3), head ? "-" : num(median(in_step), 3),
-                  second ? num(1e3 * (ts + 2.0 * t_interp) / 3.0, 3) : "-", num(tr / 3.0, 3), std::to_string(reps)});
-      }
-      {
-        // before/after directly: the current step against the previous stages' step, alternated
-        Pipeline now(hp, true, wp, 2 * margin), before(hp, true, wp, 2 * margin, true);
-        const Paired p = paired(
-            warm, reps, [&] { now.step(); }, [&] { before.step(); });
-        ab.add({ns, std::to_string(threads), num(1e3 * median(p.wa), 3), num(1e3 * median(p.wb), 3), num(p.ratio(), 3),
-                num(p.ratio_q(0.25), 3) + "-" + num(p.ratio_q(0.75), 3), std::to_string(reps)});
-      }
-      {
-        // the integrated solver (HuygensSolver from a scene: ship + wind + Stokes,
-        // display_per_step = 3): Solver::step and Solver::display_outputs(j), against a raw twin
-        // made from the solver's own parameters
-        const std::string text = fmt(R"({"solver": "huygens", "grid": {"n": %d, "length_m": %.17g, "margin": %d},
-          "time": {"dt": %.17g, "display_per_step": 3}, "stokes": true,
-          "wind": {"speed_mps": 6, "direction_deg": 20, "seed": 42},
-          "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-                     "path": [{"t": 0, "x_m": %.17g, "y_m": %.17g}, {"t": 10000, "x_m": %.17g, "y_m": %.17g}]}]})",
-                                     n, len, margin, dt, 0.3 * len, 0.5 * len, 0.3 * len + 1.2e4, 0.5 * len);
-        RunOptions ro;
-        ro.measure_plans = true;
-        HuygensSolver solver(parse_huygens_scene(parse_scene_text(text), ro));
-        const HuygensParams& sp = solver.scene().params;
-        Pipeline raw(sp, true, wp, solver.scene().ship_patch);
-        const Paired p = paired(
-            warm, reps, [&] { solver.step(); }, [&] { raw.raw(); });
-        const double t_disp = median_seconds(reps, [&] { (void)solver.display_outputs(1); });
-        const int tr = solver.transforms_per_step();
-        const double ts = median(p.wa);
-        step.add({ns, std::to_string(threads), "HuygensSolver: ship + wind + 2nd-order Stokes", num(1e3 * ts, 3),
-                  num(1e3 * median(p.wb), 3), std::to_string(tr), num(p.ratio(), 3),
-                  num(p.ratio_q(0.25), 3) + "-" + num(p.ratio_q(0.75), 3), num(ts / median(p.wb), 3),
-                  num(median(p.ca) / median(p.cb), 3), "-", num(1e3 * (ts + 2.0 * t_disp) / 3.0, 3), num(tr / 3.0, 3),
-                  std::to_string(reps)});
-      }
+      const ShipsCase c = ships_case(ctx, n, threads);
+      ships_stage_rows(c, stages);
+      ships_step_rows(c, step);
+      ships_solver_row(c, step);
     }
   fft_set_threads(omp_get_num_procs());
   omp_set_num_threads(omp_get_num_procs());
@@ -505,10 +307,6 @@ void bench_ships(Context& ctx) {
              "ratios (target <= 1.2); displayed frame at display_per_step = 3; paper 004 Table 1: 52 + 6 ms per "
              "displayed frame at n = 512 (Pentium 4, 2003)",
              step);
-  ctx.report("ships",
-             "before/after in one run: the step (ship + wind + 2nd-order Stokes) with the current height and wind "
-             "stages against the same step with the previous ones (copied into this file), alternated",
-             ab);
 }
 
 }  // namespace huygens::bench

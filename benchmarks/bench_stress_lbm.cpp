@@ -7,10 +7,8 @@
 // cell (LbmDryError) or the stage (NonFiniteError). Nothing may go non-finite silently.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,10 +22,7 @@ namespace huygens::bench {
 namespace {
 
 nlohmann::json lbm_scene_json(const std::string& name) {
-  std::ifstream f(std::string(HUYGENS_SOURCE_DIR) + "/scenes/" + name);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return nlohmann::json::parse(ss.str());
+  return nlohmann::json::parse(shipped_scene(name));
 }
 
 // Volume, largest speed and Froude number, shallowest wet cell of the current state.

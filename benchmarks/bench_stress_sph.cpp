@@ -9,10 +9,8 @@
 // NonFiniteError naming the stage.
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -27,10 +25,7 @@ namespace huygens::bench {
 namespace {
 
 SphParams sph_params_of(const std::string& name) {
-  std::ifstream f(std::string(HUYGENS_SOURCE_DIR) + "/scenes/" + name);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return parse_sph_scene(parse_scene_text(ss.str(), name)).params;
+  return parse_sph_scene(parse_scene_text(shipped_scene(name), name)).params;
 }
 
 struct SphBudget {

@@ -18,6 +18,7 @@
 #include "caustics.hpp"
 #include "gl/gl.hpp"
 #include "huygens/common/report.hpp"
+#include "huygens/common/stats.hpp"  // median_seconds
 
 using namespace huygens;
 using viz::CausticsArea;
@@ -25,18 +26,6 @@ using viz::CausticsParams;
 using viz::CausticsProjection;
 
 namespace {
-
-double median_seconds(int reps, const std::function<void()>& fn) {
-  fn();
-  std::vector<double> t;
-  for (int i = 0; i < reps; ++i) {
-    const auto t0 = std::chrono::steady_clock::now();
-    fn();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 struct Mode {
   const char* name;

@@ -104,11 +104,12 @@ void FramePair::sample(double t, std::span<float> out) const {
   if (!newest) throw std::logic_error("FramePair::sample: no frame yet");
   const std::size_t n = newest->rows * newest->cols;
   if (out.size() != n) throw std::invalid_argument("FramePair::sample: output size mismatch");
-  if (!prev) {
-    std::memcpy(out.data(), newest->eta.data(), n * sizeof(float));
+  const double s = phase(t);
+  if (!prev || s >= 1.0 || s <= 0.0) {
+    // at an end (or clamped to it) the frame itself, bit for bit
+    std::memcpy(out.data(), (prev && s <= 0.0 ? prev : newest)->eta.data(), n * sizeof(float));
     return;
   }
-  const double s = phase(t);
   const double h = newest->info.time_s - prev->info.time_s;
   if (prev->has_rate && newest->has_rate) {
     hermite_interpolate(prev->eta.data(), prev->eta_dot.data(), newest->eta.data(), newest->eta_dot.data(), n,
@@ -132,6 +133,10 @@ bool FramePair::ship(std::size_t i, double t, ShipState& out) const {
   }
   const ShipState& a = prev->info.ships[i];
   const double s = phase(t);
+  if (s >= 1.0 || s <= 0.0) {  // at an end: that frame's pose exactly
+    out = s >= 1.0 ? b : a;
+    return true;
+  }
   out.x_m = a.x_m + s * (b.x_m - a.x_m);
   out.y_m = a.y_m + s * (b.y_m - a.y_m);
   out.speed_mps = a.speed_mps + s * (b.speed_mps - a.speed_mps);

@@ -34,6 +34,7 @@ Runner::Runner(std::unique_ptr<Solver> solver, RunnerParams params, Factory rese
       params_(params),
       reset_(std::move(reset)),
       commands_(params.command_capacity),
+      refused_(params.command_capacity),
       ring_(solver_->height_rows(), solver_->height_cols(), solver_->stats().all().size(), params.frame_slots,
             !solver_->height_rate().empty()) {
   if (!(params.time_scale > 0) || !std::isfinite(params.time_scale))
@@ -97,7 +98,39 @@ double Runner::clock_at(std::int64_t now_ns) const {
   }
 }
 
-double Runner::display_time() const { return clock_at(runner_now_ns()); }
+double Runner::display_time() const {
+  return params_.manual_clock ? shown_t_.load(std::memory_order_acquire) : clock_at(runner_now_ns());
+}
+
+// ---- manual clock ----
+
+void Runner::show(double t_s) {
+  shown_t_.store(t_s, std::memory_order_release);
+  shown_req_.fetch_add(1, std::memory_order_acq_rel);
+}
+
+bool Runner::wait_shown(double timeout_s) const {
+  const std::uint64_t req = shown_req_.load(std::memory_order_acquire);
+  const std::int64_t deadline = runner_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
+  while (shown_done_.load(std::memory_order_acquire) < req) {
+    if (finished()) return shown_done_.load(std::memory_order_acquire) >= req;
+    if (runner_now_ns() > deadline) return false;
+    sleep_s(params_.poll_s);
+  }
+  return true;
+}
+
+bool Runner::due(double t_s, double h_s) {
+  if (!params_.manual_clock) return !realtime_;  // as fast as possible: always; real time: see run_once
+  // the request is read before the time (show() stores them the other way round), so a frame
+  // found not due is not due at the time of that request either
+  const std::uint64_t req = shown_req_.load(std::memory_order_acquire);
+  const double t = shown_t_.load(std::memory_order_acquire);
+  // the same tolerance as a caller stepping while t_n + h <= T (1e-9 of a step)
+  if (t_s <= t + 1e-9 * h_s) return true;
+  shown_done_.store(req, std::memory_order_release);
+  return false;
+}
 
 // ---- simulation thread ----
 
@@ -152,6 +185,7 @@ void Runner::apply(const Command& c) {
   }
   paused_flag_.store(paused_, std::memory_order_release);
   (ok ? applied_ : rejected_).fetch_add(1, std::memory_order_acq_rel);
+  if (!ok) refused_.try_push(c);  // back to the UI (a full queue keeps only the count)
 }
 
 void Runner::run() {
@@ -182,43 +216,7 @@ void Runner::run() {
         continue;
       }
 
-      if (!pending) {
-        if (paused_ && step_once_ == 0) {
-          sleep_s(params_.poll_s);
-          continue;
-        }
-        if (params_.max_steps > 0 && solver_->steps() - steps_origin >= params_.max_steps) break;
-        solver_->step();
-        pending = true;
-      }
-
-      // publish now: as fast as possible, or a single step while paused
-      if (!realtime_ || step_once_ > 0) {
-        publish();
-        last_time = solver_->time();
-        pending = false;
-        if (step_once_ > 0) {
-          --step_once_;
-          if (paused_) set_clock(runner_now_ns(), last_time, 0.0);
-        }
-        continue;
-      }
-      if (paused_) {
-        sleep_s(params_.poll_s);
-        continue;
-      }
-      // real time: publish frame n+1 when the display clock reaches t_n
-      const std::int64_t now = runner_now_ns();
-      const double d = clock_at(now);
-      if (d >= last_time) {
-        // more than a step behind: rebase the clock instead of racing to catch up
-        if (d > solver_->time()) set_clock(now, last_time, time_scale_);
-        publish();
-        last_time = solver_->time();
-        pending = false;
-        continue;
-      }
-      sleep_s(std::min(params_.poll_s, (last_time - d) / time_scale_));
+      if (!run_once(pending, last_time, steps_origin)) break;
     }
     status_.store(kFinished, std::memory_order_release);
   } catch (const NonFiniteError& e) {
@@ -230,6 +228,49 @@ void Runner::run() {
     exception_ = std::current_exception();
     status_.store(kFailed, std::memory_order_release);
   }
+}
+
+bool Runner::run_once(bool& pending, double& last_time, std::int64_t steps_origin) {
+  if (!pending) {
+    if (paused_ && step_once_ == 0) {
+      // paused: everything it will publish is published
+      if (params_.manual_clock) shown_done_.store(shown_req_.load(std::memory_order_acquire), std::memory_order_release);
+      sleep_s(params_.poll_s);
+      return true;
+    }
+    if (params_.max_steps > 0 && solver_->steps() - steps_origin >= params_.max_steps) return false;
+    solver_->step();
+    pending = true;
+  }
+
+  // publish now: as fast as possible, a single step while paused, or a due frame of the manual clock
+  if (step_once_ > 0 || due(solver_->time(), solver_->time() - last_time)) {
+    publish();
+    last_time = solver_->time();
+    pending = false;
+    if (step_once_ > 0) {
+      --step_once_;
+      if (paused_) set_clock(runner_now_ns(), last_time, 0.0);
+    }
+    return true;
+  }
+  if (paused_ || params_.manual_clock) {
+    sleep_s(params_.poll_s);
+    return true;
+  }
+  // real time: publish frame n+1 when the display clock reaches t_n
+  const std::int64_t now = runner_now_ns();
+  const double d = clock_at(now);
+  if (d >= last_time) {
+    // more than a step behind: rebase the clock instead of racing to catch up
+    if (d > solver_->time()) set_clock(now, last_time, time_scale_);
+    publish();
+    last_time = solver_->time();
+    pending = false;
+    return true;
+  }
+  sleep_s(std::min(params_.poll_s, (last_time - d) / time_scale_));
+  return true;
 }
 
 }  // namespace huygens

@@ -2,6 +2,7 @@
 // Per-stage counters of a solver pipeline: how often each stage ran, how long it took,
 // how many bytes it touched and how many N x N transforms it made. Stages are
 // registered at construction; counting inside a step never allocates.
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <span>
@@ -53,5 +54,20 @@ class StageTimer {
   StageStat& s_;
   std::chrono::steady_clock::time_point t0_;
 };
+
+/// Runs fn `reps` times (reps >= 1) after one warm-up call and returns the median wall time
+/// (unit: s). Shared by huygens-bench and huygens-caustics-bench.
+template <class Fn>
+double median_seconds(int reps, Fn&& fn) {
+  fn();
+  std::vector<double> t;
+  for (int i = 0; i < reps; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    fn();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
 
 }  // namespace huygens

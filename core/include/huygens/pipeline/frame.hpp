@@ -102,7 +102,8 @@ struct FramePair {
   /// The heightfield at display time t (unit: s) into `out` (rows x cols; unit: m): the cubic
   /// Hermite interpolant of eta and eta_dot between prev and newest (paper 004 section 3.5,
   /// weights 20/27, 7/27, 4/27 dt, -2/27 dt at s = 1/3; time_interp.hpp); linear when a frame
-  /// has no rate, the newest frame alone when there is no prev.
+  /// has no rate, the newest frame alone when there is no prev; at s = 0 or 1 (or clamped there)
+  /// that frame's heights bit for bit.
   void sample(double t, std::span<float> out) const;
   /// Pose of ship i at display time t (clamped like sample()): linear in position and speed
   /// between prev and newest, heading along the shorter arc; the newest frame's pose when prev

@@ -12,10 +12,14 @@
 // display time always lies in [t_n, t_{n+1}] while the simulation keeps up. When a step
 // takes longer than its share of wall time, the consumer shows the newest frame, and the
 // clock is rebased (not raced to catch up) once the simulation is more than a step behind.
+// Manual clock (deterministic, no wall clock: headless capture, tests): the owner sets the
+// display time T (show()); frame n is published once t_n <= T, so the newest frame is the last
+// step at or before T (one step is computed ahead and held); wait_shown() blocks until then.
+// Refused commands (Solver::apply false) go back to the UI thread (next_refused()).
 //
 // Threads: the constructor, start(), stop() and solver() belong to the owning thread;
-// send() to one UI thread (single producer of commands); frames(), display_time(),
-// failed(), error() to one render thread (single consumer of frames).
+// send(), show() and next_refused() to one UI thread (single producer of commands); frames(),
+// display_time(), wait_shown(), failed(), error() to one render thread (single consumer).
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -36,6 +40,8 @@ namespace huygens {
 struct RunnerParams {
   /// Pace to the wall clock (true) or step as fast as possible (false).
   bool realtime = true;
+  /// Manual display clock set by show() (deterministic; `realtime` and "realtime" are then ignored).
+  bool manual_clock = false;
   /// Simulated seconds per wall-clock second when pacing to real time (unit: s/s).
   double time_scale = 1.0;
   /// Commands the UI may queue before send() refuses one (unit: commands).
@@ -89,13 +95,22 @@ class Runner {
   // ---- UI thread (single producer) ----
   /// Queues a command for the next step boundary; false when the queue is full (nothing queued).
   bool send(const Command& c) { return commands_.try_push(c); }
+  /// The oldest command the solver or the runner refused that was not taken yet (false: none).
+  /// At most command_capacity are kept; later refusals are only counted (commands_rejected()).
+  bool next_refused(Command& out) { return refused_.try_pop(out); }
+  /// Manual clock: the display time (unit: s); the simulation publishes every step at or before it.
+  void show(double t_s);
 
   // ---- render thread (single consumer) ----
   /// The newest frame and the one before it; never waits.
   FramePair frames() { return ring_.acquire(); }
   /// The simulated time to display now (unit: s): the real-time clock, frozen while paused;
-  /// +infinity when running as fast as possible (FramePair::sample then shows the newest frame).
+  /// +infinity when running as fast as possible (FramePair::sample then shows the newest frame);
+  /// the time given to show() with the manual clock.
   double display_time() const;
+  /// Manual clock: waits until every step at or before the time last given to show() is published
+  /// (or the simulation is paused). False when the thread ended first or after timeout_s.
+  bool wait_shown(double timeout_s = 600.0) const;
   /// True once the simulation thread stopped on an exception; error() is then valid.
   bool failed() const { return status_.load(std::memory_order_acquire) == kFailed; }
   const RunnerError& error() const { return error_; }
@@ -117,6 +132,12 @@ class Runner {
   enum Status : int { kRunning = 0, kFinished = 1, kFailed = 2 };
 
   void run();
+  /// One pass of the loop after the commands: step, publish when due, or wait; false when
+  /// max_steps is reached.
+  bool run_once(bool& pending, double& last_time, std::int64_t steps_origin);
+  /// True when the frame just computed (time t_s, h_s after the last published one) is published
+  /// now rather than held: always when running as fast as possible, t_s <= show() time when manual.
+  bool due(double t_s, double h_s);
   void apply_commands();
   void apply(const Command& c);
   void publish();
@@ -128,6 +149,7 @@ class Runner {
   Factory reset_;
   std::vector<std::string> stage_names_;
   SpscQueue<Command> commands_;
+  SpscQueue<Command> refused_;
   FrameRing ring_;
   std::thread thread_;
 
@@ -152,6 +174,11 @@ class Runner {
   std::atomic<bool> paused_flag_{false};
   std::atomic<std::uint64_t> applied_{0};
   std::atomic<std::uint64_t> rejected_{0};
+  // manual clock: show() stores the time, then bumps shown_req_; the simulation thread copies
+  // shown_req_ into shown_done_ once every due frame is published
+  alignas(kCacheLine) std::atomic<double> shown_t_{0.0};
+  std::atomic<std::uint64_t> shown_req_{0};
+  std::atomic<std::uint64_t> shown_done_{0};
   RunnerError error_;
   std::exception_ptr exception_;
 };

@@ -13,6 +13,7 @@
 
 #include "huygens/pipeline/command.hpp"
 #include "huygens/pipeline/frame.hpp"
+#include "huygens/pipeline/render_info.hpp"
 #include "huygens/common/finite.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/common/stats.hpp"
@@ -66,6 +67,16 @@ class Solver {
   }
   /// Displayed frames per full step D (unit: 1); 1 when the solver does not interpolate.
   virtual int display_per_step() const { return 1; }
+  /// What a viewer needs besides the frames (render_info.hpp), from the parsed scene. May make the
+  /// height (rest level): call it on the owning thread before the first step. The default places
+  /// height() at the origin with 1 m spacing and offers no toggle.
+  virtual RenderInfo render_info() {
+    RenderInfo r;
+    r.grid.rows = height_rows();
+    r.grid.cols = height_cols();
+    r.display_per_step = display_per_step();
+    return r;
+  }
   /// The fields of displayed frame j of D of the last full step (time (steps() - 1 + j/D) dt for
   /// j >= 1, interpolated; j = 0 is outputs()). May allocate: not called inside a step.
   virtual std::vector<OutputField> display_outputs(int j) { return j == 0 ? outputs() : std::vector<OutputField>{}; }

@@ -1,0 +1,105 @@
+#pragma once
+// What a solver tells a viewer besides its frames (docs/design.md 2, one-way data): where the
+// visible heightfield sits, the ground under it, obstacles, ship hulls, the display rate, the
+// features it can switch at run time and what the scene's "render" block asked for. Each solver
+// adapter builds it from its parsed scene (Solver::render_info); a viewer reads nothing else of
+// the scene and has no physics of its own. Positions are metres in the full grid's frame (origin
+// at the corner of cell (0, 0), x along columns, y along rows, z up; the water at rest is z = 0
+// after rest_level_m is subtracted), as in scene files (docs/design.md 6).
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "huygens/common/scene.hpp"
+
+namespace huygens {
+
+/// Placement of the visible heightfield (Solver::height(), rows = y, cols = x).
+struct RenderGrid {
+  /// Points along y (unit: points).
+  std::size_t rows = 0;
+  /// Points along x (unit: points).
+  std::size_t cols = 0;
+  /// Point spacing (unit: m).
+  double dx_m = 1.0;
+  /// Position of point (0, 0) (unit: m).
+  double x0_m = 0.0, y0_m = 0.0;
+};
+
+/// A solid obstacle in the water: an axis-aligned box or a vertical cylinder.
+struct RenderObstacle {
+  enum class Kind { box, cylinder };
+  Kind kind = Kind::box;
+  /// Box: the corners (x, y, z) (unit: m).
+  std::array<double, 3> min_m{}, max_m{};
+  /// Cylinder: axis position (x, y) (unit: m).
+  std::array<double, 2> centre_m{};
+  /// Cylinder radius (unit: m).
+  double radius_m = 0.0;
+  /// Cylinder bottom and top (unit: m); +-infinity for a 2D solver's obstacle (the whole column).
+  double z0_m = 0.0, z1_m = 0.0;
+};
+
+/// A ship's hull (drawn as a Wigley hull at the poses every frame carries, FrameInfo::ships).
+struct RenderHull {
+  /// Length along the heading (unit: m).
+  double length_m = 1.0;
+  /// Beam, the width across the heading (unit: m).
+  double beam_m = 0.3;
+  /// Draft, the depth of the deepest point (unit: m).
+  double draft_m = 0.05;
+};
+
+/// How the caustics are blurred (paper 004 section 6).
+enum class BlurMode { accumulation, float_target, none };
+
+/// What a scene's optional "render" block asks the viewer for; unset = the viewer's default.
+struct RenderRequest {
+  /// "caustics": light the ground with the caustics pass.
+  std::optional<bool> caustics;
+  /// "blur": "accumulation" (the paper's 8-bit emulation), "float" or "none".
+  std::optional<BlurMode> blur;
+};
+
+/// A feature the solver switches at run time on cmd::Toggle (a viewer shows a checkbox for it).
+struct RenderToggle {
+  /// The cmd::Toggle feature name ("stokes", "wind").
+  std::string name;
+  /// Text for the control.
+  std::string label;
+  /// State at construction.
+  bool on = false;
+};
+
+struct RenderInfo {
+  RenderGrid grid;
+  /// Level of the water at rest in height() (unit: m): 0 for an elevation field (Huygens), the
+  /// mean initial height for a height above a floor (SPH, LBM). A viewer draws height() - rest.
+  double rest_level_m = 0.0;
+  /// Depth of the flat bottom below the water at rest (unit: m); nullopt = deep water.
+  std::optional<double> depth_m;
+  /// Bed elevation per point of height() (rows x cols, unit: m, same frame as height()); empty
+  /// when the bottom is flat.
+  std::vector<float> bed_m;
+  std::vector<RenderObstacle> obstacles;
+  /// Hull i belongs to ship i of the frames.
+  std::vector<RenderHull> hulls;
+  /// Full step (unit: s); 0 when the step is adaptive (SPH).
+  double dt_s = 0.0;
+  /// Displayed frames per full step (unit: 1; Solver::display_per_step()).
+  int display_per_step = 1;
+  /// Simulated time between two displayed frames (unit: s): dt_s / display_per_step, or the
+  /// solver's choice for an adaptive step.
+  double frame_dt_s = 1.0 / 60.0;
+  /// Features cmd::Toggle switches; anything else is refused (no control for it).
+  std::vector<RenderToggle> toggles;
+  RenderRequest request;
+};
+
+/// Reads the scene's optional "render" block ({"caustics": bool, "blur": "accumulation" |
+/// "float" | "none"}) below `root`; throws SceneError naming the path of a bad value.
+RenderRequest parse_render_request(const JsonIn& root);
+
+}  // namespace huygens
