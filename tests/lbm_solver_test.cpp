@@ -10,6 +10,7 @@
 #include "huygens/common/npy.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "scenes_dir.hpp"
 
 using namespace huygens;
 using nlohmann::json;
@@ -42,7 +43,7 @@ std::string error_path(const json& doc) {
 
 TEST(LbmScene, ShippedScenesRunAndDumpTheDocumentedFields) {
   for (const char* name : {"dam_break.json", "channel.json"}) {
-    auto solver = make_solver(load_scene(std::string(HUYGENS_SCENES_DIR) + "/" + name), RunOptions{false});
+    auto solver = make_solver(load_scene(huygens::test::scenes_dir() + "/" + name), RunOptions{false});
     for (int i = 0; i < 5; ++i) solver->step();
     const auto out = solver->outputs();
     ASSERT_EQ(out.size(), 3u) << name;

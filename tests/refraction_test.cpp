@@ -15,6 +15,7 @@
 #include "camera.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "scenes_dir.hpp"
 
 using namespace huygens;
 
@@ -119,7 +120,7 @@ TEST(Refraction, LinearisationErrorIsSecondOrder) {
 // linearised coordinates are within one ground-texture texel (visible width / 512) of the
 // exact Snell path at every grid point; the maximum and the mean are printed.
 TEST(Refraction, DefaultSceneLinearisedWithinOneTexel) {
-  const std::string file = std::string(HUYGENS_SCENES_DIR) + "/default.json";
+  const std::string file = huygens::test::scenes_dir() + "/default.json";
   ASSERT_TRUE(std::filesystem::exists(file)) << file;
   const Scene scene = load_scene(file);
   RunOptions ro;

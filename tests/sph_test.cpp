@@ -18,6 +18,7 @@
 #include "huygens/sph/solver.hpp"
 #include "huygens/sph/surface.hpp"
 #include "huygens/validation/sph_cases.hpp"
+#include "scenes_dir.hpp"
 
 using namespace huygens;
 
@@ -324,7 +325,7 @@ TEST(SphScene, ErrorsNameTheJsonPath) {
 
 TEST(SphScene, ShippedScenesBuildAndRun) {
   for (const char* name : {"pool.json", "sph_dam_break.json"}) {
-    auto solver = make_solver(load_scene(std::string(HUYGENS_SCENES_DIR) + "/" + name));
+    auto solver = make_solver(load_scene(huygens::test::scenes_dir() + "/" + name));
     for (int k = 0; k < 3; ++k) solver->step();
     const auto out = solver->outputs();
     ASSERT_EQ(out.size(), 2u);
@@ -337,7 +338,7 @@ TEST(SphScene, ShippedScenesBuildAndRun) {
     EXPECT_EQ(solver->meta()["dt"]["steps"], 3);
     EXPECT_EQ(solver->stats().find("surface") >= 0, true);
   }
-  auto pool = make_solver(load_scene(std::string(HUYGENS_SCENES_DIR) + "/pool.json"));
+  auto pool = make_solver(load_scene(huygens::test::scenes_dir() + "/pool.json"));
   EXPECT_TRUE(pool->apply(cmd::Drop{0.05f, 0.05f, 0.02f, 0.01f}));
   EXPECT_TRUE(pool->apply(cmd::SetParam{"gravity_x", 2.0}));
   EXPECT_FALSE(pool->apply(cmd::SetParam{"no_such_param", 1.0}));

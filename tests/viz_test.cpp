@@ -23,6 +23,7 @@
 #include "headless.hpp"
 #include "renderer.hpp"
 #include "scene_view.hpp"
+#include "scenes_dir.hpp"
 
 using namespace huygens;
 
@@ -267,7 +268,7 @@ TEST_F(VizRender, TiltedSurfaceShiftsTheGroundAsSnellPredicts) {
 
 // The same options give the same image (fixed time step, no wall clock, no threads racing).
 TEST_F(VizRender, HeadlessRenderIsDeterministic) {
-  const std::string scene = std::string(HUYGENS_SCENES_DIR) + "/default.json";
+  const std::string scene = huygens::test::scenes_dir() + "/default.json";
   ASSERT_TRUE(std::filesystem::exists(scene)) << scene;
   HeadlessOptions o;
   o.scene_file = scene;
@@ -286,7 +287,7 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
   const std::filesystem::path golden_dir = std::filesystem::path(HUYGENS_SOURCE_DIR) / "tests" / "golden";
   int compared = 0;
   for (const char* name : {"default", "ring", "ocean", "kelvin", "pond"}) {
-    const std::filesystem::path scene = std::filesystem::path(HUYGENS_SCENES_DIR) / (std::string(name) + ".json");
+    const std::filesystem::path scene = std::filesystem::path(huygens::test::scenes_dir()) / (std::string(name) + ".json");
     const std::filesystem::path golden = golden_dir / (std::string(name) + ".png");
     if (!std::filesystem::exists(scene)) continue;  // scenes arrive with their solvers
     ASSERT_TRUE(std::filesystem::exists(golden)) << "missing golden " << golden << "; generate it with\n  huygens-viz "
@@ -332,8 +333,8 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
 TEST(VizWindow, XvfbRunsSixtyFramesAndTakesAScreenshot) {
   if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
     FAIL() << "xvfb-run is not installed (apt-get install xvfb)";
-  std::string scene = std::string(HUYGENS_SCENES_DIR) + "/ocean.json";
-  if (!std::filesystem::exists(scene)) scene = std::string(HUYGENS_SCENES_DIR) + "/default.json";
+  std::string scene = huygens::test::scenes_dir() + "/ocean.json";
+  if (!std::filesystem::exists(scene)) scene = huygens::test::scenes_dir() + "/default.json";
   const std::string shot = ::testing::TempDir() + "/viz_window_smoke.png";
   std::filesystem::remove(shot);
   const std::string cmd = "xvfb-run -a -s '-screen 0 800x600x24' " + std::string(HUYGENS_VIZ) + " " + scene +
