@@ -10,6 +10,7 @@
 #include "bench.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/lbm/shallow.hpp"
+#include "huygens/validation/lbm_cases.hpp"
 
 namespace huygens::bench {
 

@@ -133,18 +133,8 @@ void bench_sph(Context& ctx) {
   }
   // --- run time against error: dam-break front and density error vs spacing and time step
   {
-    std::ifstream f(sph_martin_moyce_path());
     std::vector<std::pair<double, double>> pts;
-    std::string line;
-    while (std::getline(f, line)) {
-      if (line.empty() || line[0] == '#' || line.rfind("a_in", 0) == 0) continue;
-      std::stringstream ss(line);
-      std::string a, tt, z;
-      std::getline(ss, a, ',');
-      std::getline(ss, tt, ',');
-      std::getline(ss, z, ',');
-      pts.emplace_back(std::stod(tt), std::stod(z));
-    }
+    for (const MartinMoycePoint& p : martin_moyce_1952()) pts.emplace_back(p.T, p.Z);
     const double T_end = ctx.quick ? 2.5 : 5.0;
     Table t({"particles across a", "spacing mm", "cfl", "steps", "wall s", "max density error %",
              "mean front error % (T <= " + num(T_end, 2) + ")", "max front error %"});

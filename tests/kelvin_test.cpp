@@ -20,19 +20,19 @@ namespace {
 
 WakeMeasurement measure_reference(const Water& w, double froude, WakeGrid& g, WakeTrack& t, double search_deg = 30.0) {
   HullParams h;  // 1 m x 0.3 m x 0.05 m
-  const double u = froude * std::sqrt(w.gravity * h.length_m);
-  const double lam = 2 * std::numbers::pi * u * u / w.gravity;
+  const double u = froude * std::sqrt(w.gravity_mps2 * h.length_m);
+  const double lam = 2 * std::numbers::pi * u * u / w.gravity_mps2;
   g.rows = search_deg > 30 ? 1024 : 512;
   g.cols = 1024;
-  g.dx = std::max(lam, h.length_m) / 16;
+  g.dx_m = std::max(lam, h.length_m) / 16;
   t.speed_mps = u;
   t.heading_rad = 0.0;
-  t.x_m = 0.85 * g.cols * g.dx;
-  t.y_m = 0.5 * g.rows * g.dx;
+  t.x_m = 0.85 * g.cols * g.dx_m;
+  t.y_m = 0.5 * g.rows * g.dx_m;
   std::vector<float> eta(static_cast<std::size_t>(g.rows) * g.cols);
-  steady_wake(w, h, g, t, 0.005 * w.gravity / u, eta.data());
+  steady_wake(w, h, g, t, 0.005 * w.gravity_mps2 / u, eta.data());
   WakeOptions o;
-  o.s_max_m = 0.6 * g.cols * g.dx;
+  o.s_max_m = 0.6 * g.cols * g.dx_m;
   o.search_angle_deg = search_deg;
   return measure_kelvin_wake(eta.data(), g, t, o);
 }
@@ -41,7 +41,7 @@ WakeMeasurement measure_reference(const Water& w, double froude, WakeGrid& g, Wa
 
 TEST(Kelvin, CuspAngleFromDispersion) {
   Water w;
-  w.surface_tension = 0;
+  w.surface_tension_npm = 0;
   EXPECT_NEAR(kelvin_cusp_angle(w, 1.0), std::asin(1.0 / 3.0) * 180 / std::numbers::pi, 1e-3);
   EXPECT_NEAR(kelvin_transverse_wavelength(w, 1.3) / (2 * std::numbers::pi * 1.69 / 9.81), 1.0, 1e-9);
   w.depth_m = 1.0;
@@ -52,7 +52,7 @@ TEST(Kelvin, CuspAngleFromDispersion) {
 
 TEST(Kelvin, MeasuresDeepWaterReferenceWakes) {
   Water w;
-  w.surface_tension = 0;
+  w.surface_tension_npm = 0;
   for (double fr : {0.3, 0.4, 0.5}) {
     WakeGrid g;
     WakeTrack t;
@@ -73,10 +73,10 @@ TEST(Kelvin, FollowsTheWiderFiniteDepthWedge) {
   const double kDepthFroude = 0.8;
   // depth Froude number U / sqrt(g h) = 0.8: the cusp opens to 24.3 deg
   Water w;
-  w.surface_tension = 0;
+  w.surface_tension_npm = 0;
   w.depth_m = 1.0;
   const double fr =
-      kDepthFroude * std::sqrt(w.gravity * w.depth_m) / std::sqrt(w.gravity * 1.0);  // hull Froude number of that speed
+      kDepthFroude * std::sqrt(w.gravity_mps2 * w.depth_m) / std::sqrt(w.gravity_mps2 * 1.0);  // hull Froude number of that speed
   WakeGrid g;
   WakeTrack t;
   const WakeMeasurement m = measure_reference(w, fr, g, t, 45.0);
@@ -91,13 +91,13 @@ TEST(Kelvin, PropagatorWakeAtFroude04) {
   // at Fr 0.4 started from rest, n = 256 with 8 cells per transverse wavelength, measured over
   // 3 wavelengths to half the distance travelled. Issue 3 validation 1 at reduced size.
   KelvinCase c;
-  c.water.surface_tension = 0.0;
-  c.speed_mps = 0.4 * std::sqrt(c.water.gravity * c.hull.length_m);
+  c.water.surface_tension_npm = 0.0;
+  c.speed_mps = 0.4 * std::sqrt(c.water.gravity_mps2 * c.hull.length_m);
   const double lam = kelvin_transverse_wavelength(c.water, c.speed_mps);
   c.n = 256;
   c.dx_m = lam / 8;
   c.margin = 25;
-  c.dt = 0.05;
+  c.dt_s = 0.05;
   const KelvinRunResult r = run_kelvin_case(c);
   std::printf(
       "propagator, Fr 0.4, n 256: envelope %.3f deg, max amplitude %.2f deg, transverse %.4f m (%.4f), "
@@ -117,20 +117,20 @@ TEST(Kelvin, LowPassRecoversTheEnvelopeAtHighFroude) {
   // froude_trend validation can afford), the same reference reads 18.6 deg: that is the method's
   // own bias at short range, printed here and reported with the validation.
   Water w;
-  w.surface_tension = 0;
+  w.surface_tension_npm = 0;
   HullParams h;
   WakeGrid g;
   WakeTrack t;
-  const double u = 2.0 * std::sqrt(w.gravity * h.length_m);
+  const double u = 2.0 * std::sqrt(w.gravity_mps2 * h.length_m);
   const double lam = kelvin_transverse_wavelength(w, u);
   g.rows = 2048;
   g.cols = 4096;
-  g.dx = 0.4;
+  g.dx_m = 0.4;
   t.speed_mps = u;
-  t.x_m = 0.95 * g.cols * g.dx;
-  t.y_m = 0.5 * g.rows * g.dx;
+  t.x_m = 0.95 * g.cols * g.dx_m;
+  t.y_m = 0.5 * g.rows * g.dx_m;
   std::vector<float> eta(static_cast<std::size_t>(g.rows) * g.cols);
-  steady_wake(w, h, g, t, 0.005 * w.gravity / u, eta.data());
+  steady_wake(w, h, g, t, 0.005 * w.gravity_mps2 / u, eta.data());
   WakeOptions o;
   o.s_min_m = 5 * lam;
   o.s_max_m = 20 * lam;

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/validation/lbm_cases.hpp"
 
 using namespace huygens;
 

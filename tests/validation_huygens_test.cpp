@@ -9,7 +9,7 @@
 #include <cstdio>
 
 #include "huygens/common/fft.hpp"
-#include "huygens/validation/reference/kelvin.hpp"
+#include "huygens/validation/huygens_cases.hpp"
 #include "huygens/validation/validation.hpp"
 
 using namespace huygens;

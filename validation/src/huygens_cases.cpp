@@ -1,8 +1,8 @@
-// Analytic validation of the Huygens propagator (issue 2; paper 004 section 3):
-// FFT round trip and Parseval, phase speed, Cauchy-Poisson ring, group velocity, energy
-// conservation and absorption by the margin; issue 3 (paper 004 eq. 2, eq. 3, wind, cubic time
-// interpolation): Kelvin wake, Froude trend, capillary threshold, ship step consistency, Stokes
-// profile, interpolation order. `huygens validate` prints these rows and
+// Validation cases of the Huygens solver. The propagator (paper 004 section 3): FFT round trip
+// and Parseval, phase speed, Cauchy-Poisson ring, group velocity, energy conservation and
+// absorption by the margin. Ships, Stokes height, wind and time interpolation (paper 004 eq. 2,
+// eq. 3): Kelvin wake, Froude trend, capillary threshold, ship step consistency, Stokes profile,
+// interpolation order. `huygens validate` prints these rows and
 // tests/validation_huygens_test.cpp asserts them.
 #include <algorithm>
 #include <cmath>
@@ -16,6 +16,7 @@
 #include "huygens/huygens/propagator.hpp"
 #include "huygens/huygens/solver.hpp"
 #include "huygens/validation/reference/kelvin.hpp"
+#include "huygens/validation/huygens_cases.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/validation/validation.hpp"
 
@@ -30,7 +31,7 @@ HuygensParams periodic(int n, double length, double dt) {
   p.n = n;
   p.length_m = length;
   p.margin = 0;
-  p.dt = dt;
+  p.dt_s = dt;
   p.absorber = Absorber::off;
   p.effort = PlanEffort::estimate;
   return p;
@@ -129,7 +130,7 @@ std::vector<ValidationRow> cauchy_poisson_case() {
   p.n = 512;
   p.length_m = 15.0;
   p.margin = 64;
-  p.dt = 1.0 / 60.0;
+  p.dt_s = 1.0 / 60.0;
   p.effort = PlanEffort::measure;  // FFTW_ESTIMATE picks a ~10x slower 512^2 plan here
   HuygensPropagator prop(p);
   const double amp = 0.01, sigma = 0.1, x0 = 7.5;
@@ -257,7 +258,7 @@ std::vector<ValidationRow> absorption_case(double cutoff_time_s) {
   p.n = 512;
   p.length_m = 15.0;
   p.margin = 64;
-  p.dt = 1.0 / 60.0;
+  p.dt_s = 1.0 / 60.0;
   p.effort = PlanEffort::measure;  // FFTW_ESTIMATE picks a ~10x slower 512^2 plan here
   HuygensPropagator prop(p);
   const double amp = 0.01, sigma = 0.1;
@@ -273,7 +274,7 @@ std::vector<ValidationRow> absorption_case(double cutoff_time_s) {
   ref.add_gaussian(30.0, 30.0, sigma, amp);
   int i = 0;
   for (const double t : {2.0, 4.0, 8.0}) {
-    const long target = std::lround(t / p.dt);
+    const long target = std::lround(t / p.dt_s);
     while (prop.steps() < target) prop.step();
     while (ref.time() < t - 1e-9) ref.step();
     const auto a = prop.eta();
@@ -291,7 +292,7 @@ std::vector<ValidationRow> absorption_case(double cutoff_time_s) {
   return rows;
 }
 
-// ==== issue 3 ===================================================================================
+// ==== ships, Stokes height, wind and time interpolation (paper 004 eq. 2, eq. 3) ==============
 
 // Kelvin runs: a 1 m x 0.3 m x 0.05 m hull at Fr = U / sqrt(g L) on an n x n grid of
 // dx = min(lambda_t, L_hull) / cells (lambda_t = 2 pi U^2 / g), gravity only (surface tension 0:
@@ -305,13 +306,13 @@ std::vector<ValidationRow> absorption_case(double cutoff_time_s) {
 KelvinRunResult kelvin_run(double froude, int n, double cells, double dx_m = 0.0, double lowpass_k0 = 0.0,
                            double dt = 0.05, double max_cells = 1.0) {
   KelvinCase c;
-  c.water.surface_tension = 0.0;
-  c.speed_mps = froude * std::sqrt(c.water.gravity * c.hull.length_m);
+  c.water.surface_tension_npm = 0.0;
+  c.speed_mps = froude * std::sqrt(c.water.gravity_mps2 * c.hull.length_m);
   const double lam = kelvin_transverse_wavelength(c.water, c.speed_mps);
   c.n = n;
   c.dx_m = dx_m > 0 ? dx_m : std::min(lam, c.hull.length_m) / cells;
   c.margin = n / 10;
-  c.dt = dt;
+  c.dt_s = dt;
   c.max_cells_per_step = max_cells;
   WakeOptions o;
   o.lowpass_k0 = lowpass_k0;
@@ -372,7 +373,7 @@ std::vector<ValidationRow> froude_rows(int n, std::vector<double> froudes) {
     const KelvinRunResult r = kelvin_run(fr, n, 10, 0.0, lowpass);
     const double amax = r.wake.max_amplitude_angle_deg;
     const double lam = 2 * kPi * fr * fr;
-    const double dx_fine = r.grid.dx;
+    const double dx_fine = r.grid.dx_m;
     double env = r.wake.envelope_angle_deg, dx_env = dx_fine;
     if (n * dx_fine < 8.0 * lam) {
       dx_env = kWavelengths * lam / n;
@@ -415,7 +416,7 @@ KelvinRunResult capillary_run(double speed, int n) {
   c.n = n;
   c.dx_m = 0.001;
   c.margin = n / 10;
-  c.dt = 0.05;
+  c.dt_s = 0.05;
   c.ramp_s = 0.5;
   c.far_radius_m = 0.03;
   return run_kelvin_case(c);
@@ -438,9 +439,9 @@ std::vector<ValidationRow> capillary_case() { return capillary_rows(512); }
 // rounding only), and its spread over the run (bounded and constant).
 std::string ship_scene(double dt, double x1, double t1, bool stokes) {
   return fmt(R"({"solver": "huygens", "grid": {"n": 256, "length_m": 32.0, "margin": 0, "cutoff": false},
-  "time": {"dt": %.17g}, "stokes": %s,
+  "time": {"dt_s": %.17g}, "stokes": %s,
   "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-             "path": [{"t": 0, "x_m": 6.0, "y_m": 16.2}, {"t": %.17g, "x_m": %.17g, "y_m": 16.2}]}]})",
+             "path": [{"t_s": 0, "x_m": 6.0, "y_m": 16.2}, {"t_s": %.17g, "x_m": %.17g, "y_m": 16.2}]}]})",
              dt, stokes ? "true" : "false", t1, x1);
 }
 
@@ -494,7 +495,7 @@ std::vector<ValidationRow> stokes_case() {
   const double lam = 1.0, k = 2 * kPi / lam, ka = 0.1, a = ka / k;
   for (bool stokes : {true, false}) {
     auto s = solver_from(fmt(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 8.0, "margin": 0, "cutoff": false},
-      "time": {"dt": 0.05}, "stokes": %s,
+      "time": {"dt_s": 0.05}, "stokes": %s,
       "initial": [{"type": "plane_wave", "wavelength_m": 1.0, "amplitude_m": %.17g, "direction_deg": 0}]})",
                              stokes ? "true" : "false", a));
     for (int i = 0; i < 30; ++i) s->step();
@@ -531,7 +532,7 @@ std::vector<ValidationRow> stokes_case() {
 // log dt in [3.5, 4.5]; at the default dt = 3/60 s the RMS error is below 1 % of the RMS height.
 std::string wind_scene(double dt, int per_step) {
   return fmt(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 30.0, "margin": 0, "cutoff": false},
-    "time": {"dt": %.17g, "display_per_step": %d}, "stokes": true,
+    "time": {"dt_s": %.17g, "display_per_step": %d}, "stokes": true,
     "wind": {"speed_mps": 5.0, "direction_deg": 0.0, "seed": 1}})",
              dt, per_step);
 }

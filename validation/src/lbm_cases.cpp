@@ -1,4 +1,4 @@
-// Validation cases of the shallow-water LBM (issue 8): wave speed, mass, lake at rest over the
+// Validation cases of the shallow-water LBM (paper 002): wave speed, mass, lake at rest over the
 // Goutal-Maurel bump, Stoker dam breaks and their convergence, the h_L/h_R = 10 dam, and the
 // Strouhal number of a cylinder wake. `huygens validate` prints them; the tests run cheaper ones.
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include "huygens/common/report.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "huygens/lbm/stoker.hpp"
+#include "huygens/validation/lbm_cases.hpp"
 #include "huygens/validation/validation.hpp"
 
 namespace huygens {
@@ -59,7 +60,7 @@ LbmDamBreakResult lbm_dam_break_1d(double ratio, int cells, double tau, double c
     } catch (const std::exception& e) {
       out.stopped = e.what();
     }
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.time_s = sim.time_s();
     out.done_steps = sim.steps();
     double err = 0, norm = 0;
@@ -220,86 +221,94 @@ double cylinder_strouhal(std::int64_t steps, double* amplitude) {
   return d / (period * u0);
 }
 
+// ---- the rows of each case ----------------------------------------------------------------------
+
+std::vector<ValidationRow> wave_speed_rows() {
+  const double r = lbm_wave_speed_ratio(2000);
+  return {check("lbm_wave_speed", "pulse speed / sqrt(g h)", r, 1.0, std::abs(r - 1.0), 5e-3)};
+}
+
+std::vector<ValidationRow> mass_rows() {
+  const double d = lbm_mass_drift(64, 64, 100000);
+  return {check("lbm_mass", "relative volume change after 1e5 steps", d, 0.0, std::abs(d), 1e-5)};
+}
+
+std::vector<ValidationRow> lake_at_rest_rows() {
+  const auto w = lbm_lake_at_rest(100000, LbmBedForce::centred);
+  const auto nv = lbm_lake_at_rest(100000, LbmBedForce::naive);
+  return {check("lbm_lake_at_rest", "max |u| (m/s), centred bed term", w.max_speed_mps, 0.0, w.max_speed_mps, 1e-4),
+          check("lbm_lake_at_rest", "max |h + z_b - 0.7| (m), centred bed term", w.max_surface_error_m, 0.0,
+                w.max_surface_error_m, 1e-5),
+          // informative: the naive force must be clearly worse (error = centred / naive)
+          check("lbm_lake_at_rest", "max |u| (m/s), naive bed term (must exceed centred x10)", nv.max_speed_mps,
+                w.max_speed_mps, w.max_speed_mps / nv.max_speed_mps, 0.1),
+          check("lbm_lake_at_rest", "max surface error (m), naive bed term (must exceed centred x10)",
+                nv.max_surface_error_m, w.max_surface_error_m, w.max_surface_error_m / nv.max_surface_error_m, 0.1)};
+}
+
+// L1 error at 1024 cells and the convergence order from each doubling, h_L/h_R = 2 and 5.
+std::vector<ValidationRow> stoker_rows() {
+  std::vector<ValidationRow> rows;
+  for (double ratio : {2.0, 5.0}) {
+    const std::string name = "lbm_stoker_" + fmt("%g", ratio);
+    double prev = NAN;
+    for (int n : {256, 512, 1024, 2048}) {
+      const auto r = lbm_dam_break_1d(ratio, n);
+      if (n == 1024)
+        rows.push_back(check(name, "L1 relative depth error, 1024 cells", r.l1_relative, 0.0, r.l1_relative, 5e-3));
+      if (n >= 512)
+        rows.push_back(check(name, fmt("convergence order %d->%d cells (error = e%d/e%d < 1)", n / 2, n, n, n / 2),
+                             std::log2(prev / r.l1_relative), 1.0, r.l1_relative / prev, 1.0));
+      prev = r.l1_relative;
+    }
+  }
+  return rows;
+}
+
+// h_L/h_R = 10 is transcritical: refused before running (or finite if run); without the refusal
+// the run must stop with an error, never go on silently.
+std::vector<ValidationRow> stoker_10_rows() {
+  const auto r = lbm_dam_break_1d(10.0, 1024);
+  const bool ok = !r.refused.empty() || (r.stopped.empty() && std::isfinite(r.l1_relative));
+  ValidationRow row = check("lbm_stoker_10",
+                            r.refused.empty() ? "ran: L1 relative error, 1024 cells"
+                                              : "refused before running: Froude number of the flow",
+                            r.refused.empty() ? r.l1_relative : r.froude, kLbmMaxFroude, ok ? 0.0 : 1.0, 0.0);
+  const auto u = lbm_dam_break_1d(10.0, 1024, 0.55, 0.5, false);
+  ValidationRow unchecked = check("lbm_stoker_10",
+                                  u.stopped.empty() ? "refusal skipped: ran to the end, L1 relative error"
+                                                    : "refusal skipped: step at which it stopped (negative depth)",
+                                  u.stopped.empty() ? u.l1_relative : static_cast<double>(u.done_steps), 0.0,
+                                  (!u.stopped.empty() || std::isfinite(u.l1_relative)) ? 0.0 : 1.0, 0.0);
+  return {row, unchecked};
+}
+
+std::vector<ValidationRow> cylinder_rows() {
+  double amp = 0;
+  const double st = cylinder_strouhal(24000, &amp);
+  return {check("lbm_cylinder", "wake amplitude max |v| / U at 3 D downstream (> 0.01: periodic)", amp, 0.0,
+                amp > 0.01 ? 0.0 : 1.0, 0.0),
+          check("lbm_cylinder", "Strouhal number f D / U", st, 0.165, std::abs(st - 0.165) / 0.165, 0.25)};
+}
+
 }  // namespace
 
 std::vector<ValidationCase> lbm_validation_cases() {
-  std::vector<ValidationCase> cases;
-  cases.push_back({"lbm_wave_speed", "lbm", "small long-wave pulse travels at sqrt(g h) (1 m deep, 2000 cells)", [] {
-                     const double r = lbm_wave_speed_ratio(2000);
-                     return std::vector<ValidationRow>{
-                         check("lbm_wave_speed", "pulse speed / sqrt(g h)", r, 1.0, std::abs(r - 1.0), 5e-3)};
-                   }});
-  cases.push_back({"lbm_mass", "lbm", "volume drift over 1e5 steps in a closed 64x64 box with a bed mound", [] {
-                     const double d = lbm_mass_drift(64, 64, 100000);
-                     return std::vector<ValidationRow>{
-                         check("lbm_mass", "relative volume change after 1e5 steps", d, 0.0, std::abs(d), 1e-5)};
-                   }});
-  cases.push_back(
+  return {
+      {"lbm_wave_speed", "lbm", "small long-wave pulse travels at sqrt(g h) (1 m deep, 2000 cells)", wave_speed_rows},
+      {"lbm_mass", "lbm", "volume drift over 1e5 steps in a closed 64x64 box with a bed mound", mass_rows},
       {"lbm_lake_at_rest", "lbm",
-       "still water 0.5 m above the Goutal-Maurel bump stays still for 1e5 steps (centred vs naive)", [] {
-         const auto w = lbm_lake_at_rest(100000, LbmBedForce::centred);
-         const auto nv = lbm_lake_at_rest(100000, LbmBedForce::naive);
-         return std::vector<ValidationRow>{
-             check("lbm_lake_at_rest", "max |u| (m/s), centred bed term", w.max_speed_mps, 0.0, w.max_speed_mps, 1e-4),
-             check("lbm_lake_at_rest", "max |h + z_b - 0.7| (m), centred bed term", w.max_surface_error_m, 0.0,
-                   w.max_surface_error_m, 1e-5),
-             // informative: the naive force must be clearly worse (error = centred / naive)
-             check("lbm_lake_at_rest", "max |u| (m/s), naive bed term (must exceed centred x10)", nv.max_speed_mps,
-                   w.max_speed_mps, w.max_speed_mps / nv.max_speed_mps, 0.1),
-             check("lbm_lake_at_rest", "max surface error (m), naive bed term (must exceed centred x10)",
-                   nv.max_surface_error_m, w.max_surface_error_m, w.max_surface_error_m / nv.max_surface_error_m, 0.1)};
-       }});
-  cases.push_back({"lbm_stoker", "lbm",
-                   "1D wet dam break vs Stoker, h_L/h_R = 2 and 5: L1 at 1024 cells and convergence order", [] {
-                     std::vector<ValidationRow> rows;
-                     for (double ratio : {2.0, 5.0}) {
-                       const std::string name = "lbm_stoker_" + fmt("%g", ratio);
-                       double prev = NAN;
-                       for (int n : {256, 512, 1024, 2048}) {
-                         const auto r = lbm_dam_break_1d(ratio, n);
-                         if (n == 1024)
-                           rows.push_back(check(name, "L1 relative depth error, 1024 cells", r.l1_relative, 0.0,
-                                                r.l1_relative, 5e-3));
-                         if (n >= 512)
-                           rows.push_back(check(
-                               name, fmt("convergence order %d->%d cells (error = e%d/e%d < 1)", n / 2, n, n, n / 2),
-                               std::log2(prev / r.l1_relative), 1.0, r.l1_relative / prev, 1.0));
-                         prev = r.l1_relative;
-                       }
-                     }
-                     return rows;
-                   }});
-  cases.push_back(
-      {"lbm_stoker_10", "lbm", "h_L/h_R = 10 (transcritical): runs finite, or is refused before running", [] {
-         const auto r = lbm_dam_break_1d(10.0, 1024);
-         const bool ok = !r.refused.empty() || (r.stopped.empty() && std::isfinite(r.l1_relative));
-         ValidationRow row = check("lbm_stoker_10",
-                                   r.refused.empty() ? "ran: L1 relative error, 1024 cells"
-                                                     : "refused before running: Froude number of the flow",
-                                   r.refused.empty() ? r.l1_relative : r.froude, kLbmMaxFroude, ok ? 0.0 : 1.0, 0.0);
-         // Without the refusal the run must stop with an error, never go on silently.
-         const auto u = lbm_dam_break_1d(10.0, 1024, 0.55, 0.5, false);
-         ValidationRow unchecked =
-             check("lbm_stoker_10",
-                   u.stopped.empty() ? "refusal skipped: ran to the end, L1 relative error"
-                                     : "refusal skipped: step at which it stopped (negative depth)",
-                   u.stopped.empty() ? u.l1_relative : static_cast<double>(u.done_steps), 0.0,
-                   (!u.stopped.empty() || std::isfinite(u.l1_relative)) ? 0.0 : 1.0, 0.0);
-         return std::vector<ValidationRow>{row, unchecked};
-       }});
-  cases.push_back(
+       "still water 0.5 m above the Goutal-Maurel bump stays still for 1e5 steps (centred vs naive)",
+       lake_at_rest_rows},
+      {"lbm_stoker", "lbm", "1D wet dam break vs Stoker, h_L/h_R = 2 and 5: L1 at 1024 cells and convergence order",
+       stoker_rows},
+      {"lbm_stoker_10", "lbm", "h_L/h_R = 10 (transcritical): runs finite, or is refused before running",
+       stoker_10_rows},
       {"lbm_cylinder", "lbm",
        "periodic wake behind a cylinder, Re = 100, blockage 0.1: Strouhal number (reference 0.165, "
        "Williamson 1988, unconfined; a loose check)",
-       [] {
-         double amp = 0;
-         const double st = cylinder_strouhal(24000, &amp);
-         return std::vector<ValidationRow>{
-             check("lbm_cylinder", "wake amplitude max |v| / U at 3 D downstream (> 0.01: periodic)", amp, 0.0,
-                   amp > 0.01 ? 0.0 : 1.0, 0.0),
-             check("lbm_cylinder", "Strouhal number f D / U", st, 0.165, std::abs(st - 0.165) / 0.165, 0.25)};
-       }});
-  return cases;
+       cylinder_rows},
+  };
 }
 
 }  // namespace huygens

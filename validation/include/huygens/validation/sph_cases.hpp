@@ -1,9 +1,10 @@
 #pragma once
-// The SPH validation cases of issue 7 as parametrised runs, so that `huygens validate` runs the
-// full cases (sph_validation_cases()) and the tests run cheaper but meaningful versions.
-#include <string>
+// The SPH validation cases as parametrised runs (kernels, hydrostatic column, Martin & Moyce dam
+// break, no leakage, heightfield of paper 000 eq. 5-6): `huygens validate` runs the full sizes
+// (sph_validation_cases() in validation.hpp), the tests run cheaper but meaningful ones.
 #include <vector>
 
+#include "huygens/validation/reference/martin_moyce.hpp"
 #include "huygens/validation/validation.hpp"
 
 namespace huygens {
@@ -16,10 +17,10 @@ std::vector<ValidationRow> sph_kernel_rows(float support_factor = 2.0f);
 /// hold_s and check bottom pressure, pressure gradient, density error and stillness.
 std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double relax_s, double hold_s);
 
-/// Surge front of a dam break (column a x 2a, `na` particles across a) against Martin & Moyce
-/// (1952), both series, up to T_end = t sqrt(2 g / a): 8 % up to T = 3, 10 % up to T = 5.
-/// `csv` is the data file (shared/data/martin_moyce_1952.csv).
-std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::string& csv);
+/// Surge front of a dam break (column a x 2a, `na` particles across a) against the measured
+/// points (martin_moyce_1952(), both series) up to T_end = t sqrt(2 g / a): 8 % up to T = 3,
+/// 10 % up to T = 5.
+std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::vector<MartinMoycePoint>& measured);
 
 /// No leakage over t_end seconds of a dam break at `na` particles across the column, in a box
 /// container_len a long: inside the container, finite, max speed (every step) < 1.5 sqrt(2 g H).
@@ -28,8 +29,5 @@ std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float containe
 /// Heightfield extraction: a settled flat pool (height = volume / area within half a spacing)
 /// and a tilted lattice (slope of the extracted surface).
 std::vector<ValidationRow> sph_heightfield_rows(int n, int depth, double settle_s, float slope);
-
-/// Path of the Martin & Moyce table in the source tree's shared data folder.
-std::string sph_martin_moyce_path();
 
 }  // namespace huygens

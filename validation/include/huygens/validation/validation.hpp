@@ -1,6 +1,9 @@
 #pragma once
-// Analytic validation cases shared by `huygens validate` and the GoogleTest suites:
-// a test asserts that a case passes, the program prints the same rows as a table.
+// The row and case types and the case registry of the validation library, shared by
+// `huygens validate` (prints every row as a table) and the GoogleTest suites (assert that the
+// rows pass). Beside it: huygens_cases.hpp (smaller Kelvin, capillary and Froude runs for the
+// tests), lbm_cases.hpp (the LBM runs behind the cases, at any size), sph_cases.hpp (the SPH
+// cases at any size), reference/ (Cauchy-Poisson ring, Kelvin wake measurement, Martin & Moyce).
 #include <functional>
 #include <string>
 #include <vector>
@@ -18,6 +21,7 @@ struct ValidationRow {
   bool pass = false;
 };
 
+/// A named validation case: `run` computes its rows (seconds to minutes at full size).
 struct ValidationCase {
   std::string name;         ///< short id used on the command line, e.g. "phase_speed"
   std::string solver;       ///< "huygens", "sph" or "lbm"
@@ -25,14 +29,16 @@ struct ValidationCase {
   std::function<std::vector<ValidationRow>()> run;
 };
 
-/// Helper: a row whose pass flag is error <= tolerance.
+/// Helper: a row whose pass flag is error <= tolerance (false when error is not finite).
 ValidationRow check(std::string case_name, std::string quantity, double measured, double expected,
                     double error, double tolerance);
 
+/// The cases of each solver, in the order `huygens validate` runs them (defined in
+/// huygens_cases.cpp, sph_cases.cpp and lbm_cases.cpp).
 std::vector<ValidationCase> huygens_validation_cases();
 std::vector<ValidationCase> sph_validation_cases();
 std::vector<ValidationCase> lbm_validation_cases();
-/// All cases, Huygens first.
+/// All cases, Huygens first, then SPH, then LBM.
 std::vector<ValidationCase> all_validation_cases();
 
 }  // namespace huygens

@@ -1,32 +1,21 @@
 #pragma once
-// Measuring a Kelvin wake from a heightfield (issue 3, validations 1 and 2).
-//
-// Method. (1) Envelope and phase: every wave of a steady wake satisfies k.v = omega(k) > 0,
-// so all of them lie in the half-plane k.d > 0 (d the direction of motion). Keeping that
-// half-plane of the field's FFT (doubled) gives the analytic signal a(x) whose modulus is the
-// local amplitude envelope without carrier, and whose phase is the local wave phase.
-// (2) Outer envelope half-angle: near the wedge edge the wake is an Airy caustic,
-// eta ~ Ai(-x) cos(phase), x the scaled distance inside the caustic line. On each lateral
-// profile at distance s behind the ship (each side), take the outermost local maximum of
-// |a| (the Airy lobe; at least `lobe_fraction` of the profile's maximum) and the point on its
-// outer flank where |a| falls to Ai(0)/max Ai = 0.6628 of it: that point lies on the caustic
-// line itself, whatever the Airy width. A straight-line fit n_c(s) = s tan(psi) + b over the
-// profiles (b absorbs the wake's effective origin near the hull) gives psi.
-// (3) Angle of maximum amplitude: on each profile the lateral position of the largest |a|,
-// seen from the ship: median of atan(n_max / s) over the profiles, both sides averaged.
-// (4) Transverse wavelength: the unwrapped phase of a along the track behind the ship, fitted
-// by a straight line over [s_min, s_max]: lambda = 2 pi / |slope|.
-// (5) Optional low-pass (WakeOptions::lowpass_k0, used by froude_trend at Fr >= 1): (2) and (4)
-// read the analytic signal of the field weighted by 1 / (1 + (k / (c k0))^8), k0 = g/U^2; the
-// cusp (k = 1.5 k0) and transverse (k0) waves pass, the short divergent waves that dominate the
-// near-track field at high Froude numbers do not. (3) always reads the full field.
+// Measuring a Kelvin wake (the ship waves of paper 004 eq. 2) from a heightfield.
+// (1) Analytic signal: every wave of a steady wake has k.v = omega(k) > 0 (v the ship's velocity),
+//     so the field's FFT kept on the half-plane k.d > 0 (doubled) gives a(x): |a| is the local
+//     amplitude envelope without carrier, arg a the local wave phase.
+// (2) Outer envelope half-angle psi: near the wedge edge the wake is an Airy caustic,
+//     eta ~ Ai(-x) cos(phase). On each lateral profile at distance s behind the ship, the point on
+//     the outer flank of the outermost lobe of |a| where |a| falls to Ai(0)/max Ai = 0.6628 of the
+//     lobe lies on the caustic line; the fit n_c(s) = s tan(psi) + b gives psi.
+// (3) Angle of maximum amplitude: median over the profiles of atan(n_max / s), sides averaged.
+// (4) Transverse wavelength: lambda = 2 pi / |slope| of the unwrapped phase of a along the track.
+// (5) Optional low-pass for (2) and (4) at high Froude numbers (WakeOptions::lowpass_k0).
 #include <cmath>
 #include <limits>
 #include <vector>
 
 #include "huygens/common/dispersion.hpp"
 #include "huygens/huygens/ship_waves.hpp"
-#include "huygens/validation/validation.hpp"
 
 namespace huygens {
 
@@ -35,7 +24,7 @@ struct WakeGrid {
   /// Rows (along y) and columns (along x) (unit: cells).
   int rows = 0, cols = 0;
   /// Cell size (unit: m).
-  double dx = 1.0;
+  double dx_m = 1.0;
   /// Position of cell (0, 0) (unit: m).
   double x0_m = 0.0, y0_m = 0.0;
 };
@@ -50,6 +39,7 @@ struct WakeTrack {
   double speed_mps = 1.0;
 };
 
+/// How measure_kelvin_wake reads the field (method steps in the header comment).
 struct WakeOptions {
   /// Nearest distance behind the hull centre that is measured (unit: m); < 0: 3 transverse wavelengths.
   double s_min_m = -1.0;
@@ -64,8 +54,8 @@ struct WakeOptions {
   double lobe_fraction = 0.15;
   /// Lateral profiles extend to this angle from the track (unit: degrees).
   double search_angle_deg = 30.0;
-  /// Gravity for the default distances (unit: m/s^2).
-  double gravity = 9.81;
+  /// Gravity for the default distances and the low-pass (unit: m/s^2).
+  double gravity_mps2 = 9.81;
   /// Low-pass for the envelope and the transverse wavelength (unit: 1): when > 0, the field is
   /// weighted by 1 / (1 + (k / (lowpass_k0 k0))^8), k0 = g / U^2, before those two are measured
   /// (the max-amplitude angle always uses the full field). The cusp waves (k = 1.5 k0) and the
@@ -75,6 +65,7 @@ struct WakeOptions {
   double lowpass_k0 = 0.0;
 };
 
+/// What measure_kelvin_wake found; NaN where too few profiles were usable.
 struct WakeMeasurement {
   /// Outer envelope (caustic) half-angle (unit: degrees).
   double envelope_angle_deg = std::numeric_limits<double>::quiet_NaN();
@@ -114,7 +105,9 @@ void steady_wake(const Water& water, const HullParams& hull, const WakeGrid& gri
 /// acceleration over ramp_s), moving along +x through the middle of an n x n grid of cell dx
 /// with the paper's cutoff margin, through HuygensPropagator + ShipWaves, then measured.
 struct KelvinCase {
+  /// Dispersion of the water.
   Water water;
+  /// The hull (sizes in m).
   HullParams hull;
   /// Hull speed (unit: m/s).
   double speed_mps = 1.0;
@@ -124,7 +117,7 @@ struct KelvinCase {
   /// Absorbing margin M (unit: cells); the ship patch is the smallest even size >= 2M that fits the hull.
   int margin = 51;
   /// Full step (unit: s); at most max_cells_per_step cells of hull motion per step is used if larger.
-  double dt = 0.05;
+  double dt_s = 0.05;
   /// Largest hull motion per step (unit: cells); the step is shortened to it. The ship kernels are
   /// exact for steady motion at any step (one step of dt = two of dt/2), so this only bounds the
   /// patch travel (ShipWaves::check_step allows a quarter of the patch).
@@ -135,7 +128,9 @@ struct KelvinCase {
   double far_radius_m = 0.03;
 };
 
+/// The outcome of run_kelvin_case: the measurement, the final field and where it lies.
 struct KelvinRunResult {
+  /// The wake measured on the final field.
   WakeMeasurement wake;
   /// Largest |eta| farther than far_radius_m from the hull, and nearer (unit: m).
   double far_max_m = 0.0, near_max_m = 0.0;
@@ -144,23 +139,12 @@ struct KelvinRunResult {
   double travelled_m = 0.0;
   /// Final first-order height on the visible region and where it lies.
   std::vector<float> eta;
+  /// Where eta lies, and the ship when it was taken.
   WakeGrid grid;
   WakeTrack track;
 };
 
 /// Runs the case (allocates; seconds at n = 512) and measures the wake with s_max = D / 2.
 KelvinRunResult run_kelvin_case(const KelvinCase& c, const WakeOptions& opt = {});
-
-/// The `kelvin` validation rows at one Froude number (0.4) on a smaller grid: n cells, dx =
-/// min(2 pi U^2/g, hull length) / cells (cheaper variant for the test suite; `huygens validate
-/// kelvin` runs Fr 0.3, 0.4, 0.5 at n = 512, 10 cells). Defined in validation_huygens.cpp.
-std::vector<ValidationRow> kelvin_validation_rows(int n, double cells);
-/// The `capillary` validation row on an n x n grid of 1 mm cells (the validation uses n = 512).
-std::vector<ValidationRow> capillary_validation_rows(int n);
-/// The `froude_trend` rows for Fr 1, 2, 3 (the validation uses n = 512 and adds Fr 0.3 and 0.5):
-/// the max-amplitude angle on n x n cells of 0.1 m; the outer envelope on the same run when it
-/// holds >= 8 transverse wavelengths, else on n x n cells of 8.15 lambda / n (Fr >= 1: on the
-/// field low-passed at 3 g/U^2). Defined in validation_huygens.cpp.
-std::vector<ValidationRow> froude_validation_rows(int n);
 
 }  // namespace huygens
