@@ -22,11 +22,11 @@ namespace {
 // a pool-like block: n particles in a box whose floor is square and depth is 1/4 of its side
 SphParams pool_params(std::size_t n) {
   SphParams p;
-  p.spacing = 0.01f;
+  p.spacing_m = 0.01f;
   const int side = std::max(4, static_cast<int>(std::round(std::cbrt(4.0 * n))));
   const int depth = std::max(2, static_cast<int>(std::round(double(n) / (side * side))));
-  p.container = {side * p.spacing, side * p.spacing, 3.f * depth * p.spacing};
-  p.fluid.push_back({{0, 0, 0}, {side * p.spacing, side * p.spacing, depth * p.spacing}});
+  p.container_m = {side * p.spacing_m, side * p.spacing_m, 3.f * depth * p.spacing_m};
+  p.fluid.push_back({{0, 0, 0}, {side * p.spacing_m, side * p.spacing_m, depth * p.spacing_m}});
   return p;
 }
 
@@ -39,9 +39,9 @@ struct Measured {
 Measured dam(int na, float cfl, double T_end) {
   const float a = 0.05715f, dx = a / na;
   SphParams p;
-  p.spacing = dx;
+  p.spacing_m = dx;
   p.cfl = cfl;
-  p.container = {8 * a, 4 * dx, 4 * a};
+  p.container_m = {8 * a, 4 * dx, 4 * a};
   p.fluid.push_back({{0, 0, 0}, {a, 4 * dx, 2 * a}});
   SphSystem s(p);
   Measured m;
@@ -53,7 +53,7 @@ Measured dam(int na, float cfl, double T_end) {
     for (float x : s.x()) fx = std::max(fx, x);
     m.T.push_back(s.time() * Ts);
     m.Z.push_back((fx + 0.5f * dx) / a);
-    for (float r : s.density()) m.max_comp = std::max(m.max_comp, double(r / p.rest_density - 1.f));
+    for (float r : s.density()) m.max_comp = std::max(m.max_comp, double(r / p.rest_density_kgpm3 - 1.f));
   }
   m.wall = seconds_since(t0);
   m.steps = s.steps();
@@ -122,7 +122,7 @@ void bench_sph(Context& ctx) {
         da = std::max(da, double(std::hypot(a1[i] - a2[i], b1[i] - b2[i], c1[i] - c2[i])));
         dr = std::max(dr, double(std::fabs(r1[i] - r2[i])));
       }
-      dr /= s.params().rest_density;
+      dr /= s.params().rest_density_kgpm3;
       da /= amax;
       t.add({std::to_string(m), num(tg * 1e3, 4), num(tb * 1e3, 4), num(tb / tg, 3), num(dr, 3), num(da, 3)});
       ctx.expect(

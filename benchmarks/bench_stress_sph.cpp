@@ -48,11 +48,11 @@ SphBudget sph_budget(const SphSystem& s) {
     const double r[3] = {x[i], y[i], z[i]};
     double pe = 0;
     for (int a = 0; a < 3; ++a)
-      pe += std::abs(double(p.gravity[a])) * (p.gravity[a] < 0 ? r[a] : p.container[a] - r[a]);
+      pe += std::abs(double(p.gravity_mps2[a])) * (p.gravity_mps2[a] < 0 ? r[a] : p.container_m[a] - r[a]);
     b.energy_j += m * (0.5 * v2 + pe);
     b.max_speed = std::max(b.max_speed, std::sqrt(v2));
-    b.density_err = std::max(b.density_err, double(rho[i]) / p.rest_density - 1);
-    if (x[i] < 0 || y[i] < 0 || z[i] < 0 || x[i] > p.container[0] || y[i] > p.container[1] || z[i] > p.container[2])
+    b.density_err = std::max(b.density_err, double(rho[i]) / p.rest_density_kgpm3 - 1);
+    if (x[i] < 0 || y[i] < 0 || z[i] < 0 || x[i] > p.container_m[0] || y[i] > p.container_m[1] || z[i] > p.container_m[2])
       ++b.outside;
   }
   return b;
@@ -61,7 +61,7 @@ SphBudget sph_budget(const SphSystem& s) {
 // Height of the fluid blocks' tallest top (unit: m): the H of sqrt(2 g H).
 double fluid_height(const SphParams& p) {
   double h = 0;
-  for (const auto& b : p.fluid) h = std::max(h, double(b.max[2]));
+  for (const auto& b : p.fluid) h = std::max(h, double(b.max_m[2]));
   return h;
 }
 
@@ -110,7 +110,7 @@ SphRun run_sph(const SphParams& p, double t_end, int checks) {
 
 void stress_sph(Context& ctx) {
   const SphParams base = sph_params_of("sph_dam_break.json");
-  const double H = fluid_height(base), g = std::abs(base.gravity[2]), v_ref = std::sqrt(2 * g * H);
+  const double H = fluid_height(base), g = std::abs(base.gravity_mps2[2]), v_ref = std::sqrt(2 * g * H);
 
   // 1. the long run of the hardest shipped SPH scene
   {
@@ -190,15 +190,15 @@ void stress_sph(Context& ctx) {
     for (double f : {1.0, 2.0, 4.0, 8.0, 16.0}) {
       SphParams p = base;
       p.cfl = p.force_factor = p.viscous_factor = 1e6f;  // dt = dt_max
-      p.dt_max = static_cast<float>(f * dt_adaptive);
+      p.dt_max_s = static_cast<float>(f * dt_adaptive);
       const SphRun r = run_sph(p, t_end, 10);
       const bool ok = r.outcome == "finite and contained";
-      if (ok && first_failure.empty()) largest_ok = p.dt_max;
+      if (ok && first_failure.empty()) largest_ok = p.dt_max_s;
       if (!ok && first_failure.empty()) first_failure = r.outcome;
-      t.add({num(p.dt_max, 3), num(f, 3), std::to_string(r.steps), num(r.energy_ratio, 4),
+      t.add({num(p.dt_max_s, 3), num(f, 3), std::to_string(r.steps), num(r.energy_ratio, 4),
              num(r.worst.max_speed / v_ref, 4), num(100 * r.worst.density_err, 3), r.outcome});
       ctx.expect(ok || r.outcome.rfind("stopped: ", 0) == 0 || r.outcome == "LEAKED" || r.outcome.rfind("unstable", 0) == 0,
-                 fmt("stress: SPH at fixed dt %.3g s did not go non-finite silently", p.dt_max));
+                 fmt("stress: SPH at fixed dt %.3g s did not go non-finite silently", p.dt_max_s));
     }
     ctx.report("stress",
                fmt("SPH largest stable fixed dt over %.2g s of the dam break: %.3g s (%.3g x the adaptive step); "
@@ -219,15 +219,15 @@ void stress_sph(Context& ctx) {
     const std::vector<Extreme> cases = {
         {"block dropped from the top of the container onto a shallow layer",
          [](SphParams& p) {
-           const auto c = p.container;
-           const float s = p.spacing;
+           const auto c = p.container_m;
+           const float s = p.spacing_m;
            p.fluid.clear();
            p.fluid.push_back({{0.f, 0.f, 0.f}, {c[0], c[1], 4 * s}});
            p.fluid.push_back({{0.4f * c[0], 0.f, c[2] - 0.3f * c[2]}, {0.6f * c[0], c[1], c[2]}});
          },
          0.25},  // it lands after about 0.18 s
-        {"gravity 10 g", [](SphParams& p) { p.gravity[2] *= 10.f; }},
-        {"sideways gravity (container tipped over)", [](SphParams& p) { p.gravity = {9.81f, 0.f, 0.f}; }},
+        {"gravity 10 g", [](SphParams& p) { p.gravity_mps2[2] *= 10.f; }},
+        {"sideways gravity (container tipped over)", [](SphParams& p) { p.gravity_mps2 = {9.81f, 0.f, 0.f}; }},
     };
     Table t({"input", "t s", "steps", "E max / E0", "max speed m/s", "max rho/rho0 - 1 %", "outcome"});
     for (const Extreme& c : cases) {

@@ -1,5 +1,7 @@
 #include "huygens/pipeline/solver.hpp"
 
+#include "huygens/sph/solver.hpp"
+
 namespace huygens {
 
 std::unique_ptr<Solver> make_solver(const Scene& scene, const RunOptions& options) {

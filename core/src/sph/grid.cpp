@@ -1,4 +1,7 @@
+// Uniform neighbour grid and per-cell candidate gather: see huygens/sph/grid.hpp.
 #include "huygens/sph/grid.hpp"
+
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +26,7 @@ std::size_t SphGrid::bytes() const {
 void SphGrid::build(const float* x, const float* y, const float* z, std::size_t n) {
   const std::size_t nc = cells();
   // cell of every particle
-#pragma omp parallel for schedule(static) if (n > (std::size_t(1) << 16))  // a few ns per particle
+#pragma omp parallel for schedule(static) if (n > kSphParallelLight)
   for (std::size_t i = 0; i < n; ++i) cell_of_[i] = index(ix(x[i]), iy(y[i]), iz(z[i]));
   // histogram and exclusive prefix sum (serial: a few ns per particle, well under 2 % of a step)
   std::fill(cursor_.begin(), cursor_.end(), 0u);
@@ -37,6 +40,36 @@ void SphGrid::build(const float* x, const float* y, const float* z, std::size_t 
   start_[nc] = acc;
   // stable scatter: order[new] = old
   for (std::size_t i = 0; i < n; ++i) order_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+// ---------------------------------------------------------------------------------------------
+// candidate gather
+
+SphCellGather::SphCellGather(std::size_t capacity)
+    : cap_((capacity + 15) & ~std::size_t(15)), threads_(std::max(omp_get_max_threads(), omp_get_num_procs())) {
+  scratch_ = AlignedBuffer<float>(std::size_t(threads_) * kMaxArrays * (cap_ + 16));
+}
+
+SphCellGather::Cursor::Cursor(const SphGrid& grid, SphCellGather& gather, int thread, const float* const* src,
+                              int arrays)
+    : grid_(&grid), arrays_(arrays), cap_(gather.cap_), own_(thread < gather.threads_) {
+  for (int a = 0; a < kMaxArrays; ++a) {
+    src_[a] = a < arrays ? src[a] : nullptr;
+    dst_[a] = own_ ? gather.scratch_.data() + (std::size_t(thread) * kMaxArrays + a) * (gather.cap_ + 16) : nullptr;
+  }
+}
+
+int SphCellGather::Cursor::gather(int cx, int cy, int cz) {
+  std::size_t cnt = 0;
+  floor_end_ = 0;
+  const bool fits = grid_->for_each_row(cx, cy, cz, [&](std::uint32_t b, std::uint32_t e, int kz) {
+    if (cnt + (e - b) > cap_) return false;
+    for (int a = 0; a < arrays_; ++a) std::copy(src_[a] + b, src_[a] + e, dst_[a] + cnt);
+    cnt += e - b;
+    if (kz == 0) floor_end_ = static_cast<std::uint32_t>(cnt);
+    return true;
+  });
+  return fits ? static_cast<int>(cnt) : -1;
 }
 
 }  // namespace huygens

@@ -7,43 +7,20 @@
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/pipeline/solver.hpp"
-#include "huygens/sph/system.hpp"
 #include "huygens/sph/solver.hpp"
 #include "huygens/sph/surface.hpp"
+#include "huygens/sph/system.hpp"
 
 namespace huygens {
 
 namespace {
 
-std::array<float, 3> vec3(const JsonIn& in, const std::string& key, double lo, double hi) {
-  if (!in.has(key)) in.fail(key, "required (an array of 3 numbers)");
-  const auto& v = in.raw()[key];
-  if (!v.is_array() || v.size() != 3) in.fail(key, "expected an array of 3 numbers");
-  std::array<float, 3> out{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    const std::string p = in.child_path(key) + "[" + std::to_string(k) + "]";
-    if (!v[k].is_number()) throw SceneError(p, std::string("expected a number, got ") + v[k].type_name());
-    const double x = v[k].get<double>();
-    if (!std::isfinite(x) || x < lo || x > hi)
-      throw SceneError(
-          p, "value " + std::to_string(x) + " out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    out[k] = static_cast<float>(x);
-  }
-  return out;
-}
-
-std::array<float, 2> vec2(const JsonIn& in, const std::string& key, double lo, double hi) {
-  if (!in.has(key)) in.fail(key, "required (an array of 2 numbers)");
-  const auto& v = in.raw()[key];
-  if (!v.is_array() || v.size() != 2) in.fail(key, "expected an array of 2 numbers");
-  std::array<float, 2> out{};
-  for (std::size_t k = 0; k < 2; ++k) {
-    const std::string p = in.child_path(key) + "[" + std::to_string(k) + "]";
-    if (!v[k].is_number()) throw SceneError(p, std::string("expected a number, got ") + v[k].type_name());
-    const double x = v[k].get<double>();
-    if (!std::isfinite(x) || x < lo || x > hi) throw SceneError(p, "value out of range");
-    out[k] = static_cast<float>(x);
-  }
+// JsonIn::vec<N> as floats (the parameter structs hold float)
+template <std::size_t N>
+std::array<float, N> vecf(const JsonIn& in, const std::string& key, double lo, double hi) {
+  const auto v = in.vec<N>(key, lo, hi);
+  std::array<float, N> out{};
+  for (std::size_t k = 0; k < N; ++k) out[k] = static_cast<float>(v[k]);
   return out;
 }
 
@@ -51,7 +28,7 @@ class SphSolver final : public Solver {
  public:
   explicit SphSolver(const SphScene& sc) : scene_(sc), sys_(sc.params) {
     surface_stage_ = sys_.stats().add("surface");
-    sph_heightfield_init(scene_.surface, sc.params.container[0], sc.params.container[1], hf_);
+    sph_heightfield_init(scene_.surface, sc.params.container_m[0], sc.params.container_m[1], hf_);
     sys_.stats()[surface_stage_].bytes = (hf_.height.size() + hf_.normal.size()) * sizeof(float);
     pos_.assign(sys_.count() * 3, 0.f);
   }
@@ -77,25 +54,25 @@ class SphSolver final : public Solver {
     if (hist.size() > 256) hist.erase(hist.begin(), hist.end() - 256);
     return {{"solver", "sph"},
             {"particles", sys_.count()},
-            {"spacing_m", p.spacing},
+            {"spacing_m", p.spacing_m},
             {"support_m", sys_.support()},
             {"particle_mass_kg", sys_.mass()},
-            {"rest_density_kgpm3", p.rest_density},
+            {"rest_density_kgpm3", p.rest_density_kgpm3},
             {"sound_speed_mps", sys_.sound_speed()},
-            {"viscosity_m2ps", p.viscosity},
+            {"viscosity_m2s", p.viscosity_m2s},
             {"artificial_viscosity", p.artificial_viscosity},
             {"impact_alpha", p.impact_alpha},
             {"impact_beta", p.impact_beta},
-            {"viscosity_total_m2ps", sys_.viscosity()},
-            {"container_m", p.container},
+            {"viscosity_total_m2s", sys_.viscosity()},
+            {"container_m", p.container_m},
             {"pressure_model", "weakly compressible, Tait equation of state"},
             {"tait_gamma", p.tait_gamma},
-            {"grid", {{"rows", hf_.rows}, {"cols", hf_.cols}, {"dx", hf_.cell}}},
-            {"dx", hf_.cell},
+            {"grid", {{"rows", hf_.rows}, {"cols", hf_.cols}, {"dx", hf_.cell_m}}},
+            {"dx", hf_.cell_m},
             {"visible", {{"row0", 0}, {"row1", hf_.rows}, {"col0", 0}, {"col1", hf_.cols}}},
             {"eta_reference", "height of the iso-surface above the floor z = 0 (m); 0 where dry"},
             {"pos_order", "particle id (stable across dumps)"},
-            {"surface", {{"iso", scene_.surface.iso}, {"radius_m", scene_.surface.radius}}},
+            {"surface", {{"iso", scene_.surface.iso}, {"radius_m", scene_.surface.radius_m}}},
             {"dt",
              {{"steps", d.count},
               {"last_s", d.last},
@@ -126,7 +103,7 @@ class SphSolver final : public Solver {
     if (const auto* d = std::get_if<cmd::Drop>(&c)) {
       const auto& g = sys_.gravity();
       const float gm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-      const float r = std::max(d->radius_m, sys_.params().spacing);
+      const float r = std::max(d->radius_m, sys_.params().spacing_m);
       sys_.add_velocity_splash(d->x_m, d->y_m, r, d->depth_m * std::sqrt(gm / r));
       return true;
     }
@@ -142,6 +119,28 @@ class SphSolver final : public Solver {
   }
   std::size_t height_rows() const override { return hf_.rows; }
   std::size_t height_cols() const override { return hf_.cols; }
+  /// Heightfield cell centres ((c + 1/2) cell, (r + 1/2) cell), the rest level (mean initial
+  /// height above the floor, the ground that far down), the obstacles; an adaptive step shown
+  /// at 60 frames per simulated second; no toggles. Makes the height (before the first step).
+  RenderInfo render_info() override {
+    RenderInfo r;
+    const double c = hf_.cell_m;
+    r.grid = RenderGrid{hf_.rows, hf_.cols, c, 0.5 * c, 0.5 * c};
+    r.rest_level_m = mean_level(height());
+    if (r.rest_level_m > 0.0) r.depth_m = r.rest_level_m;
+    for (const SphObstacle& o : sys_.params().obstacles) {
+      RenderObstacle ro;
+      ro.kind = o.type == SphObstacle::Type::box ? RenderObstacle::Kind::box : RenderObstacle::Kind::cylinder;
+      for (int a = 0; a < 3; ++a) ro.min_m[a] = o.min_m[a], ro.max_m[a] = o.max_m[a];
+      ro.centre_m = {o.centre_m[0], o.centre_m[1]};
+      ro.radius_m = o.radius_m;
+      ro.z0_m = o.z0_m;
+      ro.z1_m = o.z1_m;
+      r.obstacles.push_back(ro);
+    }
+    r.frame_dt_s = 1.0 / 60.0;
+    return r;
+  }
 
  private:
   SphScene scene_;
@@ -154,107 +153,140 @@ class SphSolver final : public Solver {
 
 }  // namespace
 
-SphScene parse_sph_scene(const Scene& scene) {
-  const JsonIn root = scene.root();
-  root.allow_only({"solver", "sph", "description"});
-  const JsonIn s = root.object("sph");
-  s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2ps", "artificial_viscosity",
-                "impact_alpha", "impact_beta", "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles",
-                "time", "surface"});
-  SphScene out;
-  SphParams& p = out.params;
-  p.spacing = static_cast<float>(s.number("spacing_m", 1e-4, 10.0));
+namespace {
+
+// The top-level keys of the "sph" block: fluid, viscosities, sound speed, gravity, container.
+void parse_fluid_params(const JsonIn& s, SphParams& p) {
+  p.spacing_m = static_cast<float>(s.number("spacing_m", 1e-4, 10.0));
   p.support_factor = static_cast<float>(s.number("support_factor", 2.0, 1.5, 4.0));
-  p.rest_density = static_cast<float>(s.number("rest_density_kgpm3", 1000.0, 1.0, 1e5));
-  p.viscosity = static_cast<float>(s.number("viscosity_m2ps", p.viscosity, 0.0, 10.0));
+  p.rest_density_kgpm3 = static_cast<float>(s.number("rest_density_kgpm3", 1000.0, 1.0, 1e5));
+  p.viscosity_m2s = static_cast<float>(s.number("viscosity_m2s", p.viscosity_m2s, 0.0, 10.0));
   p.artificial_viscosity = static_cast<float>(s.number("artificial_viscosity", p.artificial_viscosity, 0.0, 1.0));
   if (p.artificial_viscosity < SphParams::min_artificial_viscosity)
     s.fail("artificial_viscosity", "below " + num(SphParams::min_artificial_viscosity, 3) +
                                        " the poly6/spiky kernel mix pumps energy into the fluid (unstable); refused");
   p.impact_alpha = static_cast<float>(s.number("impact_alpha", p.impact_alpha, 0.0, 1.0));
   p.impact_beta = static_cast<float>(s.number("impact_beta", p.impact_beta, 0.0, 10.0));
-  if (auto c = s.optional_number("sound_speed_mps", 1e-3, 1e5)) p.sound_speed = static_cast<float>(*c);
-  if (s.has("gravity_mps2")) p.gravity = vec3(s, "gravity_mps2", -1000.0, 1000.0);
-  p.container = vec3(s, "container_m", 1e-4, 1e4);
+  if (auto c = s.optional_number("sound_speed_mps", 1e-3, 1e5)) p.sound_speed_mps = static_cast<float>(*c);
+  if (s.has("gravity_mps2")) p.gravity_mps2 = vecf<3>(s, "gravity_mps2", -1000.0, 1000.0);
+  p.container_m = vecf<3>(s, "container_m", 1e-4, 1e4);
   for (int a = 0; a < 3; ++a)
-    if (p.container[a] < 2 * p.spacing)
+    if (p.container_m[a] < 2 * p.spacing_m)
       throw SceneError(s.child_path("container_m") + "[" + std::to_string(a) + "]",
                        "the container must be at least two particle spacings wide");
+}
 
+// "fluid": at least one block inside the container, at most ~2e7 particles.
+void parse_fluid_blocks(const JsonIn& s, SphParams& p) {
   const auto blocks = s.array("fluid");
   if (blocks.empty()) s.fail("fluid", "at least one fluid block is required");
   double count = 0;
   for (const auto& b : blocks) {
     b.allow_only({"min_m", "max_m"});
     SphFluidBlock fb;
-    fb.min = vec3(b, "min_m", 0.0, 1e4);
-    fb.max = vec3(b, "max_m", 0.0, 1e4);
+    fb.min_m = vecf<3>(b, "min_m", 0.0, 1e4);
+    fb.max_m = vecf<3>(b, "max_m", 0.0, 1e4);
     for (int a = 0; a < 3; ++a) {
-      if (fb.max[a] <= fb.min[a]) b.fail("max_m", "max_m must exceed min_m on every axis");
-      if (fb.max[a] > p.container[a] + 1e-6f) b.fail("max_m", "the fluid block sticks out of the container");
+      if (fb.max_m[a] <= fb.min_m[a]) b.fail("max_m", "max_m must exceed min_m on every axis");
+      if (fb.max_m[a] > p.container_m[a] + 1e-6f) b.fail("max_m", "the fluid block sticks out of the container");
     }
-    count += double(fb.max[0] - fb.min[0]) * (fb.max[1] - fb.min[1]) * (fb.max[2] - fb.min[2]) /
-             (double(p.spacing) * p.spacing * p.spacing);
+    count += double(fb.max_m[0] - fb.min_m[0]) * (fb.max_m[1] - fb.min_m[1]) * (fb.max_m[2] - fb.min_m[2]) /
+             (double(p.spacing_m) * p.spacing_m * p.spacing_m);
     p.fluid.push_back(fb);
   }
   if (count > 2e7)
     s.fail("fluid", "the fluid blocks hold about " + std::to_string(long(count)) +
                         " particles; more than 2e7 is refused (memory)");
-  if (p.sound_speed > 0.f) {
-    float top = 0.f;
-    for (const auto& b : p.fluid) top = std::max(top, b.max[2]);
-    const float g = std::sqrt(p.gravity[0] * p.gravity[0] + p.gravity[1] * p.gravity[1] + p.gravity[2] * p.gravity[2]);
-    const float vref = std::sqrt(2.f * g * top);
-    if (p.sound_speed < 3.f * vref)
-      s.fail("sound_speed_mps", "below 3 sqrt(2 g H) = " + num(3 * vref, 4) +
-                                    " m/s the Mach number exceeds 0.3 and density errors exceed 10 %; refused");
+}
+
+// A sound speed the scene sets must keep the Mach number below 0.3 (density error ~ Ma^2).
+void check_sound_speed(const JsonIn& s, const SphParams& p) {
+  if (!(p.sound_speed_mps > 0.f)) return;
+  float top = 0.f;
+  for (const auto& b : p.fluid) top = std::max(top, b.max_m[2]);
+  const auto& gv = p.gravity_mps2;
+  const float g = std::sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]);
+  const float vref = std::sqrt(2.f * g * top);
+  if (p.sound_speed_mps < 3.f * vref)
+    s.fail("sound_speed_mps", "below 3 sqrt(2 g H) = " + num(3 * vref, 4) +
+                                  " m/s the Mach number exceeds 0.3 and density errors exceed 10 %; refused");
+}
+
+SphObstacle parse_obstacle(const JsonIn& o) {
+  SphObstacle ob;
+  const std::string type = o.string("type", "", {"box", "cylinder"});
+  if (type == "box") {
+    o.allow_only({"type", "min_m", "max_m"});
+    ob.type = SphObstacle::Type::box;
+    ob.min_m = vecf<3>(o, "min_m", -1e4, 1e4);
+    ob.max_m = vecf<3>(o, "max_m", -1e4, 1e4);
+    for (int a = 0; a < 3; ++a)
+      if (ob.max_m[a] <= ob.min_m[a]) o.fail("max_m", "max_m must exceed min_m on every axis");
+    return ob;
   }
-  for (const auto& o : s.array("obstacles")) {
-    SphObstacle ob;
-    const std::string type = o.string("type", "", {"box", "cylinder"});
-    if (type == "box") {
-      o.allow_only({"type", "min_m", "max_m"});
-      ob.type = SphObstacle::Type::box;
-      ob.min = vec3(o, "min_m", -1e4, 1e4);
-      ob.max = vec3(o, "max_m", -1e4, 1e4);
-      for (int a = 0; a < 3; ++a)
-        if (ob.max[a] <= ob.min[a]) o.fail("max_m", "max_m must exceed min_m on every axis");
-    } else {
-      o.allow_only({"type", "centre_m", "radius_m", "z0_m", "z1_m"});
-      ob.type = SphObstacle::Type::cylinder;
-      ob.centre = vec2(o, "centre_m", -1e4, 1e4);
-      ob.radius = static_cast<float>(o.number("radius_m", 1e-6, 1e4));
-      ob.z0 = static_cast<float>(o.number("z0_m", 0.0, -1e4, 1e4));
-      ob.z1 = static_cast<float>(o.number("z1_m", -1e4, 1e4));
-      if (ob.z1 <= ob.z0) o.fail("z1_m", "z1_m must exceed z0_m");
-    }
-    p.obstacles.push_back(ob);
-  }
-  if (auto t = s.optional_object("time")) {
-    t->allow_only({"cfl", "force", "viscous", "dt_max_s"});
-    p.cfl = static_cast<float>(t->number("cfl", p.cfl, 1e-3, 0.5));
-    p.force_factor = static_cast<float>(t->number("force", p.force_factor, 1e-3, 0.5));
-    p.viscous_factor = static_cast<float>(t->number("viscous", p.viscous_factor, 1e-3, 0.25));
-    p.dt_max = static_cast<float>(t->number("dt_max_s", p.dt_max, 1e-7, 1.0));
-  }
-  out.surface.cell = p.spacing;
-  out.surface.radius = p.support();
+  o.allow_only({"type", "centre_m", "radius_m", "z0_m", "z1_m"});
+  ob.type = SphObstacle::Type::cylinder;
+  ob.centre_m = vecf<2>(o, "centre_m", -1e4, 1e4);
+  ob.radius_m = static_cast<float>(o.number("radius_m", 1e-6, 1e4));
+  ob.z0_m = static_cast<float>(o.number("z0_m", 0.0, -1e4, 1e4));
+  ob.z1_m = static_cast<float>(o.number("z1_m", -1e4, 1e4));
+  if (ob.z1_m <= ob.z0_m) o.fail("z1_m", "z1_m must exceed z0_m");
+  return ob;
+}
+
+// "time": the factors of the adaptive step and its largest value.
+void parse_time(const JsonIn& s, SphParams& p) {
+  const auto t = s.optional_object("time");
+  if (!t) return;
+  t->allow_only({"cfl", "force", "viscous", "dt_max_s"});
+  p.cfl = static_cast<float>(t->number("cfl", p.cfl, 1e-3, 0.5));
+  p.force_factor = static_cast<float>(t->number("force", p.force_factor, 1e-3, 0.5));
+  p.viscous_factor = static_cast<float>(t->number("viscous", p.viscous_factor, 1e-3, 0.25));
+  p.dt_max_s = static_cast<float>(t->number("dt_max_s", p.dt_max_s, 1e-7, 1.0));
+}
+
+// "surface": heightfield columns, iso-radius (at most the support radius) and iso value.
+SphSurfaceParams parse_surface(const JsonIn& s, const SphParams& p) {
+  SphSurfaceParams out;
+  out.cell_m = p.spacing_m;
+  out.radius_m = p.support();
   bool iso_given = false;
   if (auto f = s.optional_object("surface")) {
     f->allow_only({"cell_m", "radius_factor", "iso"});
-    out.surface.cell = static_cast<float>(f->number("cell_m", p.spacing, 1e-5, 1e4));
+    out.cell_m = static_cast<float>(f->number("cell_m", p.spacing_m, 1e-5, 1e4));
     const double rf = f->number("radius_factor", p.support_factor, 0.5, 4.0);
     if (rf > p.support_factor + 1e-6)
       f->fail("radius_factor", "the iso-radius must not exceed the support radius (support_factor)");
-    out.surface.radius = static_cast<float>(rf * p.spacing);
+    out.radius_m = static_cast<float>(rf * p.spacing_m);
     if (auto iso = f->optional_number("iso", 1e-6, 1e6)) {
-      out.surface.iso = static_cast<float>(*iso);
+      out.iso = static_cast<float>(*iso);
       iso_given = true;
     }
-    const double cells = std::ceil(p.container[0] / out.surface.cell) * std::ceil(p.container[1] / out.surface.cell);
+    const double cells = std::ceil(p.container_m[0] / out.cell_m) * std::ceil(p.container_m[1] / out.cell_m);
     if (cells > 1.7e7) f->fail("cell_m", "the heightfield would have more than 1.7e7 columns");
   }
-  if (!iso_given) out.surface.iso = sph_flat_iso(out.surface.radius, p.spacing);
+  if (!iso_given) out.iso = sph_flat_iso(out.radius_m, p.spacing_m);
+  return out;
+}
+
+}  // namespace
+
+SphScene parse_sph_scene(const Scene& scene) {
+  const JsonIn root = scene.root();
+  root.allow_only({"solver", "sph", "description"});
+  const JsonIn s = root.object("sph");
+  s.reject_renamed({{"viscosity_m2ps", "viscosity_m2s"}});
+  s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
+                "impact_alpha", "impact_beta", "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles",
+                "time", "surface"});
+  SphScene out;
+  SphParams& p = out.params;
+  parse_fluid_params(s, p);
+  parse_fluid_blocks(s, p);
+  check_sound_speed(s, p);
+  for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o));
+  parse_time(s, p);
+  out.surface = parse_surface(s, p);
   return out;
 }
 

@@ -1,4 +1,4 @@
-// Heightfield extraction of paper 000, eq. 5-6: see sph_surface.hpp.
+// Heightfield extraction of paper 000, eq. 5-6: see huygens/sph/surface.hpp.
 #include "huygens/sph/surface.hpp"
 
 #include <algorithm>
@@ -49,11 +49,11 @@ float sph_phi(const SphGrid& grid, const float* x, const float* y, const float* 
 }
 
 void sph_heightfield_init(const SphSurfaceParams& p, float lx, float ly, SphHeightfield& out) {
-  out.cols = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(lx / p.cell - 1e-4f)));
-  out.rows = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ly / p.cell - 1e-4f)));
-  out.cell = p.cell;
-  out.lx = lx;
-  out.ly = ly;
+  out.cols = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(lx / p.cell_m - 1e-4f)));
+  out.rows = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(ly / p.cell_m - 1e-4f)));
+  out.cell_m = p.cell_m;
+  out.lx_m = lx;
+  out.ly_m = ly;
   out.height.assign(out.rows * out.cols, 0.f);
   out.normal.assign(out.rows * out.cols * 3, 0.f);
 }
@@ -100,15 +100,15 @@ float phi_mirrored(const SphGrid& grid, const float* x, const float* y, const fl
 void sph_extract_heightfield(const SphSurfaceParams& p, const SphGrid& grid, const float* x, const float* y,
                              const float* z, SphHeightfield& out) {
   const std::size_t rows = out.rows, cols = out.cols;
-  const float R = p.radius, R2 = R * R, cell = out.cell;
+  const float R = p.radius_m, R2 = R * R, cell = out.cell_m;
   const std::size_t total = rows * cols;
-  const bool floor = out.lx > 0.f;
+  const bool floor = out.lx_m > 0.f;
 #pragma omp parallel for schedule(static) if (total > 1024)
   for (std::size_t idx = 0; idx < total; ++idx) {
     const std::size_t r = idx / cols, c = idx % cols;
     const float xc = (static_cast<float>(c) + 0.5f) * cell, yc = (static_cast<float>(r) + 0.5f) * cell;
     float mx[9], my[9];
-    const int np = mirror_points(xc, yc, R, out.lx, out.ly, mx, my);
+    const int np = mirror_points(xc, yc, R, out.lx_m, out.ly_m, mx, my);
     // highest point where phi becomes non-zero: top of the highest sphere of radius R over the column
     // (or over one of its mirrored columns)
     float ztop = -1.f;

@@ -1,16 +1,27 @@
 #pragma once
-// Uniform neighbour grid for SPH (paper 000 section 3; MCG03 section 6): cubic cells of side
-// = support radius h over the container, cell index c = ix + nx (iy + ny iz) (x fastest).
-// Particles are reordered by cell with a counting sort every step, so the particles of a cell
-// are contiguous and the three x-neighbour cells of a row form ONE contiguous index range:
-// a particle's neighbours lie in 9 ranges (the 27 cells), scanned by flat vectorisable loops.
-// No per-particle neighbour lists are built.
+// Uniform neighbour grid for SPH (paper 000 section 3; Mueller, Charypar and Gross 2003 section
+// 6): cubic cells of side = support radius h over the container, cell index c = ix + nx (iy + ny iz)
+// (x fastest). Particles are reordered by cell with a counting sort every step, so the particles
+// of a cell are contiguous and the three x-neighbour cells of a row form ONE contiguous index
+// range: a particle's neighbours lie in 9 ranges (the 27 cells), scanned by flat vectorisable
+// loops. No per-particle neighbour lists are built. SphCellGather copies the 9 ranges of a cell
+// once into per-thread contiguous scratch, so each particle of the cell runs one loop.
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
+#include "huygens/common/fft.hpp"
+
 namespace huygens {
+
+/// Below this many particles an SPH step takes a few hundred microseconds: the neighbour passes
+/// stay on one thread (threads cost more than they give).
+inline constexpr std::size_t kSphParallelMin = 2048;
+/// The streaming loops (sort gather, cell index, integration) cost a few ns per particle: below
+/// this many particles waking a second thread costs more than the loop (docs/sph.md).
+inline constexpr std::size_t kSphParallelLight = std::size_t(1) << 16;
 
 class SphGrid {
  public:
@@ -21,10 +32,11 @@ class SphGrid {
   int nx() const { return nx_; }
   int ny() const { return ny_; }
   int nz() const { return nz_; }
+  /// Cell side (unit: m).
   float cell() const { return cell_; }
   std::size_t cells() const { return static_cast<std::size_t>(nx_) * ny_ * nz_; }
 
-  /// Cell coordinates of a point, clamped to the grid.
+  /// Cell coordinates of a point (unit: m), clamped to the grid.
   int ix(float x) const { return clampi(static_cast<int>(x * inv_), nx_); }
   int iy(float y) const { return clampi(static_cast<int>(y * inv_), ny_); }
   int iz(float z) const { return clampi(static_cast<int>(z * inv_), nz_); }
@@ -41,6 +53,19 @@ class SphGrid {
     begin = start_[index(ix0, iy, iz)];
     end = start_[index(ix1, iy, iz) + 1];
   }
+  /// Calls row(begin, end, kz) for the 9 sorted index ranges of the 27 cells around (cx, cy, cz)
+  /// (clipped to the grid), z layer by z layer from below; stops when row returns false.
+  template <class Row>
+  bool for_each_row(int cx, int cy, int cz, Row&& row) const {
+    const int x0 = std::max(cx - 1, 0), x1 = std::min(cx + 1, nx_ - 1);
+    for (int kz = std::max(cz - 1, 0); kz <= std::min(cz + 1, nz_ - 1); ++kz)
+      for (int ky = std::max(cy - 1, 0); ky <= std::min(cy + 1, ny_ - 1); ++ky) {
+        std::uint32_t b, e;
+        row_range(x0, x1, ky, kz, b, e);
+        if (!row(b, e, kz)) return false;
+      }
+    return true;
+  }
   /// Bytes held by the grid tables.
   std::size_t bytes() const;
 
@@ -52,6 +77,63 @@ class SphGrid {
   std::vector<std::uint32_t> cursor_;   // scatter cursors
   std::vector<std::uint32_t> cell_of_;  // per particle
   std::vector<std::uint32_t> order_;    // sorted -> original index
+};
+
+/// Per-thread scratch for the candidates of one cell (up to kMaxArrays float arrays, SoA,
+/// 64-byte aligned and padded to whole vectors).
+class SphCellGather {
+ public:
+  static constexpr int kMaxArrays = 9;
+  SphCellGather() = default;
+  /// Room for `capacity` candidates per array and thread, for every thread OpenMP may run.
+  explicit SphCellGather(std::size_t capacity);
+
+  /// One thread's walk over the cells of its particles (in sorted order, so each cell is
+  /// gathered once per thread). `src` holds `arrays` arrays in the grid's sorted order.
+  class Cursor {
+   public:
+    Cursor(const SphGrid& grid, SphCellGather& gather, int thread, const float* const* src, int arrays);
+    /// The gathered copy of src[a].
+    const float* scratch(int a) const { return dst_[a]; }
+    /// Visits the candidates of cell (cx, cy, cz): fn(true, 0, count, floor_end) once on the
+    /// gathered copies (candidates [0, floor_end) lie in the bottom cell layer), or, when this
+    /// thread has no scratch or the candidates overflow it, fn(false, b, e, e) for each of the
+    /// nine ranges of the source arrays. Returns whether the candidates were gathered.
+    template <class Visit>
+    bool visit(int cx, int cy, int cz, Visit&& fn) {
+      const std::uint32_t c = grid_->index(cx, cy, cz);
+      if (own_ && c != cell_) {
+        cell_ = c;
+        count_ = gather(cx, cy, cz);
+      }
+      if (own_ && count_ >= 0) {
+        fn(true, std::uint32_t(0), static_cast<std::uint32_t>(count_), floor_end_);
+        return true;
+      }
+      grid_->for_each_row(cx, cy, cz, [&](std::uint32_t b, std::uint32_t e, int) {
+        fn(false, b, e, e);
+        return true;
+      });
+      return false;
+    }
+
+   private:
+    /// Copies the candidates into the scratch; the count, or -1 when they do not fit.
+    int gather(int cx, int cy, int cz);
+    const SphGrid* grid_;
+    const float* src_[kMaxArrays];
+    float* dst_[kMaxArrays];
+    int arrays_;
+    std::size_t cap_;
+    bool own_;
+    std::uint32_t cell_ = ~0u, floor_end_ = 0;
+    int count_ = -1;
+  };
+
+ private:
+  AlignedBuffer<float> scratch_;
+  std::size_t cap_ = 0;
+  int threads_ = 0;
 };
 
 }  // namespace huygens

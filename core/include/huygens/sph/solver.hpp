@@ -1,9 +1,11 @@
 #pragma once
-// The "sph" block of a scene (docs/design.md section 6) parsed into SphParams and the surface
-// parameters; errors are SceneError with the JSON path. Example:
+// The "sph" block of a scene (docs/design.md section 6; every key in docs/sph.md) parsed into
+// SphParams and the heightfield parameters of paper 000 eq. 5-6, and the factory of its Solver.
+// Errors are SceneError naming the JSON path; an old key (viscosity_m2ps) names its new name.
+// Example:
 //   { "solver": "sph",
 //     "sph": { "spacing_m": 0.01, "support_factor": 2.0, "rest_density_kgpm3": 1000,
-//              "viscosity_m2ps": 1e-4, "sound_speed_mps": null, "gravity_mps2": [0, 0, -9.81],
+//              "viscosity_m2s": 1e-6, "sound_speed_mps": null, "gravity_mps2": [0, 0, -9.81],
 //              "container_m": [0.2, 0.2, 0.2],
 //              "fluid": [ { "min_m": [0, 0, 0], "max_m": [0.2, 0.2, 0.075] } ],
 //              "obstacles": [ { "type": "box", "min_m": [..], "max_m": [..] },
@@ -13,22 +15,28 @@
 #include <memory>
 
 #include "huygens/common/scene.hpp"
-#include "huygens/sph/system.hpp"
+#include "huygens/sph/params.hpp"
 #include "huygens/sph/surface.hpp"
 
 namespace huygens {
 
 class Solver;
+struct RunOptions;
 
+/// Everything an "sph" scene specifies.
 struct SphScene {
+  /// The particle system (units in SphParams).
   SphParams params;
-  /// Heightfield extraction; iso defaults to sph_flat_iso(radius, spacing).
+  /// Heightfield extraction; iso defaults to sph_flat_iso(radius_m, spacing_m).
   SphSurfaceParams surface;
 };
 
 /// Parses and checks the scene's "sph" block (throws SceneError naming the JSON path).
 SphScene parse_sph_scene(const Scene& scene);
-/// The Solver for parsed parameters (throws std::invalid_argument for an unusable set-up).
+/// The Solver of a parsed scene (throws std::invalid_argument for an unusable set-up).
 std::unique_ptr<Solver> make_sph_solver(const SphScene& scene);
+/// parse_sph_scene() then make_sph_solver() (this solver uses no RunOptions); an unusable set-up
+/// is a SceneError at "$.sph".
+std::unique_ptr<Solver> make_sph_solver(const Scene& scene, const RunOptions& options);
 
 }  // namespace huygens

@@ -19,9 +19,9 @@ namespace huygens {
 
 struct SphSurfaceParams {
   /// Column spacing of the heightfield (unit: m).
-  float cell = 0.01f;
+  float cell_m = 0.01f;
   /// Iso-radius R of eq. 5 (unit: m); must not exceed the grid cell (support radius).
-  float radius = 0.02f;
+  float radius_m = 0.02f;
   /// Iso value of phi (unit: 1). Use sph_flat_iso() for the value that puts the surface of a flat
   /// particle lattice half a spacing above its top layer.
   float iso = 1.f;
@@ -33,9 +33,10 @@ struct SphSurfaceParams {
 /// and unit normals (rows x cols x 3).
 struct SphHeightfield {
   std::size_t rows = 0, cols = 0;
-  float cell = 0;
+  /// Column spacing (unit: m).
+  float cell_m = 0;
   /// Container extent of the mirror walls (set by sph_heightfield_init; 0 = no mirror images) (unit: m).
-  float lx = 0, ly = 0;
+  float lx_m = 0, ly_m = 0;
   std::vector<float> height;
   std::vector<float> normal;
 };

@@ -1,0 +1,68 @@
+#pragma once
+// Parameters of the SPH fluid (paper 000 section 3 after Mueller, Charypar and Gross 2003): the
+// particle lattice, the weakly compressible Tait fluid p = max(0, B ((rho/rho0)^gamma - 1)),
+// B = rho0 c0^2 / gamma, its viscosities, the container, the fluid blocks, the obstacles and the
+// adaptive time step. Why each choice: docs/sph.md.
+#include <array>
+#include <vector>
+
+#include "huygens/sph/boundary.hpp"
+
+namespace huygens {
+
+/// A box of fluid particles placed on a lattice of the particle spacing (cell centres).
+struct SphFluidBlock {
+  /// Lower corner (unit: m).
+  std::array<float, 3> min_m{0.f, 0.f, 0.f};
+  /// Upper corner (unit: m).
+  std::array<float, 3> max_m{0.1f, 0.1f, 0.1f};
+};
+
+struct SphParams {
+  /// Initial particle spacing, the lattice constant of the fluid blocks (unit: m).
+  float spacing_m = 0.01f;
+  /// Support radius h as a multiple of the spacing (unit: 1). 2.0 keeps the poly6 lattice sum within 1 %.
+  float support_factor = 2.0f;
+  /// Rest density rho0 (unit: kg/m^3).
+  float rest_density_kgpm3 = 1000.f;
+  /// Physical kinematic viscosity (unit: m^2/s).
+  float viscosity_m2s = 1e-6f;
+  /// Artificial viscosity eps: adds eps c0 h to the kinematic viscosity (unit: 1).
+  float artificial_viscosity = 0.01f;
+  /// Smallest artificial viscosity a scene may ask for (measured stability limit, docs/sph.md) (unit: 1).
+  static constexpr float min_artificial_viscosity = 0.007f;
+  /// Alpha (linear term) of the impact viscosity Pi_ij of Monaghan 1992 eq. 4.1 (unit: 1).
+  float impact_alpha = 0.f;
+  /// Beta (quadratic term) of the impact viscosity Pi_ij; 0 with alpha 0 = off (unit: 1).
+  float impact_beta = 4.f;
+  /// Speed of sound c0 of the Tait equation; 0 = automatic, 10 sqrt(2 g H) with H the fluid height (unit: m/s).
+  float sound_speed_mps = 0.f;
+  /// Tait exponent gamma (unit: 1).
+  float tait_gamma = 7.f;
+  /// Gravity vector at start (unit: m/s^2).
+  std::array<float, 3> gravity_mps2{0.f, 0.f, -9.81f};
+  /// Container size Lx, Ly, Lz; the container is [0, Lx] x [0, Ly] x [0, Lz], closed on all sides (unit: m).
+  std::array<float, 3> container_m{0.2f, 0.2f, 0.2f};
+  /// CFL number on the support radius (unit: 1).
+  float cfl = 0.15f;
+  /// Force condition factor (unit: 1).
+  float force_factor = 0.18f;
+  /// Viscous condition factor (unit: 1).
+  float viscous_factor = 0.03f;
+  /// Largest time step allowed (unit: s).
+  float dt_max_s = 1e-3f;
+  /// Scale the spiky pressure gradient by the particle's l_i = 3 / tr(sum_j V grad W (x)(x_j - x_i)), so the
+  /// pressure of a linear field is transmitted exactly for any particle arrangement (unit: on/off).
+  bool gradient_correction = true;
+  /// Velocity damping rate for settling runs, v *= 1 / (1 + damping dt); 0 = physical (unit: 1/s).
+  float damping_ps = 0.f;
+  /// Fluid blocks placed at start.
+  std::vector<SphFluidBlock> fluid;
+  /// Static obstacles.
+  std::vector<SphObstacle> obstacles;
+
+  /// Support radius h = support_factor spacing (unit: m).
+  float support() const { return support_factor * spacing_m; }
+};
+
+}  // namespace huygens

@@ -1,0 +1,134 @@
+// The SPH solver adapter (huygens/sph/solver.hpp): every key of the "sph" block lands in its
+// parameter, errors name the JSON path (an old key names its new one), and the shipped scenes
+// build, run, dump and take commands.
+#include "huygens/sph/solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "huygens/pipeline/solver.hpp"
+#include "scenes_dir.hpp"
+
+using namespace huygens;
+
+namespace {
+
+const std::string kOkFluid = R"("fluid": [ { "min_m": [0, 0, 0], "max_m": [0.1, 0.1, 0.05] } ])";
+
+// the scene error of an "sph" block with `extra` keys after a valid minimal set, or "<no error>"
+SceneError error_of(const std::string& text) {
+  try {
+    make_solver(parse_scene_text(text));
+  } catch (const SceneError& e) {
+    return e;
+  }
+  return SceneError("<no error>", "");
+}
+
+std::string path_of(const std::string& text) { return error_of(text).path(); }
+
+std::string with(const std::string& extra) {
+  return R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1], )" + kOkFluid + extra + "}}";
+}
+
+}  // namespace
+
+TEST(SphScene, EveryKeyLandsInItsParameter) {
+  const SphScene sc = parse_sph_scene(parse_scene_text(R"({"solver": "sph", "sph": {
+      "spacing_m": 0.02, "support_factor": 1.8, "rest_density_kgpm3": 998, "viscosity_m2s": 2e-6,
+      "artificial_viscosity": 0.02, "impact_alpha": 0.1, "impact_beta": 3, "sound_speed_mps": 20,
+      "gravity_mps2": [1, 0, -9], "container_m": [0.4, 0.3, 0.2],
+      "fluid": [ { "min_m": [0, 0, 0], "max_m": [0.2, 0.3, 0.1] } ],
+      "obstacles": [ { "type": "box", "min_m": [0.3, 0, 0], "max_m": [0.35, 0.1, 0.2] },
+                     { "type": "cylinder", "centre_m": [0.3, 0.2], "radius_m": 0.03, "z1_m": 0.15 } ],
+      "time": { "cfl": 0.2, "force": 0.1, "viscous": 0.02, "dt_max_s": 5e-4 },
+      "surface": { "cell_m": 0.01, "radius_factor": 1.5, "iso": 2.5 } }})"));
+  const SphParams& p = sc.params;
+  EXPECT_FLOAT_EQ(p.spacing_m, 0.02f);
+  EXPECT_FLOAT_EQ(p.support_factor, 1.8f);
+  EXPECT_FLOAT_EQ(p.rest_density_kgpm3, 998.f);
+  EXPECT_FLOAT_EQ(p.viscosity_m2s, 2e-6f);
+  EXPECT_FLOAT_EQ(p.artificial_viscosity, 0.02f);
+  EXPECT_FLOAT_EQ(p.impact_alpha, 0.1f);
+  EXPECT_FLOAT_EQ(p.impact_beta, 3.f);
+  EXPECT_FLOAT_EQ(p.sound_speed_mps, 20.f);
+  EXPECT_EQ(p.gravity_mps2, (std::array<float, 3>{1.f, 0.f, -9.f}));
+  EXPECT_EQ(p.container_m, (std::array<float, 3>{0.4f, 0.3f, 0.2f}));
+  ASSERT_EQ(p.fluid.size(), 1u);
+  EXPECT_FLOAT_EQ(p.fluid[0].max_m[1], 0.3f);
+  ASSERT_EQ(p.obstacles.size(), 2u);
+  EXPECT_EQ(p.obstacles[0].type, SphObstacle::Type::box);
+  EXPECT_FLOAT_EQ(p.obstacles[0].min_m[0], 0.3f);
+  EXPECT_EQ(p.obstacles[1].type, SphObstacle::Type::cylinder);
+  EXPECT_FLOAT_EQ(p.obstacles[1].centre_m[1], 0.2f);
+  EXPECT_FLOAT_EQ(p.obstacles[1].radius_m, 0.03f);
+  EXPECT_FLOAT_EQ(p.obstacles[1].z0_m, 0.f);
+  EXPECT_FLOAT_EQ(p.obstacles[1].z1_m, 0.15f);
+  EXPECT_FLOAT_EQ(p.cfl, 0.2f);
+  EXPECT_FLOAT_EQ(p.force_factor, 0.1f);
+  EXPECT_FLOAT_EQ(p.viscous_factor, 0.02f);
+  EXPECT_FLOAT_EQ(p.dt_max_s, 5e-4f);
+  EXPECT_FLOAT_EQ(sc.surface.cell_m, 0.01f);
+  EXPECT_FLOAT_EQ(sc.surface.radius_m, 0.03f);
+  EXPECT_FLOAT_EQ(sc.surface.iso, 2.5f);
+  // defaults: the heightfield on the particle spacing and support radius, the flat-lattice iso
+  const SphScene d = parse_sph_scene(parse_scene_text(with("")));
+  EXPECT_FLOAT_EQ(d.surface.cell_m, 0.01f);
+  EXPECT_FLOAT_EQ(d.surface.radius_m, 0.02f);
+  EXPECT_FLOAT_EQ(d.surface.iso, sph_flat_iso(0.02f, 0.01f));
+  EXPECT_FLOAT_EQ(d.params.viscosity_m2s, 1e-6f);
+}
+
+TEST(SphScene, TheOldViscosityKeyIsRefusedNamingTheNewOne) {
+  const SceneError e = error_of(with(R"(, "viscosity_m2ps": 1e-6)"));
+  EXPECT_EQ(e.path(), "$.sph.viscosity_m2ps");
+  EXPECT_NE(std::string(e.what()).find("\"viscosity_m2s\""), std::string::npos) << e.what();
+}
+
+TEST(SphScene, ErrorsNameTheJsonPath) {
+  EXPECT_EQ(path_of(with(R"(, "bogus": 1)")), "$.sph.bogus");
+  EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1], )" + kOkFluid + "}}"),
+            "$.sph.container_m");
+  EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, -1, 0.1], )" + kOkFluid +
+                    "}}"),
+            "$.sph.container_m[1]");
+  EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1], "fluid": [
+               { "min_m": [0, 0, 0], "max_m": [0.3, 0.1, 0.05] } ]}})"),
+            "$.sph.fluid[0].max_m");
+  EXPECT_EQ(path_of(with(R"(, "surface": {"radius_factor": 3.0})")), "$.sph.surface.radius_factor");
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "cone"} ])")), "$.sph.obstacles[0].type");
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "cylinder", "centre_m": [0.05], "radius_m": 0.01, "z1_m": 0.1} ])")),
+            "$.sph.obstacles[0].centre_m");
+  EXPECT_EQ(path_of(with(R"(, "time": {"cfl": 2})")), "$.sph.time.cfl");
+  // unstable settings are refused before the run, with the reason
+  EXPECT_EQ(path_of(with(R"(, "artificial_viscosity": 0.001)")), "$.sph.artificial_viscosity");
+  EXPECT_EQ(path_of(with(R"(, "sound_speed_mps": 1.0)")), "$.sph.sound_speed_mps");
+  EXPECT_EQ(path_of(with("")), "<no error>");
+}
+
+TEST(SphScene, ShippedScenesBuildAndRun) {
+  for (const char* name : {"pool.json", "sph_dam_break.json"}) {
+    auto solver = make_solver(load_scene(huygens::test::scenes_dir() + "/" + name));
+    for (int k = 0; k < 3; ++k) solver->step();
+    const auto out = solver->outputs();
+    ASSERT_EQ(out.size(), 2u);
+    EXPECT_EQ(out[0].name, "pos");
+    EXPECT_EQ(out[0].shape[1], 3u);
+    EXPECT_EQ(out[0].data.size(), out[0].shape[0] * 3);
+    EXPECT_EQ(out[1].name, "eta");
+    EXPECT_EQ(out[1].shape[0], solver->height_rows());
+    EXPECT_EQ(out[1].shape[1], solver->height_cols());
+    EXPECT_EQ(solver->meta()["dt"]["steps"], 3);
+    EXPECT_EQ(solver->stats().find("surface") >= 0, true);
+  }
+  auto pool = make_solver(load_scene(huygens::test::scenes_dir() + "/pool.json"));
+  EXPECT_TRUE(pool->apply(cmd::Drop{0.05f, 0.05f, 0.02f, 0.01f}));
+  EXPECT_TRUE(pool->apply(cmd::SetParam{"gravity_x", 2.0}));
+  EXPECT_FALSE(pool->apply(cmd::SetParam{"no_such_param", 1.0}));
+  EXPECT_FALSE(pool->apply(cmd::Pause{}));
+  const auto n = pool->meta()["particles"].get<std::size_t>();
+  EXPECT_GT(n, 2500u);
+  EXPECT_LT(n, 3500u);
+}
