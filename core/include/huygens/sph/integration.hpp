@@ -2,7 +2,7 @@
 // Time step and integration of the SPH particles (docs/sph.md "Time step"). The step adapts
 // every step, on the support radius h (m), sound speed c0 (m/s), kinematic viscosity nu (m^2/s):
 //   dt = min(cfl h / (c0 + v_max), force sqrt(h / a_max), viscous h^2 / nu, dt_max)
-// (the CFL, force and viscous conditions of Monaghan 1992 section 10). Symplectic Euler
+// (the acoustic CFL, force and viscous conditions; the factors in SphParams). Symplectic Euler
 // v += a dt, x += v dt, with v *= 1 / (1 + damping dt) for settling runs; then every particle is
 // clamped 0.1 spacing inside the container and outside every obstacle, its normal velocity into
 // the wall removed, so no particle leaves the container.
