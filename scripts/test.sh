@@ -4,7 +4,9 @@
 # threaded tests, AddressSanitizer + UBSan on the unit tests; scripts/test-sanitizers.sh).
 # Between the two, `huygens-bench --quick` (every section at CI size, about 2-3 minutes): it
 # asserts no timing, but it must finish and its accuracy checks must pass (exit 0).
-# HUYGENS_SKIP_SANITIZERS=1 runs the Release suite only; HUYGENS_SKIP_BENCH=1 skips the bench.
+# HUYGENS_SKIP_SANITIZERS=1 runs the Release suite only; HUYGENS_SKIP_BENCH=1 skips the bench;
+# HUYGENS_SKIP_INSTALL_TEST=1 skips scripts/test-install.sh (the installed CMake package used by
+# an outside project, right after ctest).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-deps.sh"
@@ -12,6 +14,7 @@ bash "$root/scripts/build.sh"
 # OpenMP threads that sleep at barriers: ctest runs two 2-thread tests at once on 2 cores.
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
 (cd "${HUYGENS_BUILD_DIR:-$root/build}" && ctest --output-on-failure -j "$(nproc)" --timeout 900)
+[ "${HUYGENS_SKIP_INSTALL_TEST:-0}" = 1 ] || bash "$root/scripts/test-install.sh"  # find_package(huygens) from outside
 if [ "${HUYGENS_SKIP_BENCH:-0}" != 1 ]; then
   echo "== huygens-bench --quick"
   "${HUYGENS_BUILD_DIR:-$root/build}/benchmarks/huygens-bench" --quick --csv "${HUYGENS_BUILD_DIR:-$root/build}/bench-quick.csv"
