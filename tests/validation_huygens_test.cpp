@@ -1,5 +1,5 @@
-// Every Huygens validation case of `huygens validate` passes (issue 2's list, and issue 3's).
-// Issue 2's and the cheap issue 3 cases (ship_steps, stokes, interpolation) are the full cases;
+// Every Huygens validation case of `huygens validate` passes. The propagator's cases and the
+// cheap ship, Stokes and wind ones (ship_steps, stokes, interpolation) are the full cases;
 // the Kelvin, Froude-trend and capillary runs take minutes at n = 512, so the suite runs them on
 // smaller grids (same code path, same measurement, same tolerances): Kelvin at Fr 0.4 on
 // n = 256 with 8 cells per wavelength, capillary on n = 256 (0.26 m of 1 mm cells).
