@@ -2,6 +2,12 @@
 
 namespace huygens {
 
+double mean_level(std::span<const float> height) {
+  double sum = 0.0;
+  for (float v : height) sum += v;
+  return height.empty() ? 0.0 : sum / static_cast<double>(height.size());
+}
+
 RenderRequest parse_render_request(const JsonIn& root) {
   RenderRequest r;
   const std::optional<JsonIn> block = root.optional_object("render");

@@ -119,6 +119,28 @@ class SphSolver final : public Solver {
   }
   std::size_t height_rows() const override { return hf_.rows; }
   std::size_t height_cols() const override { return hf_.cols; }
+  /// Heightfield cell centres ((c + 1/2) cell, (r + 1/2) cell), the rest level (mean initial
+  /// height above the floor, the ground that far down), the obstacles; an adaptive step shown
+  /// at 60 frames per simulated second; no toggles. Makes the height (before the first step).
+  RenderInfo render_info() override {
+    RenderInfo r;
+    const double c = hf_.cell_m;
+    r.grid = RenderGrid{hf_.rows, hf_.cols, c, 0.5 * c, 0.5 * c};
+    r.rest_level_m = mean_level(height());
+    if (r.rest_level_m > 0.0) r.depth_m = r.rest_level_m;
+    for (const SphObstacle& o : sys_.params().obstacles) {
+      RenderObstacle ro;
+      ro.kind = o.type == SphObstacle::Type::box ? RenderObstacle::Kind::box : RenderObstacle::Kind::cylinder;
+      for (int a = 0; a < 3; ++a) ro.min_m[a] = o.min_m[a], ro.max_m[a] = o.max_m[a];
+      ro.centre_m = {o.centre_m[0], o.centre_m[1]};
+      ro.radius_m = o.radius_m;
+      ro.z0_m = o.z0_m;
+      ro.z1_m = o.z1_m;
+      r.obstacles.push_back(ro);
+    }
+    r.frame_dt_s = 1.0 / 60.0;
+    return r;
+  }
 
  private:
   SphScene scene_;

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,10 @@ struct RenderInfo {
   std::vector<RenderToggle> toggles;
   RenderRequest request;
 };
+
+/// The mean of a height field (unit: m): RenderInfo::rest_level_m of a solver whose height() is a
+/// level above a floor, taken before the first step; 0 for an empty field.
+double mean_level(std::span<const float> height);
 
 /// Reads the scene's optional "render" block ({"caustics": bool, "blur": "accumulation" |
 /// "float" | "none"}) below `root`; throws SceneError naming the path of a bad value.
