@@ -97,7 +97,7 @@ TEST(LbmKernel, TauOneRelaxesToZhouEquilibrium) {
     }
   LbmShallow sim(p, f);
   sim.step();
-  const double g = sim.lattice().g_lat;
+  const double g = sim.lattice().g_lat_pm;
   double worst = 0;
   for (int r = 0; r < p.rows; ++r)
     for (int c = 0; c < p.cols; ++c) {

@@ -1,14 +1,19 @@
-// "solver": "lbm" scenes: the shipped scenes run, outputs have the documented shapes, and bad
-// or unstable scenes are refused with the JSON path of the offending value.
+// "solver": "lbm" scenes (lbm/solver.hpp): the shipped scenes run, outputs have the documented
+// shapes, parse_lbm_scene resolves the time step, viscosity and fields, and bad or unstable scenes
+// are refused with the JSON path of the offending value in every block of the scene.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "huygens/common/npy.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/lbm/solver.hpp"
+#include "huygens/lbm/stoker.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "scenes_dir.hpp"
 
@@ -130,4 +135,152 @@ TEST(LbmScene, BedFromNpyKeepsStillWaterStill) {
   j["lbm"]["grid"]["cols"] = cols + 1;  // shape mismatch
   EXPECT_EQ(error_path(j), "$.lbm.bed.file");
   std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+struct BadScene {
+  const char* what;
+  std::function<void(json&)> edit;
+  const char* path;
+};
+
+void expect_paths(const std::vector<BadScene>& cases) {
+  for (const BadScene& c : cases) {
+    json j = json::parse(kBase);
+    c.edit(j);
+    EXPECT_EQ(error_path(j), c.path) << c.what;
+  }
+}
+
+}  // namespace
+
+TEST(LbmScene, GridAndWaterErrorsNameTheirPath) {
+  expect_paths({
+      {"grid missing", [](json& j) { j["lbm"].erase("grid"); }, "$.lbm.grid"},
+      {"cell size missing", [](json& j) { j["lbm"]["grid"].erase("cell_m"); }, "$.lbm.grid.cell_m"},
+      {"no columns", [](json& j) { j["lbm"]["grid"]["cols"] = 0; }, "$.lbm.grid.cols"},
+      {"unsuffixed cell", [](json& j) { j["lbm"]["grid"]["cell"] = 0.5; }, "$.lbm.grid.cell"},
+      {"tau and viscosity", [](json& j) { j["lbm"]["water"]["viscosity_m2s"] = 1e-3; }, "$.lbm.water.tau"},
+      {"negative gravity", [](json& j) { j["lbm"]["water"]["gravity_mps2"] = -9.81; }, "$.lbm.water.gravity_mps2"},
+      {"unsuffixed gravity", [](json& j) { j["lbm"]["water"]["gravity"] = 9.81; }, "$.lbm.water.gravity"},
+      {"zero dry threshold", [](json& j) { j["lbm"]["water"]["min_depth_m"] = 0.0; }, "$.lbm.water.min_depth_m"},
+  });
+}
+
+TEST(LbmScene, BedAndInitialErrorsNameTheirPath) {
+  expect_paths({
+      {"unknown bed", [](json& j) { j["lbm"]["bed"]["type"] = "stairs"; }, "$.lbm.bed.type"},
+      {"bump without width", [](json& j) { j["lbm"]["bed"].erase("half_width_m"); }, "$.lbm.bed.half_width_m"},
+      {"flat bed with a bump key", [](json& j) { j["lbm"]["bed"]["type"] = "flat"; }, "$.lbm.bed.half_width_m"},
+      {"npy without file", [](json& j) { j["lbm"]["bed"] = {{"type", "npy"}}; }, "$.lbm.bed.file"},
+      {"bed force", [](json& j) { j["lbm"]["bed_force"] = "upwind"; }, "$.lbm.bed_force"},
+      {"no initial", [](json& j) { j["lbm"].erase("initial"); }, "$.lbm.initial"},
+      {"no level", [](json& j) { j["lbm"]["initial"].erase("surface_m"); }, "$.lbm.initial"},
+      {"depth and surface", [](json& j) { j["lbm"]["initial"]["depth_m"] = 1.0; }, "$.lbm.initial.surface_m"},
+      {"velocity element", [](json& j) { j["lbm"]["initial"]["velocity_mps"] = {0.0, "fast"}; },
+       "$.lbm.initial.velocity_mps[1]"},
+      {"velocity size", [](json& j) { j["lbm"]["initial"]["velocity_mps"] = {0.0}; }, "$.lbm.initial.velocity_mps"},
+      {"region velocity range", [](json& j) { j["lbm"]["initial"]["regions"][0]["velocity_mps"] = {0.0, 1e5}; },
+       "$.lbm.initial.regions[0].velocity_mps[1]"},
+      {"region unknown key", [](json& j) { j["lbm"]["initial"]["regions"][0]["x_m"] = 1.0; },
+       "$.lbm.initial.regions[0].x_m"},
+      {"dam without right depth", [](json& j) { j["lbm"]["initial"]["dam"] = {{"x_m", 5.0}, {"left_depth_m", 1.0}}; },
+       "$.lbm.initial.dam.right_depth_m"},
+  });
+}
+
+TEST(LbmScene, ObstacleBoundaryAndTimeErrorsNameTheirPath) {
+  expect_paths({
+      {"circle without radius", [](json& j) { j["lbm"]["obstacles"][0].erase("radius_m"); },
+       "$.lbm.obstacles[0].radius_m"},
+      {"rect with a circle's keys", [](json& j) { j["lbm"]["obstacles"][0]["type"] = "rect"; },
+       "$.lbm.obstacles[0].radius_m"},
+      {"unknown side", [](json& j) { j["lbm"]["boundaries"]["top"] = "open"; }, "$.lbm.boundaries.top"},
+      {"inflow on a wall", [](json& j) { j["lbm"]["inflow"] = {{"discharge_m2s", 0.1}}; }, "$.lbm.inflow"},
+      {"outflow on a slip side", [](json& j) { j["lbm"]["outflow"] = {{"depth_m", 1.0}}; }, "$.lbm.outflow"},
+      {"outflow on the left", [](json& j) { j["lbm"]["boundaries"]["left"] = "outflow"; }, "$.lbm.boundaries.left"},
+      {"force size", [](json& j) { j["lbm"]["force"] = {{"accel_mps2", {0.0}}}; }, "$.lbm.force.accel_mps2"},
+      {"force element", [](json& j) { j["lbm"]["force"] = {{"accel_mps2", {0.0, "down"}}}; },
+       "$.lbm.force.accel_mps2[1]"},
+      {"dt and cfl", [](json& j) { j["lbm"]["time"]["dt_s"] = 0.01; }, "$.lbm.time.cfl"},
+      {"zero cfl", [](json& j) { j["lbm"]["time"]["cfl"] = 0.0; }, "$.lbm.time.cfl"},
+      {"cfl beyond the lattice speed", [](json& j) { j["lbm"]["time"]["cfl"] = 0.9; }, "$.lbm.time.cfl"},
+      {"unknown time key", [](json& j) { j["lbm"]["time"]["dt"] = 0.01; }, "$.lbm.time.dt"},
+      {"everything solid",
+       [](json& j) {
+         j["lbm"]["obstacles"] = {{{"type", "rect"}, {"x0_m", 0.0}, {"x1_m", 20.0}, {"y0_m", 0.0}, {"y1_m", 4.0}}};
+       },
+       "$.lbm.obstacles"},
+      {"dry threshold above the water", [](json& j) { j["lbm"]["water"]["min_depth_m"] = 2.0; }, "$.lbm.initial"},
+  });
+}
+
+TEST(LbmScene, ParseResolvesTimeStepViscosityAndFields) {
+  const LbmScene s = parse_lbm_scene(parse_scene_text(kBase));
+  const LbmParams& p = s.params;
+  EXPECT_EQ(p.cols, 40);
+  EXPECT_EQ(p.rows, 8);
+  EXPECT_DOUBLE_EQ(p.cell_m, 0.5);
+  // cfl 0.5 on the deepest still water (the raised region, 1.05 m); tau 0.6 -> nu.
+  const double dt = 0.5 * 0.5 / std::sqrt(9.81 * 1.05);
+  EXPECT_NEAR(p.dt_s, dt, 1e-6 * dt);
+  EXPECT_NEAR(p.viscosity_m2s, 0.1 * 0.25 / (3.0 * p.dt_s), 1e-12);
+  EXPECT_EQ(p.left, LbmSide::wall);
+  EXPECT_EQ(p.right, LbmSide::slip);
+  EXPECT_EQ(p.bottom, LbmSide::periodic);
+  EXPECT_EQ(p.bed_force, LbmBedForce::centred);
+  EXPECT_EQ(p.expected_froude, 0.0);
+  // The obstacle: cell centres within 0.6 m of (15, 2) m are (r, c) = (3..4, 29..30).
+  int solid = 0;
+  for (auto v : s.fields.solid) solid += v;
+  EXPECT_EQ(solid, 4);
+  EXPECT_EQ(s.fields.solid[3 * 40 + 29], 1);
+  EXPECT_EQ(s.fields.solid[4 * 40 + 30], 1);
+  EXPECT_NEAR(s.fields.bed_m[20], 0.2f * (1 - (0.25f / 3) * (0.25f / 3)), 1e-7f);
+  EXPECT_FLOAT_EQ(s.fields.depth_m[5], 1.05f);
+  // The Solver built from the parsed scene is the one make_solver builds.
+  auto a = make_lbm_solver(s);
+  auto b = make_solver(parse_scene_text(kBase), RunOptions{false});
+  for (int i = 0; i < 3; ++i) a->step(), b->step();
+  const auto ha = a->height(), hb = b->height();
+  ASSERT_EQ(ha.size(), hb.size());
+  for (std::size_t i = 0; i < ha.size(); ++i) ASSERT_EQ(ha[i], hb[i]) << i;
+}
+
+TEST(LbmScene, DamFlowBoundsTheTimeStep) {
+  json j = json::parse(kBase);
+  j["lbm"]["initial"] = {{"dam", {{"x_m", 10.0}, {"left_depth_m", 1.0}, {"right_depth_m", 0.5}}}};
+  j["lbm"]["bed"] = {{"type", "flat"}};
+  const LbmScene s = parse_lbm_scene(parse_scene_text(j.dump()));
+  const StokerSolution st = stoker_solve({1.0, 0.5, 9.81});
+  EXPECT_DOUBLE_EQ(s.params.expected_signal_speed_mps, st.max_signal_speed_mps);
+  EXPECT_DOUBLE_EQ(s.params.expected_froude, st.middle_velocity_mps / std::sqrt(9.81 * st.middle_depth_m));
+  EXPECT_GT(st.max_signal_speed_mps, std::sqrt(9.81));  // the dam's flow, not the still water, sets dt
+  EXPECT_NEAR(s.params.dt_s, 0.5 * 0.5 / st.max_signal_speed_mps, 1e-12);
+  EXPECT_FLOAT_EQ(s.fields.depth_m[19], 1.0f);  // x = 9.75 m
+  EXPECT_FLOAT_EQ(s.fields.depth_m[20], 0.5f);  // x = 10.25 m
+  // Too steep a dam names the right depth and the largest ratio that would run.
+  j["lbm"]["initial"]["dam"]["right_depth_m"] = 0.1;
+  try {
+    parse_lbm_scene(parse_scene_text(j.dump()));
+    FAIL() << "a transcritical dam was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "$.lbm.initial.dam.right_depth_m");
+    EXPECT_NE(std::string(e.what()).find("h_L/h_R <= 5."), std::string::npos) << e.what();
+  }
+}
+
+TEST(LbmScene, NullVectorsAreZero) {
+  json j = json::parse(kBase);
+  j["lbm"]["initial"]["velocity_mps"] = {0.1, 0.0};
+  j["lbm"]["initial"]["regions"][0]["velocity_mps"] = nullptr;  // the region is at rest
+  j["lbm"]["force"] = {{"accel_mps2", nullptr}};
+  const LbmScene s = parse_lbm_scene(parse_scene_text(j.dump()));
+  EXPECT_FLOAT_EQ(s.fields.ux_mps[0], 0.1f);   // x = 0.25 m: outside the region
+  EXPECT_FLOAT_EQ(s.fields.ux_mps[5], 0.0f);   // x = 2.75 m: inside
+  EXPECT_EQ(s.params.accel_mps2[0], 0.0);
+  EXPECT_EQ(s.params.accel_mps2[1], 0.0);
+  j["lbm"]["initial"]["velocity_mps"] = nullptr;
+  EXPECT_FLOAT_EQ(parse_lbm_scene(parse_scene_text(j.dump())).fields.ux_mps[0], 0.0f);
 }

@@ -43,7 +43,10 @@ std::array<double, 9> lbm_equilibrium(double g, double h, double ux, double uy) 
   return f;
 }
 
-LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
+namespace {
+
+// Grid size and the scalar parameters: positive, finite.
+void check_scalars(const LbmParams& p) {
   if (p.cols < 1 || p.rows < 1 || p.cols > 65536 || p.rows > 65536)
     throw LbmRefused("cols", "grid must have 1..65536 rows and columns");
   if (!(p.cell_m > 0) || !std::isfinite(p.cell_m)) throw LbmRefused("cell_m", "cell size must be > 0");
@@ -51,6 +54,10 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
   if (!(p.gravity_mps2 > 0)) throw LbmRefused("gravity_mps2", "gravity must be > 0");
   if (!(p.viscosity_m2s >= 0)) throw LbmRefused("viscosity_m2s", "viscosity must be >= 0");
   if (!(p.min_depth_m > 0)) throw LbmRefused("min_depth_m", "the dry threshold must be > 0");
+}
+
+// Every initial field is empty or has one value per cell; the depth is required.
+void check_field_sizes(const LbmParams& p, const LbmFields& in) {
   const std::size_t n = static_cast<std::size_t>(p.rows) * static_cast<std::size_t>(p.cols);
   auto size_ok = [&](std::size_t s, const char* name) {
     if (s != 0 && s != n)
@@ -62,8 +69,10 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
   size_ok(in.uy_mps.size(), "uy_mps");
   size_ok(in.solid.size(), "solid");
   if (in.depth_m.empty()) throw LbmRefused("depth_m", "an initial depth field is required");
+}
 
-  // Sides: periodic in pairs, inflow on the left and outflow on the right only.
+// Sides: periodic in pairs, inflow on the left and outflow on the right only.
+void check_sides(const LbmParams& p) {
   const LbmSide sides[4] = {p.left, p.right, p.bottom, p.top};
   if ((p.left == LbmSide::periodic) != (p.right == LbmSide::periodic))
     throw LbmRefused(p.left == LbmSide::periodic ? "right" : "left", "periodic sides come in pairs (left and right)");
@@ -76,15 +85,19 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
       throw LbmRefused(side_name(i), "outflow is supported on the right side only");
   }
   if (p.outflow_depth_m < 0) throw LbmRefused("outflow_depth_m", "must be >= 0 (0 = zero gradient)");
+}
 
-  LbmLattice lat;
+// Extremes of the initial state over the fluid cells (unit: m/s for speeds, m for depth).
+struct InitialScan {
+  double smax = 0, hmax = 0, frmax = 0;
+};
+
+// Dry cells first (the wave speed needs h > 0), then the signal speed, the Froude number and the
+// smallest rest fraction f0/h = 1 - 5 g h / 6 - 2 u.u / 3 (lattice units, paper 002 eq. 2).
+InitialScan scan_initial(const LbmParams& p, const LbmFields& in, LbmLattice& lat) {
+  const std::size_t n = static_cast<std::size_t>(p.rows) * static_cast<std::size_t>(p.cols);
   const double dx = p.cell_m, dt = p.dt_s, g = p.gravity_mps2;
-  lat.speed_mps = dx / dt;
-  lat.g_lat = g * dt * dt / (dx * dx);
-  lat.tau = 0.5 + 3.0 * p.viscosity_m2s * dt / (dx * dx);
-
-  // Dry cells first (the wave speed needs h > 0), then f0 >= 0, then the signal speed.
-  double smax = 0, hmax = 0, umax = 0, frmax = 0;
+  InitialScan s;
   std::size_t fluid = 0;
   lat.min_rest_fraction = 1.0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -102,50 +115,72 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
                                       " m: dry cells are not supported by this solver (no wetting and drying); "
                                       "deepen the water there or mark the cell as an obstacle");
     const double u = std::hypot(ux, uy);
-    frmax = std::max(frmax, u / std::sqrt(g * h));
-    smax = std::max(smax, u + std::sqrt(g * h));
-    hmax = std::max(hmax, h);
-    umax = std::max(umax, u);
+    s.frmax = std::max(s.frmax, u / std::sqrt(g * h));
+    s.smax = std::max(s.smax, u + std::sqrt(g * h));
+    s.hmax = std::max(s.hmax, h);
     const double ul = u * dt / dx;
-    lat.min_rest_fraction = std::min(lat.min_rest_fraction, 1.0 - 5.0 * lat.g_lat * h / 6.0 - 2.0 * ul * ul / 3.0);
+    lat.min_rest_fraction = std::min(lat.min_rest_fraction, 1.0 - 5.0 * lat.g_lat_pm * h / 6.0 - 2.0 * ul * ul / 3.0);
   }
   if (fluid == 0) throw LbmRefused("solid", "no fluid cell left");
-  smax = std::max(smax, p.expected_signal_speed_mps);
-  if (p.left == LbmSide::inflow) smax = std::max(smax, p.inflow_discharge_m2s / std::max(hmax, p.min_depth_m));
+  return s;
+}
+
+// tau = 1/2 + 3 nu dt / dx^2 >= 0.55 (Zhou 2004), else a refusal suggesting nu, dt or dx.
+void check_tau(const LbmParams& p, const LbmLattice& lat, double smax) {
+  if (lat.tau >= 0.55) return;
+  const double dx = p.cell_m, dt = p.dt_s;
+  const double nu_min = 0.05 * dx * dx / (3.0 * dt);
+  const double dt_min = p.viscosity_m2s > 0 ? 0.05 * dx * dx / (3.0 * p.viscosity_m2s) : INFINITY;
+  std::string fix = "raise viscosity_m2s to >= " + g6(nu_min) + " m^2/s";
+  if (dt_min * smax / dx < 0.8)
+    fix += ", or use dt_s >= " + g6(dt_min) + " s";
+  else if (p.viscosity_m2s > 0)
+    fix += ", or refine to cell_m <= " + g6(60.0 * p.viscosity_m2s * dt / dx) + " m with dt_s scaled in proportion";
+  throw LbmRefused("viscosity_m2s",
+                   "BGK relaxation time tau = 1/2 + 3 nu dt/dx^2 = " + g6(lat.tau) + " < 0.55 (unstable): " + fix);
+}
+
+// f0 >= 0, (|u| + sqrt(g h)) dt/dx < 0.8, Froude <= kLbmMaxFroude now and expected, then tau.
+void check_stability(const LbmParams& p, LbmLattice& lat, const InitialScan& s) {
+  const double dx = p.cell_m, dt = p.dt_s;
+  double smax = std::max(s.smax, p.expected_signal_speed_mps);
+  if (p.left == LbmSide::inflow) smax = std::max(smax, p.inflow_discharge_m2s / std::max(s.hmax, p.min_depth_m));
   lat.signal_ratio = smax * dt / dx;
   const double dt_ok = 0.5 * dx / smax;  // a comfortable step: half the lattice speed
   if (lat.min_rest_fraction < 0)
     throw LbmRefused("dt_s",
                      "the rest population f0 = h (1 - 5 g h / 6 - 2 u^2 / 3) (lattice units) is negative (g h = " +
-                         g6(lat.g_lat * hmax) + " > 1.2 at the deepest cell): use dt_s <= " + g6(dt_ok) +
+                         g6(lat.g_lat_pm * s.hmax) + " > 1.2 at the deepest cell): use dt_s <= " + g6(dt_ok) +
                          " s or cells of at least " + g6(2.0 * smax * dt) + " m");
   if (lat.signal_ratio >= 0.8)
     throw LbmRefused("dt_s", "(|u| + sqrt(g h)) dt/dx = " + g6(lat.signal_ratio) +
                                  " >= 0.8 of the lattice speed (largest signal speed " + g6(smax) +
                                  " m/s): use dt_s <= " + g6(dt_ok) + " s or cell_m >= " + g6(2.0 * smax * dt) + " m");
-  if (frmax > kLbmMaxFroude)
-    throw LbmRefused("depth_m",
-                     "the initial flow has Froude number |u|/sqrt(g h) = " + g6(frmax) + " > " + g6(kLbmMaxFroude) +
-                         ": transcritical flow is refused (the BGK equilibrium cannot stay positive at "
-                         "u = sqrt(g h) within the lattice-speed limit); lower the velocity or deepen the water");
+  const char* why =
+      ": transcritical flow is refused (the BGK equilibrium cannot stay positive at "
+      "u = sqrt(g h) within the lattice-speed limit)";
+  if (s.frmax > kLbmMaxFroude)
+    throw LbmRefused("depth_m", "the initial flow has Froude number |u|/sqrt(g h) = " + g6(s.frmax) + " > " +
+                                    g6(kLbmMaxFroude) + why + "; lower the velocity or deepen the water");
   if (p.expected_froude > kLbmMaxFroude)
-    throw LbmRefused("expected_froude",
-                     "the flow is expected to reach Froude number " + g6(p.expected_froude) + " > " +
-                         g6(kLbmMaxFroude) +
-                         ": transcritical flow is refused (the BGK equilibrium cannot stay positive at "
-                         "u = sqrt(g h) within the lattice-speed limit)");
-  if (lat.tau < 0.55) {
-    const double nu_min = 0.05 * dx * dx / (3.0 * dt);
-    const double dt_min = p.viscosity_m2s > 0 ? 0.05 * dx * dx / (3.0 * p.viscosity_m2s) : INFINITY;
-    std::string fix = "raise viscosity_m2s to >= " + g6(nu_min) + " m^2/s";
-    if (dt_min * smax / dx < 0.8)
-      fix += ", or use dt_s >= " + g6(dt_min) + " s";
-    else if (p.viscosity_m2s > 0)
-      fix += ", or refine to cell_m <= " + g6(60.0 * p.viscosity_m2s * dt / dx) + " m with dt_s scaled in proportion";
-    throw LbmRefused("viscosity_m2s",
-                     "BGK relaxation time tau = 1/2 + 3 nu dt/dx^2 = " + g6(lat.tau) + " < 0.55 (unstable): " + fix);
-  }
-  (void)umax;
+    throw LbmRefused("expected_froude", "the flow is expected to reach Froude number " + g6(p.expected_froude) +
+                                            " > " + g6(kLbmMaxFroude) + why);
+  check_tau(p, lat, smax);
+}
+
+}  // namespace
+
+LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
+  check_scalars(p);
+  check_field_sizes(p, in);
+  check_sides(p);
+  LbmLattice lat;
+  const double dx = p.cell_m, dt = p.dt_s, g = p.gravity_mps2;
+  lat.speed_mps = dx / dt;
+  lat.g_lat_pm = g * dt * dt / (dx * dx);
+  lat.tau = 0.5 + 3.0 * p.viscosity_m2s * dt / (dx * dx);
+  const InitialScan scan = scan_initial(p, in, lat);
+  check_stability(p, lat, scan);
   return lat;
 }
 
@@ -161,7 +196,7 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
   solid_.assign(plane_, 1);
 
   omega_ = static_cast<float>(1.0 / lat_.tau);
-  g_ = static_cast<float>(lat_.g_lat);
+  g_ = static_cast<float>(lat_.g_lat_pm);
   const double acc = p.dt_s * p.dt_s / p.cell_m;  // m/s^2 -> lattice units
   ax_ = static_cast<float>(p.accel_mps2[0] * acc);
   ay_ = static_cast<float>(p.accel_mps2[1] * acc);
@@ -192,7 +227,7 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
       ++nfluid;
     }
   href_ = static_cast<float>(hsum / static_cast<double>(nfluid));
-  shift_ = lbm_equilibrium(lat_.g_lat, href_, 0.0, 0.0);
+  shift_ = lbm_equilibrium(lat_.g_lat_pm, href_, 0.0, 0.0);
   for (int r = 0; r < ny; ++r)
     for (int c = 0; c < nx; ++c) {
       const std::size_t i = static_cast<std::size_t>(r) * nx + c;
@@ -200,7 +235,7 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
       const std::size_t k = idx(r, c);
       solid_[k] = 0;
       const double h = in.depth_m[i];
-      const auto f = lbm_equilibrium(lat_.g_lat, h, at(in.ux_mps, r, c) * vl, at(in.uy_mps, r, c) * vl);
+      const auto f = lbm_equilibrium(lat_.g_lat_pm, h, at(in.ux_mps, r, c) * vl, at(in.uy_mps, r, c) * vl);
       for (int a = 0; a < 9; ++a) fa_[a * plane_ + k] = fb_[a * plane_ + k] = static_cast<float>(f[a] - shift_[a]);
       ha_[k] = hb_[k] = static_cast<float>(h);
     }
@@ -334,8 +369,86 @@ void LbmShallow::fill_ghosts() {
   }
 }
 
-// The fused pull stream-collide pass over fluid row spans. Mode 0: flat bed; 1: well-balanced
-// centred bed term; 2: naive bed term.
+namespace {
+
+// The nine populations of one cell (shifted by the still-water equilibrium, unit: m).
+struct Cell9 {
+  float f0, f1, f2, f3, f4, f5, f6, f7, f8;
+};
+
+// Centred bed term added to the pulled populations, k1 = g/6, k5 = g/24 (lattice units):
+//   S_a = -lambda_a g (h(x) + h(x - e_a)) (z(x) - z(x - e_a)) / 6
+[[gnu::always_inline]] inline void add_centred_bed(Cell9& f, const float* __restrict h, const float* __restrict z,
+                                                   std::ptrdiff_t c, std::ptrdiff_t S, float k1, float k5) {
+  const float hc = h[c], zc = z[c];
+  f.f1 -= k1 * (hc + h[c - 1]) * (zc - z[c - 1]);
+  f.f2 -= k1 * (hc + h[c - S]) * (zc - z[c - S]);
+  f.f3 -= k1 * (hc + h[c + 1]) * (zc - z[c + 1]);
+  f.f4 -= k1 * (hc + h[c + S]) * (zc - z[c + S]);
+  f.f5 -= k5 * (hc + h[c - S - 1]) * (zc - z[c - S - 1]);
+  f.f6 -= k5 * (hc + h[c - S + 1]) * (zc - z[c - S + 1]);
+  f.f7 -= k5 * (hc + h[c + S + 1]) * (zc - z[c + S + 1]);
+  f.f8 -= k5 * (hc + h[c + S - 1]) * (zc - z[c + S - 1]);
+}
+
+// Naive bed term: F = -g h(x) grad z_b (central difference at x); S_a = lambda_a e_a.F / 3.
+[[gnu::always_inline]] inline void add_naive_bed(Cell9& f, const float* __restrict h, const float* __restrict z,
+                                                 std::ptrdiff_t c, std::ptrdiff_t S, float g) {
+  const float gh = -0.5f * g * h[c];
+  const float fx = gh * (z[c + 1] - z[c - 1]), fy = gh * (z[c + S] - z[c - S]);
+  f.f1 += fx * (1.0f / 3.0f);
+  f.f3 -= fx * (1.0f / 3.0f);
+  f.f2 += fy * (1.0f / 3.0f);
+  f.f4 -= fy * (1.0f / 3.0f);
+  f.f5 += (fx + fy) * (1.0f / 12.0f);
+  f.f7 -= (fx + fy) * (1.0f / 12.0f);
+  f.f6 += (fy - fx) * (1.0f / 12.0f);
+  f.f8 -= (fy - fx) * (1.0f / 12.0f);
+}
+
+// Constants of the collision: omega = 1/tau, g_lat (1/m), the force a dt^2/dx, H and h_min (m).
+struct Collision {
+  float w, g, ax, ay, hmin, href;
+};
+
+// BGK collision (paper 002 eq. 1) of a cell's pulled populations f: moments (eq. 3-4) and the
+// equilibrium (eq. 2), both minus the shift, plus the force lambda_a h (e_a . a) / 3. Writes the
+// new depth h; `bad` counts h < h_min (also NaN).
+[[gnu::always_inline]] inline Cell9 collide(const Cell9& f, const Collision& k, float& h, float& bad) {
+  const float f0 = f.f0, f1 = f.f1, f2 = f.f2, f3 = f.f3, f4 = f.f4, f5 = f.f5, f6 = f.f6, f7 = f.f7, f8 = f.f8;
+  // moments of the shifted populations: dh = h - H exactly as precise as the wave
+  const float dh = ((f0 + f1) + (f2 + f3)) + ((f4 + f5) + (f6 + f7)) + f8;
+  h = k.href + dh;
+  const float mx = (f1 + f5 + f8) - (f3 + f6 + f7);
+  const float my = (f2 + f5 + f6) - (f4 + f7 + f8);
+  const float ih = h > k.hmin ? 1.0f / h : 0.0f;
+  bad += h >= k.hmin ? 0.0f : 1.0f;
+  const float ux = mx * ih, uy = my * ih;
+  // equilibrium minus the shift: axis base g (h^2 - H^2)/6 - h u.u/6;
+  // rest = dh - sum of the others (so the shifted equilibria sum to dh: mass exact)
+  const float usq = ux * ux + uy * uy;
+  const float base = (k.g * dh * (h + k.href) - h * usq) * (1.0f / 6.0f);
+  const float hh = 0.5f * h, h3 = h * (1.0f / 3.0f);
+  const float q1 = base + hh * ux * ux, q2 = base + hh * uy * uy;
+  const float e1 = q1 + h3 * ux, e3 = q1 - h3 * ux;
+  const float e2 = q2 + h3 * uy, e4 = q2 - h3 * uy;
+  const float s5 = ux + uy, s6 = uy - ux;
+  const float q5 = 0.25f * (base + hh * s5 * s5), q6 = 0.25f * (base + hh * s6 * s6);
+  const float e5 = q5 + 0.25f * h3 * s5, e7 = q5 - 0.25f * h3 * s5;
+  const float e6 = q6 + 0.25f * h3 * s6, e8 = q6 - 0.25f * h3 * s6;
+  const float e0 = dh - (((e1 + e2) + (e3 + e4)) + ((e5 + e6) + (e7 + e8)));
+  const float gx = h3 * k.ax, gy = h3 * k.ay;
+  const float g5 = 0.25f * (gx + gy), g6 = 0.25f * (gy - gx);
+  const float w = k.w;
+  return {f0 + w * (e0 - f0),      f1 + w * (e1 - f1) + gx, f2 + w * (e2 - f2) + gy,
+          f3 + w * (e3 - f3) - gx, f4 + w * (e4 - f4) - gy, f5 + w * (e5 - f5) + g5,
+          f6 + w * (e6 - f6) + g6, f7 + w * (e7 - f7) - g5, f8 + w * (e8 - f8) - g6};
+}
+
+}  // namespace
+
+// The fused pull stream-collide pass over fluid row spans (one pass: pull, bed term, collide,
+// store). Mode 0: flat bed; 1: well-balanced centred bed term; 2: naive bed term.
 template <int Mode>
 void LbmShallow::stream_collide(int& flagged) {
   const std::ptrdiff_t S = static_cast<std::ptrdiff_t>(stride_);
@@ -345,15 +458,15 @@ void LbmShallow::stream_collide(int& flagged) {
   const float* __restrict hold = ha_.data();
   float* __restrict hnew = hb_.data();
   const float* __restrict z = z_.data();
-  const float w = omega_, g = g_, ax = ax_, ay = ay_, hmin = hmin_, href = href_;
-  const float k1 = g / 6.0f, k5 = g / 24.0f;
+  const Collision k{omega_, g_, ax_, ay_, hmin_, href_};
+  const float k1 = g_ / 6.0f, k5 = g_ / 24.0f;
   const Span* spans = spans_.data();
   const int nspans = static_cast<int>(spans_.size());
   int total = 0;
   const bool par = ncells_ >= 16384;  // small lattices: a thread team costs more than it saves
 #pragma omp parallel for schedule(static) reduction(+ : total) if (par)
-  for (int k = 0; k < nspans; ++k) {
-    const std::ptrdiff_t b = spans[k].begin, e = spans[k].end;
+  for (int s = 0; s < nspans; ++s) {
+    const std::ptrdiff_t b = spans[s].begin, e = spans[s].end;
     // f_a(x) pulls f*_a(x - e_a): pa[c] = plane a at c - (ey S + ex).
     const float* __restrict p0 = src;
     const float* __restrict p1 = src + 1 * P - 1;
@@ -376,66 +489,20 @@ void LbmShallow::stream_collide(int& flagged) {
     float bad = 0.0f;
 #pragma omp simd reduction(+ : bad)
     for (std::ptrdiff_t c = b; c < e; ++c) {
-      const float f0 = p0[c];
-      float f1 = p1[c], f2 = p2[c], f3 = p3[c], f4 = p4[c], f5 = p5[c], f6 = p6[c], f7 = p7[c], f8 = p8[c];
-      if constexpr (Mode == 1) {
-        // S_a = -lambda_a g (h(x) + h(x - e_a)) (z(x) - z(x - e_a)) / 6
-        const float hc = hold[c], zc = z[c];
-        f1 -= k1 * (hc + hold[c - 1]) * (zc - z[c - 1]);
-        f2 -= k1 * (hc + hold[c - S]) * (zc - z[c - S]);
-        f3 -= k1 * (hc + hold[c + 1]) * (zc - z[c + 1]);
-        f4 -= k1 * (hc + hold[c + S]) * (zc - z[c + S]);
-        f5 -= k5 * (hc + hold[c - S - 1]) * (zc - z[c - S - 1]);
-        f6 -= k5 * (hc + hold[c - S + 1]) * (zc - z[c - S + 1]);
-        f7 -= k5 * (hc + hold[c + S + 1]) * (zc - z[c + S + 1]);
-        f8 -= k5 * (hc + hold[c + S - 1]) * (zc - z[c + S - 1]);
-      } else if constexpr (Mode == 2) {
-        // F = -g h(x) grad z_b (central difference at x); S_a = lambda_a e_a.F / 3
-        const float gh = -0.5f * g * hold[c];
-        const float fx = gh * (z[c + 1] - z[c - 1]), fy = gh * (z[c + S] - z[c - S]);
-        f1 += fx * (1.0f / 3.0f);
-        f3 -= fx * (1.0f / 3.0f);
-        f2 += fy * (1.0f / 3.0f);
-        f4 -= fy * (1.0f / 3.0f);
-        f5 += (fx + fy) * (1.0f / 12.0f);
-        f7 -= (fx + fy) * (1.0f / 12.0f);
-        f6 += (fy - fx) * (1.0f / 12.0f);
-        f8 -= (fy - fx) * (1.0f / 12.0f);
-      }
-      // moments (eq. 3-4) of the shifted populations: dh = h - H exactly as precise as the wave
-      const float dh = ((f0 + f1) + (f2 + f3)) + ((f4 + f5) + (f6 + f7)) + f8;
-      const float h = href + dh;
-      const float mx = (f1 + f5 + f8) - (f3 + f6 + f7);
-      const float my = (f2 + f5 + f6) - (f4 + f7 + f8);
-      const float ih = h > hmin ? 1.0f / h : 0.0f;
-      bad += h >= hmin ? 0.0f : 1.0f;  // also counts NaN
-      const float ux = mx * ih, uy = my * ih;
-      // equilibrium (eq. 2) minus the shift: axis base g (h^2 - H^2)/6 - h u.u/6;
-      // rest = dh - sum of the others (so the shifted equilibria sum to dh: mass exact)
-      const float usq = ux * ux + uy * uy;
-      const float base = (g * dh * (h + href) - h * usq) * (1.0f / 6.0f);
-      const float hh = 0.5f * h, h3 = h * (1.0f / 3.0f);
-      const float q1 = base + hh * ux * ux, q2 = base + hh * uy * uy;
-      const float e1 = q1 + h3 * ux, e3 = q1 - h3 * ux;
-      const float e2 = q2 + h3 * uy, e4 = q2 - h3 * uy;
-      const float s5 = ux + uy, s6 = uy - ux;
-      const float q5 = 0.25f * (base + hh * s5 * s5), q6 = 0.25f * (base + hh * s6 * s6);
-      const float e5 = q5 + 0.25f * h3 * s5, e7 = q5 - 0.25f * h3 * s5;
-      const float e6 = q6 + 0.25f * h3 * s6, e8 = q6 - 0.25f * h3 * s6;
-      const float e0 = dh - (((e1 + e2) + (e3 + e4)) + ((e5 + e6) + (e7 + e8)));
-      // external force lambda_a h (e_a . a) / 3
-      const float gx = h3 * ax, gy = h3 * ay;
-      const float g5 = 0.25f * (gx + gy), g6 = 0.25f * (gy - gx);
-      // BGK (eq. 1)
-      d0[c] = f0 + w * (e0 - f0);
-      d1[c] = f1 + w * (e1 - f1) + gx;
-      d2[c] = f2 + w * (e2 - f2) + gy;
-      d3[c] = f3 + w * (e3 - f3) - gx;
-      d4[c] = f4 + w * (e4 - f4) - gy;
-      d5[c] = f5 + w * (e5 - f5) + g5;
-      d6[c] = f6 + w * (e6 - f6) + g6;
-      d7[c] = f7 + w * (e7 - f7) - g5;
-      d8[c] = f8 + w * (e8 - f8) - g6;
+      Cell9 f{p0[c], p1[c], p2[c], p3[c], p4[c], p5[c], p6[c], p7[c], p8[c]};
+      if constexpr (Mode == 1) add_centred_bed(f, hold, z, c, S, k1, k5);
+      if constexpr (Mode == 2) add_naive_bed(f, hold, z, c, S, k.g);
+      float h;
+      const Cell9 o = collide(f, k, h, bad);
+      d0[c] = o.f0;
+      d1[c] = o.f1;
+      d2[c] = o.f2;
+      d3[c] = o.f3;
+      d4[c] = o.f4;
+      d5[c] = o.f5;
+      d6[c] = o.f6;
+      d7[c] = o.f7;
+      d8[c] = o.f8;
       hnew[c] = h;
     }
     total += static_cast<int>(bad);

@@ -1,32 +1,19 @@
-// "solver": "lbm" scenes: the D2Q9 shallow-water lattice Boltzmann solver (lbm_shallow.hpp)
-// behind the Solver interface. Scene block (every key optional unless marked):
-//   "lbm": {
-//     "grid":   {"cols": N (req.), "rows": M (req.), "cell_m": dx (req.)},
-//     "time":   {"dt_s": dt} or {"cfl": 0.5}   (dt = cfl dx / max(|u| + sqrt(g h)); default cfl 0.5)
-//     "water":  {"gravity_mps2": 9.81, "viscosity_m2s": nu} or {"tau": 0.6}, "min_depth_m": 1e-4},
-//     "bed":    {"type": "flat", "z_m": 0} | {"type": "bump", "x_m", "half_width_m", "height_m"}
-//               (z = height (1 - ((x - x_m)/half_width)^2) inside, Goutal-Maurel shape)
-//               | {"type": "npy", "file": "bed.npy"} (float32 (rows, cols), metres, relative to the scene),
-//     "bed_force": "centred" | "naive",
-//     "initial": {"depth_m": h | "surface_m": eta, "velocity_mps": [u, v],
-//                 "regions": [{"x0_m", "x1_m", "y0_m", "y1_m", "depth_m" | "surface_m", "velocity_mps"}],
-//                 "dam": {"x_m", "left_depth_m", "right_depth_m"}},
-//     "boundaries": {"left"|"right"|"bottom"|"top": "wall" | "slip" | "periodic" | "inflow" | "outflow"},
-//     "inflow": {"discharge_m2s": q}, "outflow": {"depth_m": h},
-//     "obstacles": [{"type": "circle", "x_m", "y_m", "radius_m"} | {"type": "rect", "x0_m", "x1_m", "y0_m", "y1_m"}],
-//     "force": {"accel_mps2": [ax, ay]}
-//   }
-// Positions are metres from the corner of cell (0, 0); cell (r, c) has its centre at ((c + 1/2) dx, (r + 1/2) dx).
+// "solver": "lbm" scenes: the "lbm" block parsed block by block (grid, water, bed, initial state,
+// obstacles, boundaries, time step) into LbmScene, and LbmShallow behind the Solver interface.
+// The keys and their defaults are in docs/lbm.md.
+#include "huygens/lbm/solver.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
-#include "huygens/lbm/shallow.hpp"
 #include "huygens/common/npy.hpp"
 #include "huygens/common/report.hpp"
-#include "huygens/pipeline/solver.hpp"
+#include "huygens/lbm/shallow.hpp"
 #include "huygens/lbm/stoker.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 namespace huygens {
 
@@ -34,26 +21,10 @@ namespace {
 
 using nlohmann::json;
 
-LbmSide parse_side(const JsonIn& b, const char* key) {
-  const std::string s = b.string(key, "wall", {"wall", "slip", "periodic", "inflow", "outflow"});
-  if (s == "slip") return LbmSide::slip;
-  if (s == "periodic") return LbmSide::periodic;
-  if (s == "inflow") return LbmSide::inflow;
-  if (s == "outflow") return LbmSide::outflow;
-  return LbmSide::wall;
-}
-
-std::array<double, 2> parse_vec2(const JsonIn& o, const char* key, double lo, double hi) {
-  std::array<double, 2> v{0.0, 0.0};
-  if (!o.has(key) || o.is_null(key)) return v;
-  const json& j = o.raw()[key];
-  if (!j.is_array() || j.size() != 2) o.fail(key, "expected an array of two numbers");
-  for (int i = 0; i < 2; ++i) {
-    if (!j[i].is_number()) o.fail(key, "expected an array of two numbers");
-    v[i] = j[i].get<double>();
-    if (!std::isfinite(v[i]) || v[i] < lo || v[i] > hi) o.fail(key, "component out of range");
-  }
-  return v;
+// A velocity or acceleration [x, y] in [lo, hi]; absent or null = zero.
+std::array<double, 2> vec2_or_zero(const JsonIn& o, const char* key, double lo, double hi) {
+  if (!o.has(key) || o.is_null(key)) return {0.0, 0.0};
+  return o.vec<2>(key, lo, hi);
 }
 
 class LbmSolver final : public Solver {
@@ -109,9 +80,19 @@ class LbmSolver final : public Solver {
   std::vector<float> h_, eta_, u_, bed_;
 };
 
-std::string refusal_path(const std::string& param, bool dt_given, bool tau_given) {
-  if (param == "viscosity_m2s") return tau_given ? "$.lbm.water.tau" : "$.lbm.water.viscosity_m2s";
-  if (param == "dt_s") return dt_given ? "$.lbm.time.dt_s" : "$.lbm.time.cfl";
+// What naming a refused parameter needs from the parse.
+struct ParseNotes {
+  /// The time step came from dt_s (else from cfl).
+  bool dt_given = false;
+  /// The viscosity came from tau (else from viscosity_m2s).
+  bool tau_given = false;
+  /// Largest dam depth ratio h_L/h_R whose Stoker middle state has Froude <= kLbmMaxFroude.
+  double dam_ratio_max = 0;
+};
+
+std::string refusal_path(const std::string& param, const ParseNotes& notes) {
+  if (param == "viscosity_m2s") return notes.tau_given ? "$.lbm.water.tau" : "$.lbm.water.viscosity_m2s";
+  if (param == "dt_s") return notes.dt_given ? "$.lbm.time.dt_s" : "$.lbm.time.cfl";
   if (param == "cell_m" || param == "cols") return "$.lbm.grid." + param;
   if (param == "gravity_mps2" || param == "min_depth_m") return "$.lbm.water." + param;
   if (param == "depth_m") return "$.lbm.initial";
@@ -122,164 +103,209 @@ std::string refusal_path(const std::string& param, bool dt_given, bool tau_given
   return "$.lbm";
 }
 
-}  // namespace
+std::size_t cell_count(const LbmParams& p) { return static_cast<std::size_t>(p.rows) * p.cols; }
 
-std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions&) {
-  const JsonIn root = scene.root();
-  root.allow_only({"solver", "lbm", "description", "render"});
-  const JsonIn lb = root.object("lbm");
-  lb.allow_only({"grid", "time", "water", "bed", "bed_force", "initial", "boundaries", "inflow", "outflow", "obstacles",
-                 "force"});
-  LbmParams p;
+// Calls fn(i, x, y) for every cell i = r cols + c, centre (x, y) = ((c + 1/2) dx, (r + 1/2) dx) (unit: m).
+template <class Fn>
+void for_each_cell(const LbmParams& p, Fn fn) {
+  for (int r = 0; r < p.rows; ++r)
+    for (int c = 0; c < p.cols; ++c)
+      fn(static_cast<std::size_t>(r) * p.cols + c, (c + 0.5) * p.cell_m, (r + 0.5) * p.cell_m);
+}
+
+void parse_grid(const JsonIn& lb, LbmParams& p) {
   const JsonIn grid = lb.object("grid");
   grid.allow_only({"cols", "rows", "cell_m"});
   p.cols = static_cast<int>(grid.integer("cols", 1, 16384));
   p.rows = static_cast<int>(grid.integer("rows", 1, 16384));
   p.cell_m = grid.number("cell_m", 1e-6, 1e6);
-  const double dx = p.cell_m;
-  const std::size_t n = static_cast<std::size_t>(p.rows) * p.cols;
+}
 
-  if (auto w = lb.optional_object("water")) {
-    w->allow_only({"gravity_mps2", "viscosity_m2s", "tau", "min_depth_m"});
-    if (w->has("viscosity_m2s") && w->has("tau")) w->fail("tau", "give viscosity_m2s or tau, not both");
-    p.gravity_mps2 = w->number("gravity_mps2", 9.81, 1e-6, 1e3);
-    p.min_depth_m = w->number("min_depth_m", p.min_depth_m, 1e-12, 1e3);
+// Gravity, the dry threshold and the viscosity; returns tau when the scene gives it instead of
+// viscosity_m2s (nu = (tau - 1/2) dx^2 / (3 dt) once dt is known).
+std::optional<double> parse_water(const JsonIn& lb, LbmParams& p) {
+  const std::optional<JsonIn> w = lb.optional_object("water");
+  if (!w) return std::nullopt;
+  w->allow_only({"gravity_mps2", "viscosity_m2s", "tau", "min_depth_m"});
+  if (w->has("viscosity_m2s") && w->has("tau")) w->fail("tau", "give viscosity_m2s or tau, not both");
+  p.gravity_mps2 = w->number("gravity_mps2", 9.81, 1e-6, 1e3);
+  p.min_depth_m = w->number("min_depth_m", p.min_depth_m, 1e-12, 1e3);
+  const std::optional<double> tau = w->has("tau") ? std::optional(w->number("tau", 0.0, 100.0)) : std::nullopt;
+  p.viscosity_m2s = w->number("viscosity_m2s", 1e-3, 0.0, 1e6);
+  return tau;
+}
+
+// The Goutal-Maurel bump shape: z = height (1 - ((x - x_m) / half_width)^2) where |x - x_m| < half_width.
+void bump_bed(const JsonIn& bed, const LbmParams& p, std::vector<float>& z) {
+  bed.allow_only({"type", "x_m", "half_width_m", "height_m"});
+  const double x0 = bed.number("x_m", -1e9, 1e9), w = bed.number("half_width_m", 1e-9, 1e9);
+  const double hb = bed.number("height_m", -1e4, 1e4);
+  for_each_cell(p, [&](std::size_t i, double x, double) {
+    const double s = (x - x0) / w;
+    z[i] = static_cast<float>(std::abs(s) < 1 ? hb * (1 - s * s) : 0.0);
+  });
+}
+
+// A float32 (rows, cols) array in metres; a relative file name is relative to the scene file.
+std::vector<float> npy_bed(const JsonIn& bed, const Scene& scene, const LbmParams& p) {
+  bed.allow_only({"type", "file"});
+  std::filesystem::path file = bed.string("file", "");
+  if (file.empty()) bed.fail("file", "missing required file name");
+  if (file.is_relative()) file = std::filesystem::path(scene.file).parent_path() / file;
+  NpyArray a;
+  try {
+    a = read_npy(file.string());
+  } catch (const std::exception& e) {
+    bed.fail("file", std::string("cannot read bed: ") + e.what());
   }
-  const std::optional<JsonIn> water = lb.optional_object("water");
-  const bool tau_given = water && water->has("tau");
-  const double tau = tau_given ? water->number("tau", 0.0, 100.0) : 0.0;
-  p.viscosity_m2s = water ? water->number("viscosity_m2s", 1e-3, 0.0, 1e6) : 1e-3;
-  const double g = p.gravity_mps2;
+  if (a.shape.size() != 2 || a.shape[0] != static_cast<std::size_t>(p.rows) ||
+      a.shape[1] != static_cast<std::size_t>(p.cols))
+    bed.fail("file", "bed array must have shape (rows, cols) = (" + std::to_string(p.rows) + ", " +
+                         std::to_string(p.cols) + ")");
+  return std::move(a.data);
+}
 
-  // Bed.
-  LbmFields f;
-  f.bed_m.assign(n, 0.0f);
+// "bed" (flat, bump or npy; absent = flat at 0) and "bed_force".
+void parse_bed(const JsonIn& lb, const Scene& scene, LbmParams& p, LbmFields& f) {
+  f.bed_m.assign(cell_count(p), 0.0f);
   if (auto bed = lb.optional_object("bed")) {
     const std::string type = bed->string("type", "flat", {"flat", "bump", "npy"});
     if (type == "flat") {
       bed->allow_only({"type", "z_m"});
       std::fill(f.bed_m.begin(), f.bed_m.end(), static_cast<float>(bed->number("z_m", 0.0, -1e4, 1e4)));
     } else if (type == "bump") {
-      bed->allow_only({"type", "x_m", "half_width_m", "height_m"});
-      const double x0 = bed->number("x_m", -1e9, 1e9), w = bed->number("half_width_m", 1e-9, 1e9);
-      const double hb = bed->number("height_m", -1e4, 1e4);
-      for (int r = 0; r < p.rows; ++r)
-        for (int c = 0; c < p.cols; ++c) {
-          const double s = ((c + 0.5) * dx - x0) / w;
-          f.bed_m[static_cast<std::size_t>(r) * p.cols + c] =
-              static_cast<float>(std::abs(s) < 1 ? hb * (1 - s * s) : 0.0);
-        }
+      bump_bed(*bed, p, f.bed_m);
     } else {
-      bed->allow_only({"type", "file"});
-      std::filesystem::path file = bed->string("file", "");
-      if (file.empty()) bed->fail("file", "missing required file name");
-      if (file.is_relative()) file = std::filesystem::path(scene.file).parent_path() / file;
-      NpyArray a;
-      try {
-        a = read_npy(file.string());
-      } catch (const std::exception& e) {
-        bed->fail("file", std::string("cannot read bed: ") + e.what());
-      }
-      if (a.shape.size() != 2 || a.shape[0] != static_cast<std::size_t>(p.rows) ||
-          a.shape[1] != static_cast<std::size_t>(p.cols))
-        bed->fail("file", "bed array must have shape (rows, cols) = (" + std::to_string(p.rows) + ", " +
-                              std::to_string(p.cols) + ")");
-      f.bed_m = a.data;
+      f.bed_m = npy_bed(*bed, scene, p);
     }
   }
-  std::string bed_force = lb.string("bed_force", "centred", {"centred", "naive"});
+  const std::string bed_force = lb.string("bed_force", "centred", {"centred", "naive"});
   p.bed_force = bed_force == "naive" ? LbmBedForce::naive : LbmBedForce::centred;
+}
 
-  // Initial depth and velocity.
-  f.depth_m.assign(n, 0.0f);
-  f.ux_mps.assign(n, 0.0f);
-  f.uy_mps.assign(n, 0.0f);
-  double expected_speed = 0, expected_froude = 0, dam_ratio_max = 0;
-  const JsonIn init = lb.object("initial");
-  init.allow_only({"depth_m", "surface_m", "velocity_mps", "regions", "dam"});
-  auto set_level = [&](const JsonIn& o, std::size_t i) {
-    if (o.has("depth_m"))
-      f.depth_m[i] = static_cast<float>(o.number("depth_m", -1e4, 1e4));
-    else if (o.has("surface_m"))
-      f.depth_m[i] = static_cast<float>(o.number("surface_m", -1e4, 1e4) - f.bed_m[i]);
-  };
-  if (init.has("depth_m") && init.has("surface_m")) init.fail("surface_m", "give depth_m or surface_m, not both");
-  if (!init.has("depth_m") && !init.has("surface_m") && !init.has("dam"))
-    init.fail_here("needs depth_m, surface_m or a dam");
-  const auto u0 = parse_vec2(init, "velocity_mps", -1e4, 1e4);
-  for (std::size_t i = 0; i < n; ++i) {
-    set_level(init, i);
-    f.ux_mps[i] = static_cast<float>(u0[0]);
-    f.uy_mps[i] = static_cast<float>(u0[1]);
+// The water level of object o ("depth_m", or "surface_m" minus the bed) at cell i; neither: unchanged.
+void set_level(const JsonIn& o, std::size_t i, LbmFields& f) {
+  if (o.has("depth_m"))
+    f.depth_m[i] = static_cast<float>(o.number("depth_m", -1e4, 1e4));
+  else if (o.has("surface_m"))
+    f.depth_m[i] = static_cast<float>(o.number("surface_m", -1e4, 1e4) - f.bed_m[i]);
+}
+
+// The flow a dam releases (Stoker 1957): it bounds the time step and is refused when transcritical.
+struct DamFlow {
+  /// Largest |u| + sqrt(g h) of the Stoker solution (unit: m/s); 0 = no dam.
+  double signal_speed_mps = 0;
+  /// Froude number of the Stoker middle state.
+  double froude = 0;
+  /// Largest depth ratio h_L/h_R whose middle state has Froude <= kLbmMaxFroude.
+  double ratio_max = 0;
+};
+
+// Froude number u_m / sqrt(g h_m) of the Stoker middle state.
+double middle_froude(const StokerSolution& s) {
+  return s.middle_velocity_mps / std::sqrt(s.params.gravity_mps2 * s.middle_depth_m);
+}
+
+// "dam": left_depth_m for x < x_m, right_depth_m beyond, and the flow it releases.
+DamFlow parse_dam(const JsonIn& dam, const LbmParams& p, LbmFields& f) {
+  dam.allow_only({"x_m", "left_depth_m", "right_depth_m"});
+  const double xd = dam.number("x_m", -1e9, 1e9);
+  const double hl = dam.number("left_depth_m", 0.0, 1e4), hr = dam.number("right_depth_m", 0.0, 1e4);
+  for_each_cell(p, [&](std::size_t i, double x, double) { f.depth_m[i] = static_cast<float>(x < xd ? hl : hr); });
+  DamFlow flow;
+  if (hl == hr || std::min(hl, hr) <= 0) return flow;
+  const double g = p.gravity_mps2;
+  const StokerSolution st = stoker_solve({std::max(hl, hr), std::min(hl, hr), g});
+  flow.signal_speed_mps = st.max_signal_speed_mps;
+  flow.froude = middle_froude(st);
+  double lo = 1.0001, hi = 100.0;  // bisection on the ratio
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (middle_froude(stoker_solve({1.0, 1.0 / mid, g})) > kLbmMaxFroude ? hi : lo) = mid;
   }
-  if (auto dam = init.optional_object("dam")) {
-    dam->allow_only({"x_m", "left_depth_m", "right_depth_m"});
-    const double xd = dam->number("x_m", -1e9, 1e9);
-    const double hl = dam->number("left_depth_m", 0.0, 1e4), hr = dam->number("right_depth_m", 0.0, 1e4);
-    for (int r = 0; r < p.rows; ++r)
-      for (int c = 0; c < p.cols; ++c)
-        f.depth_m[static_cast<std::size_t>(r) * p.cols + c] = static_cast<float>((c + 0.5) * dx < xd ? hl : hr);
-    // The flow the dam releases: its largest signal speed bounds the time step (Stoker).
-    if (hl != hr && std::min(hl, hr) > 0) {
-      const auto st = stoker_solve({std::max(hl, hr), std::min(hl, hr), g});
-      expected_speed = st.max_signal_speed_mps;
-      expected_froude = st.middle_velocity_mps / std::sqrt(g * st.middle_depth_m);
-      // Largest depth ratio whose middle state stays below the Froude limit (bisection).
-      double lo = 1.0001, hi = 100.0;
-      for (int i = 0; i < 60; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        const auto s = stoker_solve({1.0, 1.0 / mid, g});
-        (s.middle_velocity_mps / std::sqrt(g * s.middle_depth_m) > kLbmMaxFroude ? hi : lo) = mid;
-      }
-      dam_ratio_max = lo;
-    }
-  }
+  flow.ratio_max = lo;
+  return flow;
+}
+
+// "regions": rectangles [x0, x1) x [y0, y1) (unit: m) with their own level and velocity.
+void parse_regions(const JsonIn& init, const LbmParams& p, LbmFields& f) {
   for (const JsonIn& reg : init.array("regions")) {
     reg.allow_only({"x0_m", "x1_m", "y0_m", "y1_m", "depth_m", "surface_m", "velocity_mps"});
     const double x0 = reg.number("x0_m", -1e9, -1e9, 1e9), x1 = reg.number("x1_m", 1e9, -1e9, 1e9);
     const double y0 = reg.number("y0_m", -1e9, -1e9, 1e9), y1 = reg.number("y1_m", 1e9, -1e9, 1e9);
     if (reg.has("depth_m") && reg.has("surface_m")) reg.fail("surface_m", "give depth_m or surface_m, not both");
     const bool has_u = reg.has("velocity_mps");
-    const auto u = parse_vec2(reg, "velocity_mps", -1e4, 1e4);
-    for (int r = 0; r < p.rows; ++r)
-      for (int c = 0; c < p.cols; ++c) {
-        const double x = (c + 0.5) * dx, y = (r + 0.5) * dx;
-        if (x < x0 || x >= x1 || y < y0 || y >= y1) continue;
-        const std::size_t i = static_cast<std::size_t>(r) * p.cols + c;
-        set_level(reg, i);
-        if (has_u) {
-          f.ux_mps[i] = static_cast<float>(u[0]);
-          f.uy_mps[i] = static_cast<float>(u[1]);
-        }
+    const auto u = vec2_or_zero(reg, "velocity_mps", -1e4, 1e4);
+    for_each_cell(p, [&](std::size_t i, double x, double y) {
+      if (x < x0 || x >= x1 || y < y0 || y >= y1) return;
+      set_level(reg, i, f);
+      if (has_u) {
+        f.ux_mps[i] = static_cast<float>(u[0]);
+        f.uy_mps[i] = static_cast<float>(u[1]);
       }
+    });
   }
+}
 
-  // Obstacles.
-  f.solid.assign(n, 0);
+// "initial": a uniform level and velocity, then the dam, then the regions (later ones win).
+DamFlow parse_initial(const JsonIn& lb, const LbmParams& p, LbmFields& f) {
+  const std::size_t n = cell_count(p);
+  f.depth_m.assign(n, 0.0f);
+  f.ux_mps.assign(n, 0.0f);
+  f.uy_mps.assign(n, 0.0f);
+  const JsonIn init = lb.object("initial");
+  init.allow_only({"depth_m", "surface_m", "velocity_mps", "regions", "dam"});
+  if (init.has("depth_m") && init.has("surface_m")) init.fail("surface_m", "give depth_m or surface_m, not both");
+  if (!init.has("depth_m") && !init.has("surface_m") && !init.has("dam"))
+    init.fail_here("needs depth_m, surface_m or a dam");
+  const auto u0 = vec2_or_zero(init, "velocity_mps", -1e4, 1e4);
+  for (std::size_t i = 0; i < n; ++i) {
+    set_level(init, i, f);
+    f.ux_mps[i] = static_cast<float>(u0[0]);
+    f.uy_mps[i] = static_cast<float>(u0[1]);
+  }
+  DamFlow flow;
+  if (auto dam = init.optional_object("dam")) flow = parse_dam(*dam, p, f);
+  parse_regions(init, p, f);
+  return flow;
+}
+
+// "obstacles": solid circles (centre x_m, y_m, radius_m) and rectangles [x0, x1) x [y0, y1).
+void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f) {
+  f.solid.assign(cell_count(p), 0);
   for (const JsonIn& ob : lb.array("obstacles")) {
     const std::string type = ob.string("type", "", {"circle", "rect"});
     if (type == "circle") {
       ob.allow_only({"type", "x_m", "y_m", "radius_m"});
       const double cx = ob.number("x_m", -1e9, 1e9), cy = ob.number("y_m", -1e9, 1e9);
       const double rad = ob.number("radius_m", 0.0, 1e9);
-      for (int r = 0; r < p.rows; ++r)
-        for (int c = 0; c < p.cols; ++c) {
-          const double x = (c + 0.5) * dx - cx, y = (r + 0.5) * dx - cy;
-          if (x * x + y * y <= rad * rad) f.solid[static_cast<std::size_t>(r) * p.cols + c] = 1;
-        }
+      for_each_cell(p, [&](std::size_t i, double xc, double yc) {
+        const double x = xc - cx, y = yc - cy;
+        if (x * x + y * y <= rad * rad) f.solid[i] = 1;
+      });
     } else {
       ob.allow_only({"type", "x0_m", "x1_m", "y0_m", "y1_m"});
       const double x0 = ob.number("x0_m", -1e9, 1e9), x1 = ob.number("x1_m", -1e9, 1e9);
       const double y0 = ob.number("y0_m", -1e9, 1e9), y1 = ob.number("y1_m", -1e9, 1e9);
-      for (int r = 0; r < p.rows; ++r)
-        for (int c = 0; c < p.cols; ++c) {
-          const double x = (c + 0.5) * dx, y = (r + 0.5) * dx;
-          if (x >= x0 && x < x1 && y >= y0 && y < y1) f.solid[static_cast<std::size_t>(r) * p.cols + c] = 1;
-        }
+      for_each_cell(p, [&](std::size_t i, double x, double y) {
+        if (x >= x0 && x < x1 && y >= y0 && y < y1) f.solid[i] = 1;
+      });
     }
   }
+}
 
-  // Boundaries, inflow, outflow, force.
+LbmSide parse_side(const JsonIn& b, const char* key) {
+  const std::string s = b.string(key, "wall", {"wall", "slip", "periodic", "inflow", "outflow"});
+  if (s == "slip") return LbmSide::slip;
+  if (s == "periodic") return LbmSide::periodic;
+  if (s == "inflow") return LbmSide::inflow;
+  if (s == "outflow") return LbmSide::outflow;
+  return LbmSide::wall;
+}
+
+// "boundaries", the "inflow" discharge the left inflow side needs, the "outflow" depth and the
+// uniform "force".
+void parse_boundaries(const JsonIn& lb, LbmParams& p) {
   if (auto b = lb.optional_object("boundaries")) {
     b->allow_only({"left", "right", "bottom", "top"});
     p.left = parse_side(*b, "left");
@@ -301,39 +327,79 @@ std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions&) {
   }
   if (auto fo = lb.optional_object("force")) {
     fo->allow_only({"accel_mps2"});
-    p.accel_mps2 = parse_vec2(*fo, "accel_mps2", -1e4, 1e4);
+    p.accel_mps2 = vec2_or_zero(*fo, "accel_mps2", -1e4, 1e4);
   }
+}
 
-  // Time step: given, or from a lattice CFL number on the largest signal speed.
-  bool dt_given = false;
-  double smax = expected_speed;
-  for (std::size_t i = 0; i < n; ++i)
+// "time": dt_s, or dt = cfl dx / max(|u| + sqrt(g h)) over the initial fluid cells and the dam's
+// flow (default cfl 0.5). Returns whether dt_s was given.
+bool parse_time(const JsonIn& lb, const LbmFields& f, double expected_speed_mps, LbmParams& p) {
+  const double g = p.gravity_mps2, dx = p.cell_m;
+  double smax = expected_speed_mps;
+  for (std::size_t i = 0; i < f.depth_m.size(); ++i)
     if (!f.solid[i] && f.depth_m[i] > 0)
       smax = std::max(smax, std::hypot(f.ux_mps[i], f.uy_mps[i]) + std::sqrt(g * f.depth_m[i]));
-  if (auto t = lb.optional_object("time")) {
-    t->allow_only({"dt_s", "cfl"});
-    if (t->has("dt_s") && t->has("cfl")) t->fail("cfl", "give dt_s or cfl, not both");
-    dt_given = t->has("dt_s");
-    if (dt_given)
-      p.dt_s = t->number("dt_s", 1e-12, 1e6);
-    else
-      p.dt_s = t->number("cfl", 0.5, 1e-6, 10.0) * dx / std::max(smax, 1e-12);
-  } else {
+  const std::optional<JsonIn> t = lb.optional_object("time");
+  if (!t) {
     p.dt_s = 0.5 * dx / std::max(smax, 1e-12);
+    return false;
   }
-  p.expected_signal_speed_mps = expected_speed;
-  p.expected_froude = expected_froude;
-  if (tau_given) p.viscosity_m2s = (tau - 0.5) * dx * dx / (3.0 * p.dt_s);
+  t->allow_only({"dt_s", "cfl"});
+  if (t->has("dt_s") && t->has("cfl")) t->fail("cfl", "give dt_s or cfl, not both");
+  if (t->has("dt_s")) {
+    p.dt_s = t->number("dt_s", 1e-12, 1e6);
+    return true;
+  }
+  p.dt_s = t->number("cfl", 0.5, 1e-6, 10.0) * dx / std::max(smax, 1e-12);
+  return false;
+}
 
+// lbm_check() of the parsed scene; a refusal becomes a SceneError at the key that set the parameter.
+void check_scene(const LbmScene& s, const ParseNotes& notes) {
   try {
-    return std::make_unique<LbmSolver>(p, f);
+    lbm_check(s.params, s.fields);
   } catch (const LbmRefused& e) {
     if (e.parameter() == "expected_froude")
-      throw SceneError(
-          "$.lbm.initial.dam.right_depth_m",
-          std::string(e.what()) + "; for this dam use a depth ratio h_L/h_R <= " + fmt("%.2f", dam_ratio_max));
-    throw SceneError(refusal_path(e.parameter(), dt_given, tau_given), e.what());
+      throw SceneError("$.lbm.initial.dam.right_depth_m", std::string(e.what()) +
+                                                              "; for this dam use a depth ratio h_L/h_R <= " +
+                                                              fmt("%.2f", notes.dam_ratio_max));
+    throw SceneError(refusal_path(e.parameter(), notes), e.what());
   }
+}
+
+}  // namespace
+
+LbmScene parse_lbm_scene(const Scene& scene) {
+  const JsonIn root = scene.root();
+  root.allow_only({"solver", "lbm", "description", "render"});
+  const JsonIn lb = root.object("lbm");
+  LbmScene s;
+  lb.allow_only({"grid", "time", "water", "bed", "bed_force", "initial", "boundaries", "inflow", "outflow", "obstacles",
+                 "force"});
+  LbmParams& p = s.params;
+  parse_grid(lb, p);
+  const std::optional<double> tau = parse_water(lb, p);
+  parse_bed(lb, scene, p, s.fields);
+  const DamFlow dam = parse_initial(lb, p, s.fields);
+  parse_obstacles(lb, p, s.fields);
+  parse_boundaries(lb, p);
+  ParseNotes notes;
+  notes.dt_given = parse_time(lb, s.fields, dam.signal_speed_mps, p);
+  notes.tau_given = tau.has_value();
+  notes.dam_ratio_max = dam.ratio_max;
+  p.expected_signal_speed_mps = dam.signal_speed_mps;
+  p.expected_froude = dam.froude;
+  if (tau) p.viscosity_m2s = (*tau - 0.5) * p.cell_m * p.cell_m / (3.0 * p.dt_s);
+  check_scene(s, notes);
+  return s;
+}
+
+std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene) {
+  return std::make_unique<LbmSolver>(scene.params, scene.fields);
+}
+
+std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions&) {
+  return make_lbm_solver(parse_lbm_scene(scene));
 }
 
 }  // namespace huygens

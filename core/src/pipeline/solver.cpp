@@ -1,5 +1,6 @@
 #include "huygens/pipeline/solver.hpp"
 
+#include "huygens/lbm/solver.hpp"
 #include "huygens/sph/solver.hpp"
 
 namespace huygens {

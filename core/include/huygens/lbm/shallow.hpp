@@ -1,44 +1,17 @@
 #pragma once
-// Lattice Boltzmann shallow-water solver, D2Q9 with BGK collision: paper 002 section 2
-// (eq. 1-4), after Zhou 2004 ("Lattice Boltzmann methods for shallow water flows", LABSWE).
-//
-// Lattice units inside (cell size dx = 1, step dt = 1, lattice speed e = dx/dt = 1); depths
-// stay in metres, so g enters as g_lat = g dt^2 / dx^2 (unit 1/m) and g_lat h = (c dt/dx)^2.
-// Links: 0 rest, 1 E(1,0), 2 N(0,1), 3 W(-1,0), 4 S(0,-1), 5 NE(1,1), 6 NW(-1,1), 7 SW(-1,-1),
-// 8 SE(1,-1); lambda_a = 1 on axis links, 1/4 on diagonals.
-//
-// Equilibrium, paper 002 eq. 2 (= Zhou 2004's equilibrium with e = 1):
-//   f0 = h (1 - 5 g h / 6 - 2 u.u / 3)
-//   fa = lambda_a h (g h / 6 + e_a.u / 3 + (e_a.u)^2 / 2 - u.u / 6),   a = 1..8
-// whose moments are sum fa = h, sum e_a fa = h u, sum e_a e_a fa = g h^2 / 2 I + h u u.
-// One step (eq. 1), pull form: f_a(x, t+1) = f*_a(x - e_a, t) + S_a, then h = sum f,
-// h u = sum e f (eq. 3-4) and f*_a = f_a - (f_a - f_a^eq) / tau + lambda_a h (e_a . a_ext) / 3.
-// Viscosity nu = (tau - 1/2) dx^2 / (3 dt) (Zhou 2004), so tau = 1/2 + 3 nu dt / dx^2.
-//
-// Bed slope: the force -g h grad z_b enters as the lattice-weighted term S_a = lambda_a (e_a.F) / 3
-// evaluated at the link midpoint (Zhou's centred scheme):
-//   S_a = -lambda_a g (h(x) + h(x - e_a)) (z_b(x) - z_b(x - e_a)) / 6.
-// For still water (h + z_b constant) this equals lambda_a g (h(x)^2 - h(x - e_a)^2) / 6, so every
-// arriving population is exactly the local equilibrium: still water stays still to rounding.
-// (Zhou's own form puts e_a.F / 6 on all 8 links: same first moment, but the arriving populations
-// are not the local equilibrium, so still water is not an exact fixed point.) The "naive" alternative,
-// F = -g h(x) (central difference of z_b at x), is kept for comparison.
-//
-// Boundaries are ghost cells: before each step a precomputed list of rules writes, for every
-// ghost or obstacle cell s and link a whose target x = s + e_a is fluid, the value x must pull:
-// halfway bounce-back f*_abar(x) (no-slip walls, obstacles), the mirrored population (free-slip
-// walls), the periodic image, or Zou-He values that give the cell the discharge (inflow) or the
-// depth (outflow) asked for, or a zero-gradient copy (outflow without a depth); the bed is taken
-// as flat across inflow and outflow columns. The bed term the kernel adds
-// on such a link is subtracted in the same rule, so walls feel no spurious slope force.
-//
-// Storage: structure of arrays, 9 float planes with a one-cell halo, two copies (pull from one,
-// write the other). Populations are stored shifted by the still-water equilibrium of the mean
-// depth H (f_a - f_a^eq(H, 0)), and the kernel works with h - H, so float rounding acts on the
-// disturbance rather than on the depth: mass and small waves keep ~7 digits of the disturbance.
-//
-// Dry cells are refused: every fluid cell must start at least min_depth_m deep, and a run in which
-// a cell falls below it stops with LbmDryError (this solver has no wetting and drying).
+// Lattice Boltzmann shallow-water solver, D2Q9 with BGK collision: paper 002 section 2 (eq. 1-4),
+// after Zhou 2004 (LABSWE). Lattice units inside (dx = dt = e = 1); depths stay in metres, so g
+// enters as g_lat = g dt^2 / dx^2 (unit 1/m). Links 0 rest, 1 E, 2 N, 3 W, 4 S, 5 NE, 6 NW, 7 SW,
+// 8 SE; lambda_a = 1 on axis links, 1/4 on diagonals. Equilibrium (eq. 2, Zhou 2004 eq. 13):
+//   f0 = h (1 - 5 g h / 6 - 2 u.u / 3),  fa = lambda_a h (g h / 6 + e_a.u / 3 + (e_a.u)^2 / 2 - u.u / 6)
+// One step (eq. 1, pull form): f_a(x, t+1) = f*_a(x - e_a, t) + S_a; h = sum f, h u = sum e f
+// (eq. 3-4); f*_a = f_a - (f_a - f_a^eq) / tau + lambda_a h (e_a . a_ext) / 3, tau = 1/2 + 3 nu dt/dx^2.
+// Bed slope, well balanced (evaluated at the link midpoint):
+//   S_a = -lambda_a g (h(x) + h(x - e_a)) (z_b(x) - z_b(x - e_a)) / 6
+// Sides and obstacles are ghost cells a precomputed rule list fills before each step (bounce-back,
+// mirror, periodic image, Zou-He inflow and outflow). Populations are stored minus the still-water
+// equilibrium of the mean depth. Dry cells are refused (no wetting and drying). Why each choice,
+// and measurements: docs/lbm.md.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -100,10 +73,9 @@ struct LbmParams {
   double expected_froude = 0.0;
 };
 
-/// Largest Froude number accepted before the run. At a critical point (u = c) the equilibrium
-/// population against the flow is h (c^2/2 - c/3) in lattice units, negative unless c >= 2/3,
-/// which |u| + c < 0.8 forbids; measured dam breaks blow up from Fr = 0.96 (h_L/h_R = 6.7), so
-/// transcritical flows are refused with a margin.
+/// Largest Froude number accepted before the run: at u = c = sqrt(g h) the equilibrium against the
+/// flow, h (c^2/2 - c/3) (lattice units), is negative unless c >= 2/3, which |u| + c < 0.8 forbids;
+/// transcritical flows are refused with a margin (measured limit: docs/lbm.md).
 inline constexpr double kLbmMaxFroude = 0.9;
 
 /// Initial fields, row-major (rows, cols), physical units. Empty vectors mean zero.
@@ -143,7 +115,7 @@ struct LbmLattice {
   /// BGK relaxation time.
   double tau = 1.0;
   /// g_lat = g dt^2 / dx^2 (unit: 1/m), so g_lat h is the squared lattice wave speed.
-  double g_lat = 0.0;
+  double g_lat_pm = 0.0;
   /// Lattice speed e = dx / dt (unit: m/s).
   double speed_mps = 1.0;
   /// Largest (|u| + sqrt(g h)) / e of the initial state or the expected flow.

@@ -1,17 +1,14 @@
 #pragma once
-// Analytic solution of the one-dimensional dam break on a wet bed (Stoker 1957, "Water
-// Waves", ch. 10): still water of depth h_L for x < x0 and h_R < h_L for x > x0 at t = 0,
-// frictionless flat bed. The solution is self-similar in xi = (x - x0) / t:
-//   xi < -c_L                   h = h_L, u = 0                       (undisturbed)
-//   -c_L <= xi <= u_m - c_m     h = (2 c_L - xi)^2 / (9 g),          (rarefaction fan)
-//                               u = 2 (c_L + xi) / 3
-//   u_m - c_m < xi < s          h = h_m, u = u_m                     (middle state)
-//   xi >= s                     h = h_R, u = 0                       (undisturbed)
-// with c = sqrt(g h). The middle depth solves the Riemann invariant of the fan together
-// with the Rankine-Hugoniot relations of the shock:
-//   u_m = 2 (c_L - c_m) = (h_m - h_R) sqrt(g (h_m + h_R) / (2 h_m h_R)),
-//   s = h_m u_m / (h_m - h_R).
-// stoker_solve() finds h_m by bisection refined by Newton on that relation.
+// Analytic one-dimensional dam break on a wet, flat, frictionless bed (Stoker 1957, "Water Waves",
+// ch. 10): depth h_L for x < x0, h_R < h_L beyond, at rest at t = 0. Self-similar in xi = (x - x0)/t:
+//   xi < -c_L                   h = h_L, u = 0                     (undisturbed)
+//   -c_L <= xi <= u_m - c_m     h = (2 c_L - xi)^2 / (9 g), u = 2 (c_L + xi) / 3   (rarefaction fan)
+//   u_m - c_m < xi < s          h = h_m, u = u_m                   (middle state)
+//   xi >= s                     h = h_R, u = 0                     (undisturbed)
+// with c = sqrt(g h); h_m solves the fan's Riemann invariant with the shock's Rankine-Hugoniot
+// relations: u_m = 2 (c_L - c_m) = (h_m - h_R) sqrt(g (h_m + h_R) / (2 h_m h_R)), s = h_m u_m / (h_m - h_R).
+// stoker_solve() finds h_m by bisection refined by Newton. It lives in core/lbm, not in validation,
+// because the LBM scene adapter bounds a dam's time step and refuses its transcritical flow with it.
 namespace huygens {
 
 struct StokerParams {

@@ -87,6 +87,5 @@ std::unique_ptr<Solver> make_solver(const Scene& scene, const RunOptions& option
 
 /// Per-solver factories (each defined with its solver).
 std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
-std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions& options);
 
 }  // namespace huygens

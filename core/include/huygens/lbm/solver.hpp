@@ -1,0 +1,34 @@
+#pragma once
+// The "lbm" block of a scene (docs/design.md section 6; every key in docs/lbm.md) parsed into the
+// parameters and initial fields of the D2Q9 shallow-water solver (shallow.hpp, paper 002 section 2),
+// and the factory of its Solver. Positions are metres from the corner of cell (0, 0); cell (r, c)
+// has its centre at ((c + 1/2) dx, (r + 1/2) dx). A dam's time step and transcritical refusal use
+// its Stoker (1957) middle state (stoker.hpp). Errors are SceneError naming the JSON path; a
+// parameter lbm_check() refuses is named by the scene key that set it.
+#include <memory>
+
+#include "huygens/common/scene.hpp"
+#include "huygens/lbm/shallow.hpp"
+
+namespace huygens {
+
+class Solver;
+struct RunOptions;
+
+/// Everything an "lbm" scene specifies, accepted by lbm_check().
+struct LbmScene {
+  /// Lattice parameters, the time step resolved from dt_s or cfl (units in LbmParams).
+  LbmParams params;
+  /// Initial bed, depth, velocity and obstacle cells, row-major (rows, cols) (units in LbmFields).
+  LbmFields fields;
+};
+
+/// Parses the scene's "lbm" block and checks it with lbm_check(); throws SceneError naming the
+/// JSON path.
+LbmScene parse_lbm_scene(const Scene& scene);
+/// The Solver of a parsed scene.
+std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene);
+/// parse_lbm_scene() then make_lbm_solver() (this solver uses no RunOptions).
+std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions& options);
+
+}  // namespace huygens
