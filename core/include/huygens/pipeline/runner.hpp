@@ -1,22 +1,12 @@
 #pragma once
-// The simulation runner (docs/design.md 2, paper 004 Figure 2: UI, simulation and visualization
-// on three threads). It owns a Solver on its own std::thread, applies UI commands at step
-// boundaries, and publishes a frame after every step into a FrameRing the render thread
-// reads without waiting. Exceptions from step() (NonFiniteError naming the stage) stop the
-// thread and are kept for the consumer: failed(), error(), rethrow_if_failed().
-//
-// Pacing. As fast as possible: step, publish, repeat. Real time: a display clock
-// D(now) = t_origin + time_scale * (now - wall_origin) says which simulated time the
-// render thread should show. The consumer can only interpolate between the two newest
-// frames, so frame n+1 is computed ahead and published when D reaches t_n; then the
-// display time always lies in [t_n, t_{n+1}] while the simulation keeps up. When a step
-// takes longer than its share of wall time, the consumer shows the newest frame, and the
-// clock is rebased (not raced to catch up) once the simulation is more than a step behind.
-// Manual clock (deterministic, no wall clock: headless capture, tests): the owner sets the
-// display time T (show()); frame n is published once t_n <= T, so the newest frame is the last
-// step at or before T (one step is computed ahead and held); wait_shown() blocks until then.
-// Refused commands (Solver::apply false) go back to the UI thread (next_refused()).
-//
+// The simulation runner (docs/design.md 2, docs/pipeline.md; paper 004 Figure 2): a Solver on
+// its own thread, UI commands applied at step boundaries (refused ones handed back), a frame
+// published after every step into a FrameRing the render thread reads without waiting; an
+// exception from step() stops the thread and is kept (failed(), error(), rethrow_if_failed()).
+// Clocks: as fast as possible; real time, D(now) = t0 + time_scale (now - wall0), frame n+1
+// published when D reaches t_n (so D lies between the two newest frames; rebased when more
+// than a step behind); manual (deterministic: headless, tests), frame n published once
+// t_n <= T of show(T), the newest frame the last step at or before T.
 // Threads: the constructor, start(), stop() and solver() belong to the owning thread;
 // send(), show() and next_refused() to one UI thread (single producer of commands); frames(),
 // display_time(), wait_shown(), failed(), error() to one render thread (single consumer).
