@@ -186,7 +186,7 @@ Result run_huygens(const Problem& pb, Reference& ref, int n, int dps) {
   p.length_m = pb.length_m;
   p.margin = 0;
   p.absorber = Absorber::off;
-  p.dt = dps * kFrameDt;
+  p.dt_s = dps * kFrameDt;
   p.water = pb.water;
   p.effort = PlanEffort::measure;
   const long steps = frames / dps;
@@ -209,7 +209,7 @@ Result run_huygens(const Problem& pb, Reference& ref, int n, int dps) {
       prop->step();
       for (int j = 1; j < dps; ++j)
         hermite_interpolate(e0.data(), d0.data(), prop->eta().data(), prop->etadot().data(), nn,
-                            hermite_weights(j, dps), p.dt, out.data());
+                            hermite_weights(j, dps), p.dt_s, out.data());
     }
     return seconds_since(t0);
   });
@@ -218,7 +218,7 @@ Result run_huygens(const Problem& pb, Reference& ref, int n, int dps) {
   double err = ref.error(prop->eta(), n, frames);
   for (int j = 1; j < dps; ++j) {
     hermite_interpolate(e0.data(), d0.data(), prop->eta().data(), prop->etadot().data(), nn, hermite_weights(j, dps),
-                        p.dt, out.data());
+                        p.dt_s, out.data());
     err = std::max(err, ref.error(out.span(), n, frames - dps + j));
   }
   res.err = err;
@@ -259,7 +259,7 @@ Result run_iwave(const Problem& pb, Reference& ref, int n, int substeps_factor) 
   IwaveParams p;
   p.n = n;
   p.length_m = pb.length_m;
-  p.gravity = pb.water.gravity;
+  p.gravity = pb.water.gravity_mps2;
   int sub = 1;
   for (p.dt = kFrameDt; !iwave_params_error(p).empty() && sub < 4096; p.dt = kFrameDt / ++sub) {
   }

@@ -28,7 +28,7 @@ HuygensParams bench_params(int n) {
   p.n = n;
   p.length_m = 15.0 * n / 512.0;  // dx as in the default scene
   p.margin = n / 8;
-  p.dt = 1.0 / 60.0;
+  p.dt_s = 1.0 / 60.0;
   p.effort = PlanEffort::measure;
   return p;
 }

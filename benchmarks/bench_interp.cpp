@@ -22,7 +22,7 @@ namespace {
 
 std::string interp_scene(int n, int per_step) {
   return fmt(R"({"solver": "huygens", "grid": {"n": %d, "length_m": 60.0, "margin": 0, "cutoff": false},
-    "time": {"dt": %.17g, "display_per_step": %d}, "stokes": true,
+    "time": {"dt_s": %.17g, "display_per_step": %d}, "stokes": true,
     "wind": {"speed_mps": 8.0, "direction_deg": 20.0, "seed": 7}})",
              n, per_step / 60.0, per_step);
 }

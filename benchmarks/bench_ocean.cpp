@@ -106,10 +106,10 @@ struct Pipeline {
       : prop(hp),
         st(hp.water, hp.n, hp.length_m, second, PlanEffort::measure, hp.margin),
         sw(hp.water, hp.n, hp.length_m, patch, {bench_ship(hp.length_m)}, PlanEffort::measure),
-        sea(wp, hp.water, hp.n, hp.length_m, hp.dt),
+        sea(wp, hp.water, hp.n, hp.length_m, hp.dt_s),
         eta(static_cast<std::size_t>(prop.visible_size()) * prop.visible_size()),
         etad(eta.size()),
-        dt(hp.dt) {}
+        dt(hp.dt_s) {}
   void step() {
     const float inv = 1.0f / (static_cast<float>(prop.n()) * static_cast<float>(prop.n()));
     prop.propagate();
@@ -160,7 +160,7 @@ ShipsCase ships_case(const Context& ctx, int n, int threads) {
   c.hp.n = n;
   c.hp.length_m = c.len;
   c.hp.margin = c.margin;
-  c.hp.dt = c.dt;
+  c.hp.dt_s = c.dt;
   c.hp.water = Water{};
   c.hp.spatial = true;
   c.hp.check_every = 16;  // as a scene runs (the solver's default)
@@ -259,10 +259,10 @@ void ships_step_rows(const ShipsCase& c, Table& step) {
 void ships_solver_row(const ShipsCase& c, Table& step) {
   const double len = c.len;
   const std::string text = fmt(R"({"solver": "huygens", "grid": {"n": %d, "length_m": %.17g, "margin": %d},
-          "time": {"dt": %.17g, "display_per_step": 3}, "stokes": true,
+          "time": {"dt_s": %.17g, "display_per_step": 3}, "stokes": true,
           "wind": {"speed_mps": 6, "direction_deg": 20, "seed": 42},
           "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-                     "path": [{"t": 0, "x_m": %.17g, "y_m": %.17g}, {"t": 10000, "x_m": %.17g, "y_m": %.17g}]}]})",
+                     "path": [{"t_s": 0, "x_m": %.17g, "y_m": %.17g}, {"t_s": 10000, "x_m": %.17g, "y_m": %.17g}]}]})",
                                c.n, len, c.margin, c.dt, 0.3 * len, 0.5 * len, 0.3 * len + 1.2e4, 0.5 * len);
   RunOptions ro;
   ro.measure_plans = true;

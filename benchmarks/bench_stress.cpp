@@ -155,8 +155,8 @@ struct LongRun {
 
 // Steps `steps` times: the budget every 100 steps (and the last), a table row every tenth of the run.
 LongRun run_long(HuygensSolver& s, long steps, Table& t) {
-  const double dt = s.scene().params.dt;
-  const double t_last_drop = s.scene().drops.empty() ? 0.0 : s.scene().drops.back().t;
+  const double dt = s.scene().params.dt_s;
+  const double t_last_drop = s.scene().drops.empty() ? 0.0 : s.scene().drops.back().t_s;
   LongRun lr;
   lr.worst_eta = budget(s).max_eta;
   Progress bar("stress default.json", steps);
@@ -191,7 +191,7 @@ LongRun run_long(HuygensSolver& s, long steps, Table& t) {
 void stress_long_run(Context& ctx, const nlohmann::json& base) {
   const long steps = ctx.quick ? 400 : 100000;
   HuygensSolver s(scene_from(base));
-  const double dt = s.scene().params.dt;
+  const double dt = s.scene().params.dt_s;
   Table t({"step", "t s", "energy J", "E / E(last drop)", "max |eta| m", "ms/step"});
   const Budget b0 = budget(s);
   t.add({"0", "0", num(b0.energy, 6), "-", num(b0.max_eta, 4), "-"});
@@ -227,7 +227,7 @@ Drift energy_drift(double dt, int steps) {
   p.length_m = 4.0;
   p.margin = 0;
   p.absorber = Absorber::off;
-  p.dt = dt;
+  p.dt_s = dt;
   p.effort = PlanEffort::estimate;
   HuygensPropagator prop(p);
   prop.add_gaussian(2.0, 2.0, 0.1, 0.01);
@@ -269,11 +269,11 @@ struct Extreme {
 };
 
 const std::vector<Extreme> kExtremes = {
-    {"dt = 1 s", [](nlohmann::json& j) { j["time"]["dt"] = 1.0; }},
-    {"dt = 10 s", [](nlohmann::json& j) { j["time"]["dt"] = 10.0; }},
+    {"dt = 1 s", [](nlohmann::json& j) { j["time"]["dt_s"] = 1.0; }},
+    {"dt = 10 s", [](nlohmann::json& j) { j["time"]["dt_s"] = 10.0; }},
     {"drop 0.5 m deep, radius 0.1 m (depth ~ its wavelength 2 pi r)",
      [](nlohmann::json& j) {
-       j["drops"].push_back({{"t", 0.5}, {"x_m", 7.5}, {"y_m", 7.5}, {"radius_m", 0.1}, {"depth_m", 0.5}});
+       j["drops"].push_back({{"t_s", 0.5}, {"x_m", 7.5}, {"y_m", 7.5}, {"radius_m", 0.1}, {"depth_m", 0.5}});
      }},
     {"hump 1 m high, sigma 0.05 m",
      [](nlohmann::json& j) {
@@ -403,7 +403,7 @@ nlohmann::json kelvin_at(const nlohmann::json& kelvin, double u) {
   j["grid"]["length_m"] = 25.6;
   j["grid"]["margin"] = 24;
   j["ships"][0]["path"] = nlohmann::json::array(
-      {{{"t", 0.0}, {"x_m", 3.0}, {"y_m", 12.8}}, {{"t", 1e3}, {"x_m", 3.0 + u * 1e3}, {"y_m", 12.8}}});
+      {{{"t_s", 0.0}, {"x_m", 3.0}, {"y_m", 12.8}}, {{"t_s", 1e3}, {"x_m", 3.0 + u * 1e3}, {"y_m", 12.8}}});
   return j;
 }
 

@@ -34,7 +34,7 @@ TEST(CauchyPoisson, InitialConditionIsTheGaussian) {
 // Deep gravity water at the centre against the independent power series in q = sqrt(2) g t^2 / sigma.
 TEST(CauchyPoisson, CentreMatchesGravitySeries) {
   CauchyPoissonGaussian g;
-  g.water.surface_tension = 0.0;
+  g.water.surface_tension_npm = 0.0;
   g.sigma_m = 0.1;
   g.amplitude_m = 0.01;
   for (double t : {0.02, 0.05, 0.1, 0.15}) {

@@ -9,7 +9,7 @@ using namespace huygens;
 
 TEST(Dispersion, DeepGravityLimit) {
   Water w;
-  w.surface_tension = 0;
+  w.surface_tension_npm = 0;
   for (double k : {0.01, 0.1, 1.0, 10.0}) EXPECT_NEAR(omega(w, k), std::sqrt(9.81 * k), 1e-12 * std::sqrt(9.81 * k));
   // deep-water gravity waves: group speed is half the phase speed
   EXPECT_NEAR(group_speed(w, 2.0), 0.5 * phase_speed(w, 2.0), 1e-12);
@@ -17,7 +17,7 @@ TEST(Dispersion, DeepGravityLimit) {
 
 TEST(Dispersion, CapillaryLimit) {
   Water w;
-  w.gravity = 0;
+  w.gravity_mps2 = 0;
   const double k = 5000.0;
   EXPECT_NEAR(omega(w, k), std::sqrt(0.072 / 1000.0 * k * k * k), 1e-9 * omega(w, k));
   // capillary waves: group speed is 3/2 of the phase speed
@@ -46,7 +46,7 @@ TEST(Dispersion, MinimumPhaseSpeed) {
 
 TEST(Dispersion, FiniteDepth) {
   Water w;
-  w.surface_tension = 0;
+  w.surface_tension_npm = 0;
   w.depth_m = 2.0;
   // shallow limit: c -> sqrt(g h)
   EXPECT_NEAR(phase_speed(w, 1e-4), std::sqrt(9.81 * 2.0), 1e-6);

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -24,7 +26,7 @@ HuygensParams small(int n, double len, double dt, bool cutoff) {
   p.length_m = len;
   p.margin = cutoff ? n / 8 : 0;
   p.absorber = cutoff ? Absorber::paper_quadratic : Absorber::off;
-  p.dt = dt;
+  p.dt_s = dt;
   p.effort = PlanEffort::estimate;
   return p;
 }
@@ -200,7 +202,8 @@ TEST(HuygensPropagator, EnergyOfPlaneWave) {
   prop.add_plane_wave(lambda, amp, 0.0);
   const Water w;
   const double k = 2 * kPi / lambda;
-  const double expected = 0.5 * w.density * (w.gravity + w.surface_tension / w.density * k * k) * amp * amp * len * len;
+  const double expected =
+      0.5 * w.density_kgpm3 * (w.gravity_mps2 + w.surface_tension_npm / w.density_kgpm3 * k * k) * amp * amp * len * len;
   EXPECT_NEAR(prop.energy(), expected, 1e-6 * expected);
 }
 
@@ -263,4 +266,114 @@ TEST(HuygensPropagator, BadParametersAreRefused) {
   EXPECT_NE(huygens_params_error(p), "");
   p = small(64, 2.0, 0.0, false);
   EXPECT_NE(huygens_params_error(p), "");
+}
+
+namespace {
+
+// Sum of |Z^|^2 over the spectrum, in double.
+double spectrum_norm(const HuygensPropagator& prop) {
+  double s = 0;
+  for (const cfloat& v : prop.spectrum_view()) s += std::norm(cd(v));
+  return s;
+}
+
+// Phase of the Fourier coefficient of eta at (kx, 0) over the whole grid: -omega t for
+// eta = A cos(kx x - omega t).
+double phase_along_x(const HuygensPropagator& prop, double kx) {
+  const int n = prop.n();
+  cd sum = 0;
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c)
+      sum += double(prop.eta()[static_cast<std::size_t>(r) * n + c]) * std::polar(1.0, -kx * c * prop.dx());
+  return std::arg(sum);
+}
+
+}  // namespace
+
+// The crest of a progressive plane wave moves at the phase speed omega(k)/k, for gravity,
+// capillary and finite-depth waves. The crest is at x_c = -arg(C)/k, C the wave's Fourier
+// coefficient in eta; it is followed step by step (each step moves it less than half a
+// wavelength) until omega t > 400 rad. Tolerance 1e-6 relative: the lifting rotation's angle
+// is exact to 3e-8 relative (s is chosen for the rounded t, docs/huygens.md) and one phase read
+// of the float field is good to ~1e-7 rad, 2.5e-10 of the phase travelled; a dispersion error
+// of 1e-6 (g off by 2 ppm) fails it.
+TEST(HuygensPropagator, CrestMovesAtThePhaseSpeed) {
+  struct Case {
+    const char* name;
+    double wavelength_m, length_m, depth_m, dt_s;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Case& k : {Case{"gravity", 1.0, 8.0, inf, 0.05}, Case{"capillary", 0.005, 0.04, inf, 0.001},
+                        Case{"finite depth kh = 0.5", 1.0, 8.0, 0.5 / (2 * kPi), 0.07}}) {
+    HuygensParams p = small(32, k.length_m, k.dt_s, false);
+    p.water.depth_m = k.depth_m;
+    HuygensPropagator prop(p);
+    prop.add_plane_wave(k.wavelength_m, 0.01 * k.wavelength_m, 0.0);
+    prop.height();
+    const double kk = 2 * kPi / k.wavelength_m, om = omega(p.water, kk);
+    const int steps = static_cast<int>(std::ceil(400.0 / (om * k.dt_s)));
+    ASSERT_LT(om * k.dt_s, 0.5 * kPi) << k.name;  // less than half a wavelength per step
+    double phase = phase_along_x(prop, kk), travelled = 0;
+    for (int s = 0; s < steps; ++s) {
+      prop.step();
+      const double next = phase_along_x(prop, kk);
+      travelled -= std::remainder(next - phase, 2 * kPi) / kk;
+      phase = next;
+    }
+    const double speed = travelled / prop.time();
+    EXPECT_NEAR(speed / (om / kk), 1.0, 1e-6) << k.name << ": " << speed << " m/s against " << om / kk;
+  }
+}
+
+// Without the cutoff a step multiplies every Fourier mode by exp(-i omega dt): the conserved
+// quantities are sum |Z^|^2 (by Parseval the field's L2 norm) and the wave energy energy().
+// A random field over every mode, 2000 steps of 0.1 s. Without the spatial round trip the
+// step is the lifting rotation alone, whose shears have determinant exactly 1 in float: the
+// norm only random-walks (measured 1.5e-7; tolerance 1e-6, which the rounded complex
+// multiplier, Rotation::complex, fails: 1.4e-6). With the round trip (spatial = true) the
+// float FFTW inverse + forward pair shrinks the norm by a steady 1.4e-7 per step (about one
+// float unit roundoff per transform, measured 2.8e-4 after 2000 steps at N = 32 .. 128, any
+// dt; docs/huygens.md, known limits): it must shrink, and by less than 2.5e-7 per step.
+TEST(HuygensPropagator, RotationConservesNormAndEnergy) {
+  const int n = 32, steps = 2000;
+  std::mt19937 rng(7);
+  std::normal_distribution<float> g(0.0f, 1e-3f);
+  std::vector<cfloat> z(static_cast<std::size_t>(n) * n);
+  for (auto& v : z) v = cfloat(g(rng), g(rng));
+  for (bool spatial : {false, true}) {
+    HuygensParams p = small(n, 2.0, 0.1, false);
+    p.spatial = spatial;
+    HuygensPropagator prop(p);
+    prop.set_field(z);
+    const double s0 = spectrum_norm(prop), e0 = prop.energy();
+    double worst_s = 0, worst_e = 0;
+    for (int s = 0; s < steps; ++s) {
+      prop.step();
+      if (s % 100 == 99) {
+        worst_s = std::max(worst_s, std::abs(spectrum_norm(prop) / s0 - 1));
+        worst_e = std::max(worst_e, std::abs(prop.energy() / e0 - 1));
+      }
+    }
+    const double tol = spatial ? 2.5e-7 * steps : 1e-6;
+    EXPECT_LT(worst_s, tol) << "spatial round trip " << spatial;
+    EXPECT_LT(worst_e, tol) << "spatial round trip " << spatial;
+    if (spatial) EXPECT_LT(spectrum_norm(prop), s0);
+  }
+}
+
+// The cutoff multiplies the field by h(p) h(q) <= 1, so by Parseval sum |Z^|^2 never grows
+// from one step to the next (energy() may: the product moves norm towards high k, which weigh
+// more), and a ring running into the margin loses most of it.
+TEST(HuygensPropagator, CutoffOnlyRemovesNorm) {
+  HuygensPropagator prop(small(64, 4.0, 0.05, true));
+  prop.add_gaussian(2.0, 2.0, 0.1, 0.01);
+  double norm = spectrum_norm(prop);
+  const double n0 = norm;
+  for (int s = 0; s < 200; ++s) {
+    prop.step();
+    const double next = spectrum_norm(prop);
+    ASSERT_LE(next, norm) << "step " << s;
+    norm = next;
+  }
+  EXPECT_LT(norm, 0.5 * n0);
 }

@@ -16,7 +16,7 @@ using namespace huygens;
 namespace {
 std::unique_ptr<Solver> build(const std::string& extra) {
   const std::string text = R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 0, "cutoff": false},
-                               "time": {"dt": 0.02})" +
+                               "time": {"dt_s": 0.02})" +
                            extra + "}";
   return make_solver(parse_scene_text(text), RunOptions{false});
 }
@@ -25,14 +25,14 @@ std::unique_ptr<Solver> build(const std::string& extra) {
 // A drop at t = 0.05 s with dt = 0.02 s enters in step 3 (t = 0.06 s) with 0.01 s of phase: after
 // 5 steps it equals a drop at rest propagated exactly for 0.05 s.
 TEST(HuygensSolver, DropsEnterWithExactSubStepTiming) {
-  auto solver = build(R"(, "drops": [{"t": 0.05, "x_m": 1.0, "y_m": 0.8, "radius_m": 0.08, "depth_m": 0.01}])");
+  auto solver = build(R"(, "drops": [{"t_s": 0.05, "x_m": 1.0, "y_m": 0.8, "radius_m": 0.08, "depth_m": 0.01}])");
   for (int i = 0; i < 5; ++i) solver->step();
   HuygensParams p;
   p.n = 64;
   p.length_m = 2.0;
   p.margin = 0;
   p.absorber = Absorber::off;
-  p.dt = 0.05;
+  p.dt_s = 0.05;
   p.effort = PlanEffort::estimate;
   HuygensPropagator ref(p);
   ref.add_gaussian(1.0, 0.8, 0.08, -0.01);
@@ -73,7 +73,7 @@ TEST(HuygensSolver, UiDropIsAppliedBetweenSteps) {
 
 TEST(HuygensSolver, OutputsAreTheVisibleRegion) {
   auto solver = make_solver(parse_scene_text(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
-      "time": {"dt": 0.02, "display_per_step": 3}})"),
+      "time": {"dt_s": 0.02, "display_per_step": 3}})"),
                             RunOptions{false});
   const auto out = solver->outputs();
   ASSERT_EQ(out.size(), 1u);
@@ -94,7 +94,7 @@ TEST(HuygensSolver, FeaturesRegisterOnlyTheirStagesAndTransforms) {
     return nullptr;
   };
   const std::string ship = R"(, "ships": [{"length_m": 0.2, "beam_m": 0.06, "draft_m": 0.01,
-      "path": [{"t": 0, "x_m": 0.5, "y_m": 1.0}, {"t": 2, "x_m": 1.5, "y_m": 1.0}]}])";
+      "path": [{"t_s": 0, "x_m": 0.5, "y_m": 1.0}, {"t_s": 2, "x_m": 1.5, "y_m": 1.0}]}])";
   const std::string wind = R"(, "wind": {"speed_mps": 3, "direction_deg": 0, "seed": 7})";
   auto plain = build("");
   auto full = build(R"(, "stokes": true)" + ship + wind);
@@ -129,7 +129,7 @@ TEST(HuygensSolver, FeaturesRegisterOnlyTheirStagesAndTransforms) {
 // Displayed frames: j = 0 is the full step; j = 1..D-1 are the cubic Hermite interpolants between
 // the previous and the current full step (at s = 0 and 1 they would be the end frames exactly).
 TEST(HuygensSolver, DisplayFramesInterpolateBetweenFullSteps) {
-  auto s = build(R"(, "time": {"dt": 0.02, "display_per_step": 3},
+  auto s = build(R"(, "time": {"dt_s": 0.02, "display_per_step": 3},
       "initial": [{"type": "gaussian", "x_m": 1.0, "y_m": 1.0, "sigma_m": 0.1, "amplitude_m": 0.01}])");
   EXPECT_EQ(s->display_per_step(), 3);
   EXPECT_TRUE(s->display_outputs(1).empty());  // no step yet: nothing to interpolate
@@ -155,9 +155,9 @@ TEST(HuygensSolver, DisplayFramesInterpolateBetweenFullSteps) {
 namespace {
 
 const char* kShipScene = R"({"solver": "huygens", "grid": {"n": 128, "length_m": 16.0, "margin": 8},
-    "time": {"dt": 0.05},
+    "time": {"dt_s": 0.05},
     "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-               "path": [{"t": 0, "x_m": 4.0, "y_m": 8.0}, {"t": 8, "x_m": 12.0, "y_m": 8.0}]}]})";
+               "path": [{"t_s": 0, "x_m": 4.0, "y_m": 8.0}, {"t_s": 8, "x_m": 12.0, "y_m": 8.0}]}]})";
 
 /// Sum of eta^2 over the visible cells within `radius` of (x, y) (unit: m^2 per cell).
 double energy_near(Solver& s, double x, double y, double radius) {

@@ -36,12 +36,12 @@ namespace {
 std::string scene_text(int n, bool cutoff, bool initial, bool drops, double dt = 0.02) {
   json s = {{"solver", "huygens"},
             {"grid", {{"n", n}, {"length_m", 10.0}, {"margin", n / 8}, {"cutoff", cutoff}}},
-            {"time", {{"dt", dt}}}};
+            {"time", {{"dt_s", dt}}}};
   if (initial)
     s["initial"] =
         json::array({{{"type", "gaussian"}, {"x_m", 4.0}, {"y_m", 5.5}, {"sigma_m", 0.15}, {"amplitude_m", 0.01}}});
   if (drops)
-    s["drops"] = json::array({{{"t", 0.1}, {"x_m", 6.0}, {"y_m", 4.0}, {"radius_m", 0.1}, {"depth_m", 0.005}}});
+    s["drops"] = json::array({{{"t_s", 0.1}, {"x_m", 6.0}, {"y_m", 4.0}, {"radius_m", 0.1}, {"depth_m", 0.005}}});
   return s.dump();
 }
 
@@ -204,8 +204,8 @@ TEST(Pipeline, ShipsWindAndStokesCostOnlyWhenNamed) {
       sc["ships"] = json::array({{{"length_m", 1.0},
                                   {"beam_m", 0.3},
                                   {"draft_m", 0.05},
-                                  {"path", json::array({{{"t", 0.0}, {"x_m", 3.0}, {"y_m", 5.0}},
-                                                        {{"t", 10.0}, {"x_m", 7.0}, {"y_m", 5.0}}})}}});
+                                  {"path", json::array({{{"t_s", 0.0}, {"x_m", 3.0}, {"y_m", 5.0}},
+                                                        {{"t_s", 10.0}, {"x_m", 7.0}, {"y_m", 5.0}}})}}});
     if (c.wind) sc["wind"] = {{"speed_mps", 5.0}, {"direction_deg", 30.0}, {"seed", 1}};
     sc["stokes"] = c.stokes;
     RunOptions o;
@@ -254,7 +254,7 @@ HuygensScene still_scene(bool initial, double drop_t, bool skip, bool drop = tru
   o.measure_plans = false;
   json sc = json::parse(scene_text(64, true, initial, false));
   if (drop)
-    sc["drops"] = json::array({{{"t", drop_t}, {"x_m", 6.0}, {"y_m", 4.0}, {"radius_m", 0.1}, {"depth_m", 0.005}}});
+    sc["drops"] = json::array({{{"t_s", drop_t}, {"x_m", 6.0}, {"y_m", 4.0}, {"radius_m", 0.1}, {"depth_m", 0.005}}});
   HuygensScene h = parse_huygens_scene(parse_scene_text(sc.dump()), o);
   h.still_skip = skip;
   // the 1 cm hump's waves need ~18000 steps to fall below the default 1e-7 m threshold (the
@@ -452,8 +452,8 @@ TEST(Pipeline, NonFiniteValueIsNamedByItsStage) {
       sc["ships"] = json::array({{{"length_m", 1.0},
                                   {"beam_m", 0.3},
                                   {"draft_m", 0.05},
-                                  {"path", json::array({{{"t", 0.0}, {"x_m", 3.0}, {"y_m", 5.0}},
-                                                        {{"t", 10.0}, {"x_m", 7.0}, {"y_m", 5.0}}})}}});
+                                  {"path", json::array({{{"t_s", 0.0}, {"x_m", 3.0}, {"y_m", 5.0}},
+                                                        {{"t_s", 10.0}, {"x_m", 7.0}, {"y_m", 5.0}}})}}});
     RunOptions o;
     o.measure_plans = false;
     HuygensScene scene = parse_huygens_scene(parse_scene_text(sc.dump()), o);

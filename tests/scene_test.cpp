@@ -73,14 +73,14 @@ namespace {
 // A valid scene with one field replaced (JSON-merge style) for the error tests.
 std::string huygens_scene(const std::string& grid_json = "", const std::string& extra = "") {
   const std::string grid = grid_json.empty() ? R"({"n": 64, "length_m": 2.0, "margin": 8})" : grid_json;
-  return R"({"solver": "huygens", "grid": )" + grid + R"(, "time": {"dt": 0.02}, "stokes": false,
+  return R"({"solver": "huygens", "grid": )" + grid + R"(, "time": {"dt_s": 0.02}, "stokes": false,
              "initial": [{"type": "gaussian", "x_m": 1.0, "y_m": 1.0, "sigma_m": 0.1, "amplitude_m": 0.01}])" +
          extra + "}";
 }
 }  // namespace
 
 TEST(HuygensScene, ValidSceneBuildsAndSteps) {
-  auto solver = make_solver(parse_scene_text(huygens_scene({}, R"(, "drops": [{"t": 0.03, "x_m": 0.5, "y_m": 0.5,
+  auto solver = make_solver(parse_scene_text(huygens_scene({}, R"(, "drops": [{"t_s": 0.03, "x_m": 0.5, "y_m": 0.5,
       "radius_m": 0.05, "depth_m": 0.01}], "ships": [], "wind": null, "water": {"depth_m": null})")),
                             RunOptions{false});
   for (int i = 0; i < 3; ++i) solver->step();
@@ -100,7 +100,7 @@ TEST(HuygensScene, SyntaxError) { EXPECT_EQ(error_path_of("{\"solver\": \"huygen
 TEST(HuygensScene, UnknownKey) {
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": 8, "size": 3})")), "$.grid.size");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drop": [])")), "$.drop");
-  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t": 1, "x_m": 1, "y_m": 1, "radius_m": 0.1,
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t_s": 1, "x_m": 1, "y_m": 1, "radius_m": 0.1,
       "depth_m": 0.01, "colour": 3}])")), "$.drops[0].colour");
 }
 
@@ -108,14 +108,14 @@ TEST(HuygensScene, WrongType) {
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": "64", "length_m": 2.0, "margin": 8})")), "$.grid.n");
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": [2.0], "margin": 8})")), "$.grid.length_m");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "water": {"depth_m": "deep"})")), "$.water.depth_m");
-  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": {"t": 1})")), "$.drops");
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": {"t_s": 1})")), "$.drops");
 }
 
 TEST(HuygensScene, NegativeSize) {
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": -64, "length_m": 2.0, "margin": 8})")), "$.grid.n");
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": -2.0, "margin": 8})")), "$.grid.length_m");
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": -1})")), "$.grid.margin");
-  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t": 1, "x_m": 1, "y_m": 1, "radius_m": -0.1,
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t_s": 1, "x_m": 1, "y_m": 1, "radius_m": -0.1,
       "depth_m": 0.01}])")), "$.drops[0].radius_m");
 }
 
@@ -129,29 +129,61 @@ TEST(HuygensScene, NonPowerOfTwoN) {
 
 TEST(HuygensScene, OutOfRangeValues) {
   const std::string g = R"({"n": 64, "length_m": 2.0, "margin": 8})";
-  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(, "time": {"dt": 0}})"), "$.time.dt");
-  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(, "time": {"dt": -1}})"), "$.time.dt");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(, "time": {"dt_s": 0}})"), "$.time.dt_s");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(, "time": {"dt_s": -1}})"), "$.time.dt_s");
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(})"), "$.time");
-  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t": 1, "x_m": 3, "y_m": 1, "radius_m": 0.1,
+  EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t_s": 1, "x_m": 3, "y_m": 1, "radius_m": 0.1,
       "depth_m": 0.01}])")), "$.drops[0].x_m");
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g +
-                          R"(, "time": {"dt": 0.1}, "initial": [{"type": "ring"}]})"),
+                          R"(, "time": {"dt_s": 0.1}, "initial": [{"type": "ring"}]})"),
             "$.initial[0].type");
 }
 
 TEST(HuygensScene, Issue3FeatureErrorsNameTheirPath) {
   // stokes, ships, wind and render are parsed (issue 3); bad values name their JSON path
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
-      "time": {"dt": 0.1}, "stokes": "yes"})"), "$.stokes");
+      "time": {"dt_s": 0.1}, "stokes": "yes"})"), "$.stokes");
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
-      "time": {"dt": 0.1}, "stokes": true})"), "<no error>");
+      "time": {"dt_s": 0.1}, "stokes": true})"), "<no error>");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 1}])")), "$.ships[0].beam_m");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": {"length_m": 1})")), "$.ships");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "wind": {"speed_mps": 5})")), "$.wind.direction_deg");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "render": 3)")), "$.render");
   // a ship moving more than a quarter of its patch per step is refused before the run
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 0.1, "beam_m": 0.03, "draft_m": 0.01,
-      "path": [{"t": 0, "x_m": 0.5, "y_m": 1}, {"t": 0.1, "x_m": 1.9, "y_m": 1}]}])")), "$.ships");
+      "path": [{"t_s": 0, "x_m": 0.5, "y_m": 1}, {"t_s": 0.1, "x_m": 1.9, "y_m": 1}]}])")), "$.ships");
+}
+
+// Keys of the older format (no unit suffix) are refused at their path, naming the new key.
+TEST(HuygensScene, OldKeysAreRefusedNamingTheNewOne) {
+  auto message_of = [](const std::string& text) -> std::string {
+    try {
+      make_solver(parse_scene_text(text), RunOptions{false});
+    } catch (const SceneError& e) {
+      return e.what();
+    }
+    return "<no error>";
+  };
+  const std::string head = R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8}, )";
+  struct Case {
+    std::string scene, path, new_key;
+  };
+  const Case cases[] = {
+      {head + R"("time": {"dt": 0.02}})", "$.time.dt", "dt_s"},
+      {head + R"("time": {"dt_s": 0.02}, "water": {"gravity": 9.81}})", "$.water.gravity", "gravity_mps2"},
+      {head + R"("time": {"dt_s": 0.02}, "water": {"surface_tension": 0}})", "$.water.surface_tension",
+       "surface_tension_npm"},
+      {head + R"("time": {"dt_s": 0.02}, "water": {"density": 1000}})", "$.water.density", "density_kgpm3"},
+      {huygens_scene({}, R"(, "drops": [{"t": 0.1, "x_m": 1, "y_m": 1, "radius_m": 0.1, "depth_m": 0.01}])"),
+       "$.drops[0].t", "t_s"},
+      {huygens_scene({}, R"(, "ships": [{"length_m": 0.1, "beam_m": 0.03, "draft_m": 0.01,
+          "path": [{"t_s": 0, "x_m": 0.5, "y_m": 1}, {"t": 1, "x_m": 0.6, "y_m": 1}]}])"),
+       "$.ships[0].path[1].t", "t_s"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(error_path_of(c.scene), c.path);
+    EXPECT_NE(message_of(c.scene).find("\"" + c.new_key + "\""), std::string::npos) << message_of(c.scene);
+  }
 }
 
 // The real program: a bad scene file gives exit code 2 and the JSON path on stderr.

@@ -45,7 +45,7 @@ struct Propagator {
         inv(n_, n_, buf.data(), buf.data(), Fft2D::backward, PlanEffort::estimate) {
     for (int r = 0; r < n; ++r)
       for (int c = 0; c < n; ++c) {
-        const double kx = 2 * kPi / length * (c < n / 2 ? c : c - n), ky = 2 * kPi / length * (r < n / 2 ? r : r - n);
+        const double kx = fft_wavenumber(c, n, length), ky = fft_wavenumber(r, n, length);
         mult[static_cast<std::size_t>(r) * n + c] =
             cfloat(std::exp(cd(0, -omega(w, std::hypot(kx, ky)) * dt)) / (double(n) * n));
       }
@@ -293,19 +293,19 @@ TEST(ShipWaves, RefusesHullsAndStepsThatDoNotFitThePatch) {
 
 TEST(ShipWaves, SceneShipsWithErrorPaths) {
   const Scene ok = parse_scene_text(R"({"solver": "huygens", "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-      "path": [{"t": 0, "x_m": 2, "y_m": 7.5}, {"t": 10, "x_m": 13, "y_m": 7.5}]}]})");
+      "path": [{"t_s": 0, "x_m": 2, "y_m": 7.5}, {"t_s": 10, "x_m": 13, "y_m": 7.5}]}]})");
   const std::vector<Ship> ships = parse_ships(ok.root());
   ASSERT_EQ(ships.size(), 1u);
   EXPECT_EQ(ships[0].path.points().size(), 2u);
   EXPECT_DOUBLE_EQ(ships[0].hull.blur(), 0.075);
   const Scene bad =
       parse_scene_text(R"({"solver": "huygens", "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-      "path": [{"t": 5, "x_m": 2, "y_m": 7.5}, {"t": 1, "x_m": 13, "y_m": 7.5}]}]})");
+      "path": [{"t_s": 5, "x_m": 2, "y_m": 7.5}, {"t_s": 1, "x_m": 13, "y_m": 7.5}]}]})");
   try {
     parse_ships(bad.root());
     FAIL() << "decreasing path time accepted";
   } catch (const SceneError& e) {
-    EXPECT_EQ(e.path(), "$.ships[0].path[1].t");
+    EXPECT_EQ(e.path(), "$.ships[0].path[1].t_s");
   }
 }
 
@@ -396,7 +396,7 @@ TEST(ShipSteering, TakesOverFromThePathWithoutAJump) {
   // target 3 m to the ship's left, moving at 0.3 m/s along +y
   ASSERT_TRUE(sw.steer(0, t, 3.0, 11.0, 0.0, 0.3));
   ASSERT_EQ(sw.path(0).points().size(), 2u);
-  EXPECT_NEAR(sw.path(0).points().back().t, t, 1e-12) << "future scripted points dropped";
+  EXPECT_NEAR(sw.path(0).points().back().t_s, t, 1e-12) << "future scripted points dropped";
   EXPECT_NEAR(sw.path(0).points().back().x_m, 3.0, 1e-9);
   ASSERT_TRUE(sw.add(z.data(), t, dt));
   t += dt;
@@ -445,7 +445,7 @@ TEST(ShipSteering, SpeedIsClampedToThePatchBound) {
 
 TEST(ShipSteering, SceneSteeringBlock) {
   const Scene sc = parse_scene_text(R"({"solver": "huygens", "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-      "path": [{"t": 0, "x_m": 2, "y_m": 7.5}], "steering": {"max_speed_mps": 2.5, "max_accel_mps2": 3, "time_constant_s": 0.2}}]})");
+      "path": [{"t_s": 0, "x_m": 2, "y_m": 7.5}], "steering": {"max_speed_mps": 2.5, "max_accel_mps2": 3, "time_constant_s": 0.2}}]})");
   const std::vector<Ship> ships = parse_ships(sc.root());
   ASSERT_EQ(ships.size(), 1u);
   EXPECT_EQ(ships[0].steering.max_speed_mps, 2.5);
@@ -453,7 +453,7 @@ TEST(ShipSteering, SceneSteeringBlock) {
   EXPECT_EQ(ships[0].steering.time_constant_s, 0.2);
   const Scene bad =
       parse_scene_text(R"({"solver": "huygens", "ships": [{"length_m": 1.0, "beam_m": 0.3, "draft_m": 0.05,
-      "path": [{"t": 0, "x_m": 2, "y_m": 7.5}], "steering": {"top_speed": 2}}]})");
+      "path": [{"t_s": 0, "x_m": 2, "y_m": 7.5}], "steering": {"top_speed": 2}}]})");
   try {
     parse_ships(bad.root());
     FAIL() << "unknown steering key accepted";

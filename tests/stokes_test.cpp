@@ -23,7 +23,7 @@ constexpr double kPi = std::numbers::pi;
 struct Grid {
   int n;
   double length;
-  double k(int idx) const { return 2 * kPi / length * (idx < n / 2 ? idx : idx - n); }
+  double k(int idx) const { return fft_wavenumber(idx, n, length); }
 };
 
 // Amplitude of the Fourier mode (mx, my) of a real field: |2 FFT / N^2|.
@@ -48,7 +48,7 @@ std::vector<cfloat> plane_wave(const Water& w, const Grid& g, int mx, int my, do
 
 Water deep_gravity() {
   Water w;
-  w.surface_tension = 0.0;
+  w.surface_tension_npm = 0.0;
   return w;
 }
 

@@ -79,7 +79,7 @@ SceneGeometry scene_geometry(const Scene& scene, Solver& solver) {
   else
     g.ground_z = -SceneGeometry::kDeepGround;
   if (doc.contains("time") && doc["time"].is_object()) {
-    g.dt = num(doc["time"], "dt", g.dt);
+    g.dt = num(doc["time"], "dt_s", g.dt);
     g.display_per_step = std::max(1, static_cast<int>(num(doc["time"], "display_per_step", 3)));
   }
   g.dt = num(meta, "dt", g.dt);
@@ -99,7 +99,7 @@ SceneGeometry scene_geometry(const Scene& scene, Solver& solver) {
       p.draft = num(s, "draft_m", p.draft);
       if (s.contains("path") && s["path"].is_array())
         for (const auto& w : s["path"]) {
-          p.t.push_back(num(w, "t", 0.0));
+          p.t.push_back(num(w, "t_s", 0.0));
           p.x.push_back(num(w, "x_m", 0.0));
           p.y.push_back(num(w, "y_m", 0.0));
         }

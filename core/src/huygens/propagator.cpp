@@ -30,10 +30,10 @@ std::string huygens_params_error(const HuygensParams& p) {
   if (p.margin < 0) return "margin must be >= 0";
   if (2 * p.margin >= p.n) return "margin too large: 2 * margin must be < n";
   if (p.absorber == Absorber::paper_quadratic && p.margin < 1) return "the quadratic cutoff needs margin >= 1";
-  if (!(p.dt > 0) || !std::isfinite(p.dt)) return "dt must be > 0";
-  if (!(p.water.gravity >= 0) || !(p.water.surface_tension >= 0) || !(p.water.density > 0))
+  if (!(p.dt_s > 0) || !std::isfinite(p.dt_s)) return "dt must be > 0";
+  if (!(p.water.gravity_mps2 >= 0) || !(p.water.surface_tension_npm >= 0) || !(p.water.density_kgpm3 > 0))
     return "water needs gravity >= 0, surface_tension >= 0, density > 0";
-  if (p.water.gravity == 0 && p.water.surface_tension == 0) return "gravity and surface tension are both 0";
+  if (p.water.gravity_mps2 == 0 && p.water.surface_tension_npm == 0) return "gravity and surface tension are both 0";
   if (!(p.water.depth_m > 0)) return "depth must be > 0 (or infinite)";
   if (p.check_every < 0) return "check_every must be >= 0";
   if (!(p.cutoff_time_s >= 0) || !std::isfinite(p.cutoff_time_s)) return "cutoff_time_s must be >= 0";
@@ -83,8 +83,7 @@ HuygensPropagator::HuygensPropagator(const HuygensParams& p)
 HuygensPropagator::~HuygensPropagator() = default;
 
 double HuygensPropagator::wavenumber(int i) const {
-  const int n = p_.n;
-  return 2.0 * kPi / p_.length_m * (i < n / 2 ? i : i - n);
+  return fft_wavenumber(i, p_.n, p_.length_m);
 }
 
 void HuygensPropagator::build_tables() {
@@ -102,7 +101,7 @@ void HuygensPropagator::build_tables() {
       const double w = omega(p_.water, k);
       const std::size_t i = static_cast<std::size_t>(r) * q + c;
       // the phase factor exp(i phi), phi = -omega dt, reduced to [-pi, pi]
-      double phi = std::remainder(-w * p_.dt, 2.0 * kPi);
+      double phi = std::remainder(-w * p_.dt_s, 2.0 * kPi);
       if (p_.rotation == Rotation::complex) {
         rot_a_[i] = static_cast<float>(std::cos(phi) * rot_scale);
         rot_b_[i] = static_cast<float>(std::sin(phi) * rot_scale);
@@ -142,7 +141,7 @@ void HuygensPropagator::build_tables() {
       else if (q >= n - m)
         h = 1.0 - std::pow(static_cast<double>(n - 1 - q) / m - 1.0, 2);
     }
-    if (p_.cutoff_time_s > 0) h = std::pow(h, p_.dt / p_.cutoff_time_s);
+    if (p_.cutoff_time_s > 0) h = std::pow(h, p_.dt_s / p_.cutoff_time_s);
     // stored twice, interleaved like the complex field (re, im)
     cut_[2 * static_cast<std::size_t>(q)] = static_cast<float>(h);
     cut_[2 * static_cast<std::size_t>(q) + 1] = static_cast<float>(h);
@@ -474,12 +473,12 @@ double HuygensPropagator::energy_bound() const {
   const double nn = static_cast<double>(p_.n) * p_.n;
   const double kmax = std::sqrt(2.0) * kPi * p_.n / p_.length_m;
   const double inv_h = p_.water.deep() ? 0.0 : 1.0 / p_.water.depth_m;
-  return 0.5 * p_.water.density * p_.length_m * p_.length_m / (nn * nn) * (kmax + inv_h) * sum;
+  return 0.5 * p_.water.density_kgpm3 * p_.length_m * p_.length_m / (nn * nn) * (kmax + inv_h) * sum;
 }
 
 void HuygensPropagator::end_step() {
   ++steps_;
-  t_ = static_cast<double>(steps_) * p_.dt;
+  t_ = static_cast<double>(steps_) * p_.dt_s;
 }
 
 void HuygensPropagator::step() {
@@ -500,7 +499,7 @@ void HuygensPropagator::raw_transforms() {
 
 double HuygensPropagator::energy() const {
   const int n = p_.n;
-  const double g = p_.water.gravity, st = p_.water.surface_tension / p_.water.density;
+  const double g = p_.water.gravity_mps2, st = p_.water.surface_tension_npm / p_.water.density_kgpm3;
   const double nn = static_cast<double>(n) * n;
   double sum = 0.0;
   for (int r = 0; r < n; ++r) {
@@ -519,7 +518,7 @@ double HuygensPropagator::energy() const {
       sum += (g + st * k * k) * (std::norm(hh) + std::norm(dd) / (w * w));
     }
   }
-  return 0.5 * p_.water.density * p_.length_m * p_.length_m / (nn * nn) * sum;
+  return 0.5 * p_.water.density_kgpm3 * p_.length_m * p_.length_m / (nn * nn) * sum;
 }
 
 }  // namespace huygens

@@ -64,29 +64,29 @@ double j1_over_q(double q) {
 ShipPath::ShipPath(std::vector<PathPoint> points) : pts_(std::move(points)) {
   if (pts_.empty()) throw std::invalid_argument("ship path: needs at least one point");
   for (std::size_t i = 1; i < pts_.size(); ++i)
-    if (!(pts_[i].t >= pts_[i - 1].t))
+    if (!(pts_[i].t_s >= pts_[i - 1].t_s))
       throw std::invalid_argument("ship path: point " + std::to_string(i) + " has a time before the previous point");
 }
 
 void ShipPath::append(const PathPoint& p) {
-  if (!pts_.empty() && !(p.t >= pts_.back().t))
+  if (!pts_.empty() && !(p.t_s >= pts_.back().t_s))
     throw std::invalid_argument("ship path: appended point lies before the last point in time");
   pts_.push_back(p);
 }
 
 void ShipPath::truncate_after(double t) {
-  if (pts_.empty() || !(t < pts_.back().t)) return;  // nothing scripted after t
+  if (pts_.empty() || !(t < pts_.back().t_s)) return;  // nothing scripted after t
   double x, y;
   position(t, x, y);
-  while (!pts_.empty() && pts_.back().t > t) pts_.pop_back();
+  while (!pts_.empty() && pts_.back().t_s > t) pts_.pop_back();
   // at least one point was removed, so this stays within the old size (no allocation)
-  if (pts_.empty() || pts_.back().t < t || pts_.back().x_m != x || pts_.back().y_m != y) pts_.push_back({t, x, y});
+  if (pts_.empty() || pts_.back().t_s < t || pts_.back().x_m != x || pts_.back().y_m != y) pts_.push_back({t, x, y});
 }
 
 int ShipPath::segment(double t) const {
-  if (pts_.empty() || t < pts_.front().t) return -1;
+  if (pts_.empty() || t < pts_.front().t_s) return -1;
   // last i with t_i <= t
-  const auto it = std::upper_bound(pts_.begin(), pts_.end(), t, [](double v, const PathPoint& p) { return v < p.t; });
+  const auto it = std::upper_bound(pts_.begin(), pts_.end(), t, [](double v, const PathPoint& p) { return v < p.t_s; });
   return static_cast<int>(it - pts_.begin()) - 1;
 }
 
@@ -108,8 +108,8 @@ void ShipPath::position(double t, double& x, double& y) const {
   }
   const PathPoint& a = pts_[static_cast<std::size_t>(i)];
   const PathPoint& b = pts_[static_cast<std::size_t>(i) + 1];
-  const double span = b.t - a.t;
-  const double f = span > 0.0 ? (t - a.t) / span : 1.0;
+  const double span = b.t_s - a.t_s;
+  const double f = span > 0.0 ? (t - a.t_s) / span : 1.0;
   x = a.x_m + f * (b.x_m - a.x_m);
   y = a.y_m + f * (b.y_m - a.y_m);
 }
@@ -120,7 +120,7 @@ void ShipPath::velocity(double t, double& vx, double& vy) const {
   if (i < 0 || i >= static_cast<int>(pts_.size()) - 1) return;
   const PathPoint& a = pts_[static_cast<std::size_t>(i)];
   const PathPoint& b = pts_[static_cast<std::size_t>(i) + 1];
-  const double span = b.t - a.t;
+  const double span = b.t_s - a.t_s;
   if (span <= 0.0) return;
   vx = (b.x_m - a.x_m) / span;
   vy = (b.y_m - a.y_m) / span;
@@ -129,11 +129,11 @@ void ShipPath::velocity(double t, double& vx, double& vy) const {
 void ShipPath::step_velocity(double t, double dt, double& vx, double& vy) const {
   const int i = segment(t);
   const int last = static_cast<int>(pts_.size()) - 1;
-  if (i >= last || (i < 0 && (pts_.empty() || t + dt <= pts_.front().t))) {
+  if (i >= last || (i < 0 && (pts_.empty() || t + dt <= pts_.front().t_s))) {
     vx = vy = 0.0;  // resting before the start or after the end
     return;
   }
-  if (i >= 0 && t + dt <= pts_[static_cast<std::size_t>(i) + 1].t) {
+  if (i >= 0 && t + dt <= pts_[static_cast<std::size_t>(i) + 1].t_s) {
     velocity(t, vx, vy);  // within one segment: its exact velocity
     return;
   }
@@ -150,7 +150,7 @@ double ShipPath::heading(double t) const {
   auto moving = [&](int i) {
     const PathPoint& a = pts_[static_cast<std::size_t>(i)];
     const PathPoint& b = pts_[static_cast<std::size_t>(i) + 1];
-    return b.t > a.t && (b.x_m != a.x_m || b.y_m != a.y_m);
+    return b.t_s > a.t_s && (b.x_m != a.x_m || b.y_m != a.y_m);
   };
   auto angle = [&](int i) {
     const PathPoint& a = pts_[static_cast<std::size_t>(i)];
@@ -179,9 +179,10 @@ std::vector<Ship> parse_ships(const JsonIn& root) {
     if (pts.empty()) j.fail("path", "a ship needs a path with at least one point");
     std::vector<PathPoint> path;
     for (const JsonIn& q : pts) {
-      q.allow_only({"t", "x_m", "y_m"});
-      PathPoint p{q.number("t", -1e9, 1e9), q.number("x_m", -1e9, 1e9), q.number("y_m", -1e9, 1e9)};
-      if (!path.empty() && p.t < path.back().t) q.fail("t", "path times must not decrease");
+      q.reject_renamed({{"t", "t_s"}});
+      q.allow_only({"t_s", "x_m", "y_m"});
+      PathPoint p{q.number("t_s", -1e9, 1e9), q.number("x_m", -1e9, 1e9), q.number("y_m", -1e9, 1e9)};
+      if (!path.empty() && p.t_s < path.back().t_s) q.fail("t_s", "path times must not decrease");
       path.push_back(p);
     }
     s.path = ShipPath(std::move(path));
@@ -246,7 +247,7 @@ ShipWaves::ShipWaves(const Water& water, int n, double length_m, int patch, std:
                                   std::to_string(half) + " m); enlarge the margin or the grid spacing");
   }
   kx_.resize(static_cast<std::size_t>(p_));
-  for (int i = 0; i < p_; ++i) kx_[static_cast<std::size_t>(i)] = 2.0 * kPi / (p_ * dx_) * (i < p_ / 2 ? i : i - p_);
+  for (int i = 0; i < p_; ++i) kx_[static_cast<std::size_t>(i)] = fft_wavenumber(i, p_, p_ * dx_);
   omega_.resize(static_cast<std::size_t>(p_) * p_);
   for (int r = 0; r < p_; ++r)
     for (int c = 0; c < p_; ++c)
@@ -271,7 +272,7 @@ void ShipWaves::check_step(double dt) const {
   for (std::size_t i = 0; i < ships_.size(); ++i) {
     const auto& pts = ships_[i].path.points();
     for (std::size_t j = 1; j < pts.size(); ++j) {
-      const double span = pts[j].t - pts[j - 1].t;
+      const double span = pts[j].t_s - pts[j - 1].t_s;
       const double d = std::hypot(pts[j].x_m - pts[j - 1].x_m, pts[j].y_m - pts[j - 1].y_m);
       // a jump (zero duration) or a step longer than the segment moves at most d per step
       const double per_step = span > 0.0 ? d * std::min(1.0, dt / span) : d;
@@ -297,7 +298,7 @@ bool last_ended_at(const Last& l, double t) {
 // The scene's top speed, or sqrt(g length) (1 m/s without gravity).
 double top_speed(const Ship& s, const Water& w) {
   if (s.steering.max_speed_mps > 0) return s.steering.max_speed_mps;
-  const double fr1 = std::sqrt(w.gravity * s.hull.length_m);
+  const double fr1 = std::sqrt(w.gravity_mps2 * s.hull.length_m);
   return fr1 > 0 ? fr1 : 1.0;
 }
 }  // namespace
@@ -480,9 +481,9 @@ bool ShipWaves::add(cfloat* z, double t, double dt) {
     }
     if (!all_finite(buf_.span())) return false;
     // scatter-add with periodic wrap at the grid edge
-    for (int j = 0; j < p_; ++j) cols_[static_cast<std::size_t>(j)] = ((c0 + (j < p_ / 2 ? j : j - p_)) % n_ + n_) % n_;
+    for (int j = 0; j < p_; ++j) cols_[static_cast<std::size_t>(j)] = ((c0 + fft_signed_index(j, p_)) % n_ + n_) % n_;
     for (int r = 0; r < p_; ++r) {
-      const int row = ((r0 + (r < p_ / 2 ? r : r - p_)) % n_ + n_) % n_;
+      const int row = ((r0 + fft_signed_index(r, p_)) % n_ + n_) % n_;
       cfloat* dst = z + static_cast<std::size_t>(row) * n_;
       const cfloat* src = buf_.data() + static_cast<std::size_t>(r) * p_;
       for (int j = 0; j < p_; ++j) dst[cols_[static_cast<std::size_t>(j)]] += src[j];

@@ -17,18 +17,8 @@ namespace {
 
 constexpr double kBig = 1e6;
 
-}  // namespace
-
-HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) {
-  const JsonIn root = scene.root();
-  root.allow_only(
-      {"solver", "description", "grid", "water", "time", "stokes", "initial", "drops", "ships", "wind", "render"});
-  if (root.has("description")) root.string("description", "");
-  HuygensScene out;
-  HuygensParams& p = out.params;
-  p.effort = options.measure_plans ? PlanEffort::measure : PlanEffort::estimate;
-
-  // grid: n (power of two), length_m, margin, cutoff
+// grid: n (power of two), length_m, margin, cutoff (bool), cutoff_time_s
+void parse_grid(const JsonIn& root, HuygensParams& p) {
   const JsonIn grid = root.object("grid");
   grid.allow_only({"n", "length_m", "margin", "cutoff", "cutoff_time_s"});
   const long long n = grid.integer("n", 16, 16384);
@@ -42,29 +32,120 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
   // 0 (default): paper 004's cutoff once per step; tau > 0: one paper cutoff per tau seconds
   p.cutoff_time_s = grid.number("cutoff_time_s", 0.0, 0.0, 1e6);
   if (p.absorber == Absorber::paper_quadratic && m < 1) grid.fail("margin", "the cutoff needs margin >= 1");
+}
 
-  // water (all optional): depth_m null or absent = deep water
-  if (auto water = root.optional_object("water")) {
-    water->allow_only({"gravity", "surface_tension", "density", "depth_m"});
-    p.water.gravity = water->number("gravity", 9.81, 0.0, 1e3);
-    p.water.surface_tension = water->number("surface_tension", 0.072, 0.0, 10.0);
-    p.water.density = water->number("density", 1000.0, 1e-3, 1e5);
-    if (auto d = water->optional_number("depth_m", 0.0, kBig)) {
-      if (*d <= 0) water->fail("depth_m", "depth must be > 0 (null for deep water)");
-      p.water.depth_m = *d;
-    }
-    if (p.water.gravity == 0 && p.water.surface_tension == 0)
-      water->fail("gravity", "gravity and surface tension are both 0: no waves");
+// water (all optional): depth_m null or absent = deep water
+void parse_water(const JsonIn& root, Water& w) {
+  const auto water = root.optional_object("water");
+  if (!water) return;
+  water->reject_renamed(
+      {{"gravity", "gravity_mps2"}, {"surface_tension", "surface_tension_npm"}, {"density", "density_kgpm3"}});
+  water->allow_only({"gravity_mps2", "surface_tension_npm", "density_kgpm3", "depth_m"});
+  w.gravity_mps2 = water->number("gravity_mps2", 9.81, 0.0, 1e3);
+  w.surface_tension_npm = water->number("surface_tension_npm", 0.072, 0.0, 10.0);
+  w.density_kgpm3 = water->number("density_kgpm3", 1000.0, 1e-3, 1e5);
+  if (auto d = water->optional_number("depth_m", 0.0, kBig)) {
+    if (*d <= 0) water->fail("depth_m", "depth must be > 0 (null for deep water)");
+    w.depth_m = *d;
   }
+  if (w.gravity_mps2 == 0 && w.surface_tension_npm == 0)
+    water->fail("gravity_mps2", "gravity and surface tension are both 0: no waves");
+}
 
-  // time: dt > 0 (any value is stable), display_per_step
+// time: dt_s > 0 (any value is stable), display_per_step
+void parse_time(const JsonIn& root, HuygensScene& out) {
   const JsonIn time = root.object("time");
-  time.allow_only({"dt", "display_per_step"});
-  p.dt = time.number("dt", 0.0, 1e3);
-  if (p.dt <= 0) time.fail("dt", "dt must be > 0");
+  time.reject_renamed({{"dt", "dt_s"}});
+  time.allow_only({"dt_s", "display_per_step"});
+  out.params.dt_s = time.number("dt_s", 0.0, 1e3);
+  if (out.params.dt_s <= 0) time.fail("dt_s", "dt_s must be > 0");
   out.display_per_step = static_cast<int>(time.integer("display_per_step", 1, 1, 1000));
+}
 
-  // issue 3 features: each one the scene does not name costs nothing
+GaussianSource parse_gaussian(const JsonIn& e, double len) {
+  e.allow_only({"type", "x_m", "y_m", "sigma_m", "amplitude_m"});
+  GaussianSource g;
+  g.x_m = e.number("x_m", 0.0, len);
+  g.y_m = e.number("y_m", 0.0, len);
+  g.sigma_m = e.number("sigma_m", 0.0, len);
+  if (g.sigma_m <= 0) e.fail("sigma_m", "sigma must be > 0");
+  g.amplitude_m = e.number("amplitude_m", -kBig, kBig);
+  return g;
+}
+
+PlaneWaveSource parse_plane_wave(const JsonIn& e, double len, int n) {
+  e.allow_only({"type", "wavelength_m", "amplitude_m", "direction_deg"});
+  PlaneWaveSource w;
+  w.wavelength_m = e.number("wavelength_m", 0.0, kBig);
+  if (w.wavelength_m < 2.0 * len / n)
+    e.fail("wavelength_m", "wavelength below two grid cells (" + std::to_string(2.0 * len / n) + " m)");
+  w.amplitude_m = e.number("amplitude_m", -kBig, kBig);
+  w.direction_deg = e.number("direction_deg", 0.0, -360.0, 360.0);
+  return w;
+}
+
+// initial: gaussian elevations at rest and progressive plane waves
+void parse_initial(const JsonIn& root, HuygensScene& out) {
+  for (const JsonIn& e : root.array("initial")) {
+    const std::string type = e.string("type", "", {"gaussian", "plane_wave"});
+    if (type.empty()) e.fail("type", "missing required string (\"gaussian\" or \"plane_wave\")");
+    if (type == "gaussian")
+      out.initial_gaussians.push_back(parse_gaussian(e, out.params.length_m));
+    else
+      out.initial_plane_waves.push_back(parse_plane_wave(e, out.params.length_m, out.params.n));
+  }
+}
+
+// drops: {t_s, x_m, y_m, radius_m, depth_m}, sorted by time
+void parse_drops(const JsonIn& root, HuygensScene& out) {
+  const double len = out.params.length_m;
+  for (const JsonIn& e : root.array("drops")) {
+    e.reject_renamed({{"t", "t_s"}});
+    e.allow_only({"t_s", "x_m", "y_m", "radius_m", "depth_m"});
+    GaussianSource g;
+    g.t_s = e.number("t_s", 0.0, 1e9);
+    g.x_m = e.number("x_m", 0.0, len);
+    g.y_m = e.number("y_m", 0.0, len);
+    g.sigma_m = e.number("radius_m", 0.0, len);
+    if (g.sigma_m <= 0) e.fail("radius_m", "radius must be > 0");
+    g.amplitude_m = -e.number("depth_m", -kBig, kBig);
+    out.drops.push_back(g);
+  }
+  std::stable_sort(out.drops.begin(), out.drops.end(),
+                   [](const GaussianSource& a, const GaussianSource& b) { return a.t_s < b.t_s; });
+}
+
+// True when the hull (with 3 blur radii) fits a quarter of a patch of `patch` cells of dx.
+bool hull_fits(const HullParams& h, int patch, double dx) {
+  return 0.25 * patch * dx >= 0.5 * std::max(h.length_m, h.beam_m) + 3.0 * h.blur();
+}
+
+// The ship patch: 2M, enlarged until every hull fits a quarter of it; a ship moving more than
+// a quarter of its patch per step is refused
+void size_ship_patch(const JsonIn& root, HuygensScene& out) {
+  const HuygensParams& p = out.params;
+  const double dx = p.length_m / p.n;
+  int patch = std::max(2, 2 * p.margin);
+  for (const Ship& sh : out.ships)
+    while (patch < p.n && !hull_fits(sh.hull, patch, dx)) patch += 2;
+  out.ship_patch = std::min(patch, p.n);
+  for (std::size_t i = 0; i < out.ships.size(); ++i)
+    if (!hull_fits(out.ships[i].hull, out.ship_patch, dx))
+      root.fail("ships", "ship " + std::to_string(i) + ": the hull (with its blur) does not fit a quarter of the grid");
+}
+
+void check_ship_steps(const JsonIn& root, const HuygensScene& out) {
+  const HuygensParams& p = out.params;
+  try {
+    ShipWaves probe(p.water, p.n, p.length_m, out.ship_patch, out.ships, PlanEffort::estimate);
+    probe.check_step(p.dt_s);
+  } catch (const std::invalid_argument& e) {
+    root.fail("ships", e.what());
+  }
+}
+
+// the features each cost nothing when the scene does not name them: stokes, ships, wind
+void parse_features(const JsonIn& root, HuygensScene& out) {
   out.stokes = root.boolean("stokes", false);
   if (root.has("ships") && !root.raw()["ships"].is_null() && !root.raw()["ships"].is_array())
     root.fail("ships", "expected an array of ships");
@@ -73,78 +154,36 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
     out.wind = parse_wind(*w);
     out.has_wind = true;
   }
-  // the visualizer reads `render` (caustics, blur, ...); the solver only checks it is an object
-  (void)root.optional_object("render");
+  // what the viewer is asked for (caustics, blur), handed on as RenderInfo::request
+  out.render = parse_render_request(root);
+}
 
-  const double len = p.length_m;
-  auto position = [&](const JsonIn& o, const char* key) { return o.number(key, 0.0, len); };
-  for (const JsonIn& e : root.array("initial")) {
-    const std::string type = e.string("type", "", {"gaussian", "plane_wave"});
-    if (type.empty()) e.fail("type", "missing required string (\"gaussian\" or \"plane_wave\")");
-    if (type == "gaussian") {
-      e.allow_only({"type", "x_m", "y_m", "sigma_m", "amplitude_m"});
-      GaussianSource g;
-      g.x_m = position(e, "x_m");
-      g.y_m = position(e, "y_m");
-      g.sigma_m = e.number("sigma_m", 0.0, len);
-      if (g.sigma_m <= 0) e.fail("sigma_m", "sigma must be > 0");
-      g.amplitude_m = e.number("amplitude_m", -kBig, kBig);
-      out.initial_gaussians.push_back(g);
-    } else {
-      e.allow_only({"type", "wavelength_m", "amplitude_m", "direction_deg"});
-      PlaneWaveSource w;
-      w.wavelength_m = e.number("wavelength_m", 0.0, kBig);
-      if (w.wavelength_m < 2.0 * len / n)
-        e.fail("wavelength_m", "wavelength below two grid cells (" + std::to_string(2.0 * len / n) + " m)");
-      w.amplitude_m = e.number("amplitude_m", -kBig, kBig);
-      w.direction_deg = e.number("direction_deg", 0.0, -360.0, 360.0);
-      out.initial_plane_waves.push_back(w);
-    }
-  }
-  for (const JsonIn& e : root.array("drops")) {
-    e.allow_only({"t", "x_m", "y_m", "radius_m", "depth_m"});
-    GaussianSource g;
-    g.t = e.number("t", 0.0, 1e9);
-    g.x_m = position(e, "x_m");
-    g.y_m = position(e, "y_m");
-    g.sigma_m = e.number("radius_m", 0.0, len);
-    if (g.sigma_m <= 0) e.fail("radius_m", "radius must be > 0");
-    g.amplitude_m = -e.number("depth_m", -kBig, kBig);
-    out.drops.push_back(g);
-  }
-  std::stable_sort(out.drops.begin(), out.drops.end(),
-                   [](const GaussianSource& a, const GaussianSource& b) { return a.t < b.t; });
+}  // namespace
+
+HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) {
+  const JsonIn root = scene.root();
+  root.allow_only(
+      {"solver", "description", "grid", "water", "time", "stokes", "initial", "drops", "ships", "wind", "render"});
+  if (root.has("description")) root.string("description", "");
+  HuygensScene out;
+  HuygensParams& p = out.params;
+  p.effort = options.measure_plans ? PlanEffort::measure : PlanEffort::estimate;
+  parse_grid(root, p);
+  parse_water(root, p.water);
+  parse_time(root, out);
+  parse_features(root, out);
+  parse_initial(root, out);
+  parse_drops(root, out);
   // source tables (2 N^2 floats) at construction for timed drops, which enter inside a step;
   // a scene without them makes the tables on the first UI drop (between steps, see apply())
   p.runtime_sources = !out.drops.empty();
   // Stokes or wind: the StokesHeight stage makes the height; the propagator makes none
   p.external_height = out.stokes || out.has_wind;
-  if (!out.ships.empty()) {
-    // ships add to the spatial field: force the FFT round trip even without the cutoff
-    p.spatial = true;
-    const double dx = p.length_m / p.n;
-    int patch = std::max(2, 2 * p.margin);
-    for (const Ship& sh : out.ships)
-      while (patch < p.n && 0.25 * patch * dx < 0.5 * std::max(sh.hull.length_m, sh.hull.beam_m) + 3.0 * sh.hull.blur())
-        patch += 2;
-    out.ship_patch = std::min(patch, p.n);
-    for (std::size_t i = 0; i < out.ships.size(); ++i) {
-      const HullParams& h = out.ships[i].hull;
-      if (0.25 * out.ship_patch * dx < 0.5 * std::max(h.length_m, h.beam_m) + 3.0 * h.blur())
-        root.fail("ships",
-                  "ship " + std::to_string(i) + ": the hull (with its blur) does not fit a quarter of the grid");
-    }
-  }
+  // ships add to the spatial field: force the FFT round trip even without the cutoff
+  p.spatial = !out.ships.empty();
+  if (!out.ships.empty()) size_ship_patch(root, out);
   if (auto e = huygens_params_error(p); !e.empty()) root.fail_here(e);
-  if (!out.ships.empty()) {
-    // an unstable step (a ship moving more than a quarter of its patch per step) is refused here
-    try {
-      ShipWaves probe(p.water, p.n, p.length_m, out.ship_patch, out.ships, PlanEffort::estimate);
-      probe.check_step(p.dt);
-    } catch (const std::invalid_argument& e) {
-      root.fail("ships", e.what());
-    }
-  }
+  if (!out.ships.empty()) check_ship_steps(root, out);
   return out;
 }
 
@@ -153,9 +192,9 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
   const std::size_t vv = static_cast<std::size_t>(prop_.visible_size()) * prop_.visible_size();
   if (!scene_.ships.empty()) {
     ships_ = std::make_unique<ShipWaves>(p.water, p.n, p.length_m, scene_.ship_patch, scene_.ships, p.effort);
-    ships_->check_step(p.dt);
+    ships_->check_step(p.dt_s);
   }
-  if (scene_.has_wind) wind_ = std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt);
+  if (scene_.has_wind) wind_ = std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt_s);
   if (scene_.stokes || wind_) {
     stokes_ = std::make_unique<StokesHeight>(p.water, p.n, p.length_m, scene_.stokes, p.effort, p.margin);
     eta_ = AlignedBuffer<float>(vv);
@@ -169,9 +208,9 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
   for (const auto& w : scene_.initial_plane_waves) prop_.add_plane_wave(w.wavelength_m, w.amplitude_m, w.direction_deg);
   for (const auto& g : scene_.initial_gaussians) prop_.add_gaussian(g.x_m, g.y_m, g.sigma_m, g.amplitude_m);
   // drops at t <= 0 are part of the initial state
-  while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t <= 0.0) {
+  while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t_s <= 0.0) {
     const auto& d = scene_.drops[next_drop_++];
-    prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, -d.t);
+    prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, -d.t_s);
   }
   // the drops stage exists for the scene's drops and for the UI's (registered here; it owns
   // the source tables once they exist)
@@ -183,7 +222,7 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
     // ships and wind keep the sea alive: no still state with them
     const double k1 = 2.0 * std::numbers::pi / p.length_m, a = scene_.still_amplitude_m;
     still_energy_ =
-        0.5 * (p.water.density * p.water.gravity + p.water.surface_tension * k1 * k1) * a * a * p.length_m * p.length_m;
+        0.5 * (p.water.density_kgpm3 * p.water.gravity_mps2 + p.water.surface_tension_npm * k1 * k1) * a * a * p.length_m * p.length_m;
     st_still_ = prop_.stats().add("still", 0);
   }
   make_height(0);
@@ -202,7 +241,7 @@ void HuygensSolver::make_height(std::int64_t step) {
     StageTimer timer(prop_.stats()[st_stokes_]);
     const float scale = 1.0f / (static_cast<float>(n) * static_cast<float>(n));
     // with wind: the sea W^(0) P is formed inside the height pass (read once, never written)
-    ok = wind_ ? stokes_->compute(prop_.spectrum_view().data(), scale, *wind_, eta_.data(), etadot_.data())
+    ok = wind_ && wind_on_ ? stokes_->compute(prop_.spectrum_view().data(), scale, *wind_, eta_.data(), etadot_.data())
                : stokes_->compute(prop_.spectrum_view().data(), scale, nullptr, eta_.data(), etadot_.data());
     prop_.stats()[st_stokes_].transforms += static_cast<std::uint64_t>(stokes_->transforms_per_call());
   }
@@ -215,8 +254,8 @@ int HuygensSolver::transforms_per_step() const {
 
 bool HuygensSolver::drop_due() const {
   if (next_drop_ >= scene_.drops.size()) return false;
-  const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt;
-  return scene_.drops[next_drop_].t <= t1 + 1e-9 * scene_.params.dt;
+  const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt_s;
+  return scene_.drops[next_drop_].t_s <= t1 + 1e-9 * scene_.params.dt_s;
 }
 
 void HuygensSolver::check_still() {
@@ -229,6 +268,51 @@ void HuygensSolver::check_still() {
   still_ = true;
 }
 
+void HuygensSolver::keep_previous_step() {
+  // after a cmd::Drop: eta0_ needs the current height; otherwise the step makes it
+  if (height_dirty_ && scene_.display_per_step > 1) refresh_height();
+  height_dirty_ = false;
+  if (scene_.display_per_step <= 1) return;
+  // keep the previous full step for the displayed frames in between: with the height stage
+  // the solver owns eta_, so the buffers trade places (make_height rewrites all of eta_);
+  // otherwise the propagator owns the height and it is copied
+  if (stokes_) {
+    std::swap(eta0_, eta_);
+    std::swap(etadot0_, etadot_);
+  } else {
+    const auto e = eta_view(), d = etadot_view();
+    std::memcpy(eta0_.data(), e.data(), e.size() * sizeof(float));
+    std::memcpy(etadot0_.data(), d.data(), d.size() * sizeof(float));
+  }
+}
+
+void HuygensSolver::add_ships(double t0) {
+  // the ships write into the same buffer as propagate and cutoff: each patch is checked
+  // before it is added (every step; P^2 per ship), so a non-finite value from the kernels
+  // is named "ships" and never blamed on propagate
+  if (prop_.inject_due_for_test(st_ships_)) ships_->poison_next_add_for_test();
+  bool ok = false;
+  {
+    StageTimer timer(prop_.stats()[st_ships_]);
+    ok = ships_->add(prop_.field().data(), t0, scene_.params.dt_s);
+  }
+  if (!ok) throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
+}
+
+void HuygensSolver::release_drops() {
+  // drops released in (t, t + dt] enter with the phase they have gained by t + dt
+  const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt_s;
+  const double eps = 1e-9 * scene_.params.dt_s;
+  StageTimer timer(prop_.stats()[st_drops_]);
+  while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t_s <= t1 + eps) {
+    const auto& d = scene_.drops[next_drop_++];
+    prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, std::max(0.0, t1 - d.t_s));
+  }
+  if (prop_.inject_due_for_test(st_drops_)) prop_.spectrum_data()[1] = NAN;
+  // drops are rare: check their output in full
+  if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps() + 1);
+}
+
 void HuygensSolver::step() {
   if (still_) {
     if (!drop_due()) {
@@ -239,51 +323,13 @@ void HuygensSolver::step() {
     }
     still_ = false;  // a timed drop wakes it: the normal step below releases it
   }
-  // after a cmd::Drop: eta0_ needs the current height; otherwise the step makes it
-  if (height_dirty_ && scene_.display_per_step > 1) refresh_height();
-  height_dirty_ = false;
-  if (scene_.display_per_step > 1) {
-    // keep the previous full step for the displayed frames in between: with the height stage
-    // the solver owns eta_, so the buffers trade places (make_height rewrites all of eta_);
-    // otherwise the propagator owns the height and it is copied
-    if (stokes_) {
-      std::swap(eta0_, eta_);
-      std::swap(etadot0_, etadot_);
-    } else {
-      const auto e = eta_view(), d = etadot_view();
-      std::memcpy(eta0_.data(), e.data(), e.size() * sizeof(float));
-      std::memcpy(etadot0_.data(), d.data(), d.size() * sizeof(float));
-    }
-  }
-  const double t0 = prop_.time(), dt = scene_.params.dt;
+  keep_previous_step();
+  const double t0 = prop_.time();
   prop_.propagate();
   prop_.cutoff();
-  if (ships_) {
-    // the ships write into the same buffer as propagate and cutoff: each patch is checked
-    // before it is added (every step; P^2 per ship), so a non-finite value from the kernels
-    // is named "ships" and never blamed on propagate
-    if (prop_.inject_due_for_test(st_ships_)) ships_->poison_next_add_for_test();
-    bool ok = false;
-    {
-      StageTimer timer(prop_.stats()[st_ships_]);
-      ok = ships_->add(prop_.field().data(), t0, dt);
-    }
-    if (!ok) throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
-  }
+  if (ships_) add_ships(t0);
   prop_.spectrum();
-  if (drop_due()) {
-    // drops released in (t, t + dt] enter with the phase they have gained by t + dt
-    const double t1 = static_cast<double>(prop_.steps() + 1) * scene_.params.dt;
-    const double eps = 1e-9 * scene_.params.dt;
-    StageTimer timer(prop_.stats()[st_drops_]);
-    while (next_drop_ < scene_.drops.size() && scene_.drops[next_drop_].t <= t1 + eps) {
-      const auto& d = scene_.drops[next_drop_++];
-      prop_.add_gaussian(d.x_m, d.y_m, d.sigma_m, d.amplitude_m, std::max(0.0, t1 - d.t));
-    }
-    if (prop_.inject_due_for_test(st_drops_)) prop_.spectrum_data()[1] = NAN;
-    // drops are rare: check their output in full
-    if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps() + 1);
-  }
+  if (drop_due()) release_drops();
   if (wind_) {
     StageTimer timer(prop_.stats()[st_wind_]);
     wind_->advance();
@@ -300,7 +346,7 @@ std::vector<OutputField> HuygensSolver::display_outputs(int j) {
   if (j < 0 || j >= d || prop_.steps() < 1) return {};
   const auto e1 = eta_view(), d1 = etadot_view();
   hermite_interpolate(eta0_.data(), etadot0_.data(), e1.data(), d1.data(), e1.size(), hermite_weights(j, d),
-                      scene_.params.dt, frame_.data());
+                      scene_.params.dt_s, frame_.data());
   const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
   return {OutputField{"eta", {v, v}, frame_.span()}};
 }
@@ -316,6 +362,7 @@ std::size_t HuygensSolver::ship_poses(std::span<ShipState> out) const {
 }
 
 bool HuygensSolver::apply(const Command& c) {
+  if (const auto* t = std::get_if<cmd::Toggle>(&c)) return toggle(*t);
   if (const auto* s = std::get_if<cmd::ShipTarget>(&c)) {
     // between steps: the ship leaves its path now (no transform, no allocation)
     if (!ships_) return false;
@@ -353,7 +400,7 @@ nlohmann::json HuygensSolver::meta() const {
       {"n", n},
       {"length_m", p.length_m},
       {"dx", dx},
-      {"dt", p.dt},
+      {"dt", p.dt_s},
       {"margin", m},
       {"display_per_step", scene_.display_per_step},
       {"cutoff", p.absorber == Absorber::paper_quadratic},
@@ -361,9 +408,9 @@ nlohmann::json HuygensSolver::meta() const {
       {"rotation", p.rotation == Rotation::lifting ? "lifting" : "complex"},
       {"grid", {{"n", n}, {"length_m", p.length_m}, {"margin", m}, {"dx", dx}}},
       {"water",
-       {{"gravity", p.water.gravity},
-        {"surface_tension", p.water.surface_tension},
-        {"density", p.water.density},
+       {{"gravity_mps2", p.water.gravity_mps2},
+        {"surface_tension_npm", p.water.surface_tension_npm},
+        {"density_kgpm3", p.water.density_kgpm3},
         {"depth_m", p.water.deep() ? nlohmann::json(nullptr) : nlohmann::json(p.water.depth_m)}}},
       {"visible",
        {{"rows", {m, n - m}},
@@ -391,6 +438,52 @@ nlohmann::json HuygensSolver::meta() const {
       {"transforms_per_displayed_frame",
        static_cast<double>(transforms_per_step()) / static_cast<double>(scene_.display_per_step)},
   };
+}
+
+bool HuygensSolver::toggle(const cmd::Toggle& t) {
+  if (t.feature == "wind") {
+    if (!wind_) return false;  // no sea in the scene: nothing is allocated to switch on
+    wind_on_ = t.on;
+    height_dirty_ = true;
+    return true;
+  }
+  if (!(t.feature == "stokes")) return false;
+  if (t.on == (stokes_ && stokes_->second_order())) return true;
+  const HuygensParams& p = scene_.params;
+  if (!t.on && !p.external_height) {
+    stokes_spare_ = std::move(stokes_);  // back to the propagator's own packed height
+  } else {
+    // between steps (allocation and planning allowed): the other order, made once and kept
+    if (!stokes_spare_ || stokes_spare_->second_order() != t.on)
+      stokes_spare_ = std::make_unique<StokesHeight>(p.water, p.n, p.length_m, t.on, p.effort, p.margin);
+    std::swap(stokes_, stokes_spare_);
+    if (eta_.size() == 0) {  // a scene without a height stage: its buffers and stage now
+      const std::size_t vv = static_cast<std::size_t>(prop_.visible_size()) * prop_.visible_size();
+      eta_ = AlignedBuffer<float>(vv);
+      etadot_ = AlignedBuffer<float>(vv);
+    }
+    if (st_stokes_ < 0) st_stokes_ = prop_.stats().add("height_stokes", 0);
+  }
+  if (st_stokes_ >= 0)
+    prop_.stats()[st_stokes_].bytes = (stokes_ ? stokes_->bytes() : 0) + (stokes_spare_ ? stokes_spare_->bytes() : 0);
+  height_dirty_ = true;  // the next step or read makes the height the new way
+  return true;
+}
+
+RenderInfo HuygensSolver::render_info() {
+  const HuygensParams& p = scene_.params;
+  const double dx = p.length_m / p.n;
+  RenderInfo r;
+  r.grid = RenderGrid{height_rows(), height_cols(), dx, p.margin * dx, p.margin * dx};
+  if (!p.water.deep()) r.depth_m = p.water.depth_m;
+  for (const Ship& s : scene_.ships) r.hulls.push_back(RenderHull{s.hull.length_m, s.hull.beam_m, s.hull.draft_m});
+  r.dt_s = p.dt_s;
+  r.display_per_step = scene_.display_per_step;
+  r.frame_dt_s = p.dt_s / scene_.display_per_step;
+  r.toggles.push_back(RenderToggle{"stokes", "Stokes (2nd order)", stokes_ && stokes_->second_order()});
+  if (wind_) r.toggles.push_back(RenderToggle{"wind", "wind", wind_on_});
+  r.request = scene_.render;
+  return r;
 }
 
 std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options) {

@@ -31,7 +31,7 @@ std::complex<double> mode_gaussian(std::uint64_t seed, int mx, int my) {
 }
 
 double fetch_ratio(const WindParams& p, const Water& w) {
-  return std::min(w.gravity * p.fetch_m / (p.speed_mps * p.speed_mps), kDevelopedFetch);
+  return std::min(w.gravity_mps2 * p.fetch_m / (p.speed_mps * p.speed_mps), kDevelopedFetch);
 }
 
 }  // namespace
@@ -48,7 +48,7 @@ WindParams parse_wind(const JsonIn& j) {
 }
 
 double jonswap_peak(const WindParams& p, const Water& w) {
-  return 22.0 * w.gravity / p.speed_mps * std::pow(fetch_ratio(p, w), -1.0 / 3.0);
+  return 22.0 * w.gravity_mps2 / p.speed_mps * std::pow(fetch_ratio(p, w), -1.0 / 3.0);
 }
 
 double jonswap_alpha(const WindParams& p, const Water& w) { return 0.076 * std::pow(fetch_ratio(p, w), -0.22); }
@@ -59,7 +59,7 @@ double jonswap(const WindParams& p, const Water& w, double om) {
   const double s = om <= wp ? 0.07 : 0.09;
   const double r = std::exp(-(om - wp) * (om - wp) / (2.0 * s * s * wp * wp));
   const double q = wp / om;
-  return jonswap_alpha(p, w) * w.gravity * w.gravity * std::pow(om, -5.0) * std::exp(-1.25 * q * q * q * q) *
+  return jonswap_alpha(p, w) * w.gravity_mps2 * w.gravity_mps2 * std::pow(om, -5.0) * std::exp(-1.25 * q * q * q * q) *
          std::pow(p.gamma, r);
 }
 
@@ -84,7 +84,7 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
       const std::size_t m = static_cast<std::size_t>(r) * n + c;
-      const int mx = c < n / 2 ? c : c - n, my = r < n / 2 ? r : r - n;
+      const int mx = fft_signed_index(c, n), my = fft_signed_index(r, n);
       const double kx = dk * mx, ky = dk * my, k = std::hypot(kx, ky);
       const double om = omega(w, k);
       omega_[m] = om;
@@ -102,7 +102,7 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
   const int q = n / 2 + 1;
   for (int r = 0; r < q; ++r)
     for (int c = 0; c < q; ++c) {
-      const int mx = c < n / 2 ? c : c - n, my = r < n / 2 ? r : r - n;
+      const int mx = fft_signed_index(c, n), my = fft_signed_index(r, n);
       const double om = omega(w, std::hypot(dk * mx, dk * my));
       step_[static_cast<std::size_t>(r) * q + c] = cfloat(std::exp(std::complex<double>(0.0, -om * dt)));
       phase_[static_cast<std::size_t>(r) * q + c] = cfloat(1.0f, 0.0f);

@@ -9,11 +9,11 @@ namespace huygens {
 /// Physical properties of the water body.
 struct Water {
   /// Gravitational acceleration (unit: m/s^2).
-  double gravity = 9.81;
+  double gravity_mps2 = 9.81;
   /// Surface tension sigma (unit: N/m); 0 gives pure gravity waves.
-  double surface_tension = 0.072;
+  double surface_tension_npm = 0.072;
   /// Mass density rho (unit: kg/m^3).
-  double density = 1000.0;
+  double density_kgpm3 = 1000.0;
   /// Still-water depth h (unit: m); infinity means deep water.
   double depth_m = std::numeric_limits<double>::infinity();
 

@@ -5,11 +5,21 @@
 // unnormalised (the caller folds 1/N^2 into its spectral multiplier).
 #include <complex>
 #include <cstddef>
+#include <numbers>
 #include <span>
 
 namespace huygens {
 
 using cfloat = std::complex<float>;
+
+/// Signed frequency of FFT index i (0 <= i < n, n even) in FFTW order: i below n/2, i - n from
+/// n/2 on (the Nyquist index n/2 counts as -n/2).
+constexpr int fft_signed_index(int i, int n) { return i < n / 2 ? i : i - n; }
+/// Wavenumber of FFT index i on n points over a period of length_m (unit: rad/m):
+///   k_i = 2 pi / L * fft_signed_index(i, n).
+inline double fft_wavenumber(int i, int n, double length_m) {
+  return 2.0 * std::numbers::pi / length_m * fft_signed_index(i, n);
+}
 
 /// A 64-byte aligned array, value-initialised, movable, not copyable.
 template <class T>

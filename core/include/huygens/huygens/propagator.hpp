@@ -1,30 +1,16 @@
 #pragma once
-// The Huygens propagator of paper 004 section 3 (docs/design.md 3.2-3.4, /work/notes/convention.md).
-//
-// State: the complex wave field Z (the paper's wave field used as velocity potential, m^2/s)
-// on an N x N periodic grid of side L. One full step of dt:
-//   propagate  Z^(k) <- Z^(k) exp(-i omega(k) dt) / N^2, Z <- IFFT[Z^]   (eq. 1, exact in phase)
-//   cutoff     Z(p, q) <- h(p) h(q) Z(p, q), paper 004 section 3:
-//                h(p) = 1 - (p/M - 1)^2 (p < M), 1 (M <= p < N-M), 1 - ((N-1-p)/M - 1)^2 (p >= N-M)
-//   spectrum   Z^ <- FFT[Z]                       (spatial sources such as ships go before this)
-//   sources    Z^ += -i omega/k FFT[E] e^{-i omega tau} for an elevation E released tau ago
-//   height     eta + i etadot = IFFT[ i (alpha Z^(k) + beta conj Z^(-k)) ] with
-//                alpha = (k/omega + k)/2, beta = (k - k/omega)/2 (one transform for both fields:
-//                eta = Re IFFT[i k/omega Z^], etadot = Re IFFT[k Z^], each the Hermitian part).
-// Three N x N transforms per step (one when there is neither cutoff nor a spatial source: the
-// step is then the spectral rotation and the height transform). The spectrum Z^ is kept
-// between steps (it is the state the height and the next propagation read); Z is spatial
-// between the cutoff and spectrum stages. Per-mode tables depend on |k| only and are stored
-// for one quadrant, (N/2+1)^2 values.
-//
-// The multiplier exp(-i omega dt) is applied as an exact-determinant lifting rotation
-// (three shears, x -= t y; y += s x; x -= t y with t = tan(phi/2), s = sin(phi)), with the
-// angle reduced to [-pi/2, pi/2] by an exact sign flip. Rounded to float, a lifting keeps
-// the determinant exactly 1, so |Z^| does not drift systematically over many steps (only the
-// rounding of the shears random-walks; the rounded complex multiplier drifts by up to 6e-8 per
-// step, always the same way); s is chosen for the rounded t so that the
-// rotation angle, 1 - s t = cos(phi), is exact to 3e-8 relative. `Rotation::complex` is the
-// plain rounded complex multiplier, kept for comparison.
+// The Huygens propagator (paper 004 section 3, eq. 1; docs/design.md 3.2, docs/huygens.md).
+// State: the spectrum Z^ of the complex wave field Z (velocity potential, m^2/s) on an N x N
+// periodic grid of side L (m). One full step of dt (s), three N x N transforms:
+//   propagate  Z = IFFT[Z^ exp(-i omega(k) dt)] / N^2    (eq. 1: exact in phase, stable for any dt)
+//   cutoff     Z(p, q) *= h(p) h(q),  h = 1 - (d/M - 1)^2 at d = min(p, N-1-p) < M cells, else 1
+//   spectrum   Z^ = FFT[Z]                                (spatial sources such as ships go before)
+//   sources    Z^ += -i omega/k E^ e^{-i omega tau}       (an elevation E (m) released tau (s) ago)
+//   height     eta + i etadot = IFFT[i (alpha Z^(k) + beta conj Z^(-k))]   (m, m/s),
+//              alpha = (k/omega + k)/2, beta = (k - k/omega)/2
+// Without cutoff and spatial sources a step is the rotation and the height: one transform.
+// exp(-i omega dt) is an exact-determinant lifting rotation of three shears, so |Z^| cannot
+// drift in float (docs/huygens.md). Per-mode tables depend on |k| only: one quadrant each.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -56,15 +42,13 @@ struct HuygensParams {
   /// Width M of the absorbing margin on each side (unit: cells); 2M < N. The visible region is (N-2M)^2.
   int margin = 64;
   /// Time step of one full step (unit: s); any value > 0 is stable.
-  double dt = 1.0 / 60.0;
+  double dt_s = 1.0 / 60.0;
   /// Water properties (dispersion).
   Water water;
   /// Margin absorber (paper_quadratic or off).
   Absorber absorber = Absorber::paper_quadratic;
   /// Time constant tau of the cutoff (unit: s). 0: paper 004's h(p) h(q) once per step. tau > 0:
-  /// (h(p) h(q))^(dt/tau) per step, i.e. one paper cutoff per tau seconds whatever dt. With
-  /// tau = 1 s the ring of the absorption case differs from the 60 m reference by 0.04 %, 0.07 %,
-  /// 0.07 % of A at t = 2, 4, 8 s against 0.08 %, 0.14 %, 0.32 % for the paper's (dt = 1/60 s).
+  /// (h(p) h(q))^(dt/tau) per step, i.e. one paper cutoff per tau seconds whatever dt.
   double cutoff_time_s = 0.0;
   /// How exp(-i omega dt) is applied (lifting keeps |Z^| exactly bounded in float).
   Rotation rotation = Rotation::lifting;

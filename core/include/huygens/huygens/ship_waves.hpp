@@ -1,30 +1,15 @@
 #pragma once
-// Ship waves of paper 004, eq. 2 (docs/design.md 3.3): the waves a hull generates while it
-// moves along a straight line at velocity v during [t, t + dt], observed at t + dt,
-//   dZ^(k) = C(k) [ Phi1^(k) E^_t(k) + Phi2^(k) E^_{t+dt}(k) ],
+// Ship waves of paper 004 eq. 2 (docs/design.md 3.3, docs/ocean.md): the waves a hull adds
+// while it moves at velocity v (m/s) during [t, t + dt], observed at t + dt,
+//   dZ^(k) = C(k) [ Phi1^(k) E^_t(k) + Phi2^(k) E^_{t+dt}(k) ],   C(k) = -i omega(k) / k,
 //   Phi1^ = e^{-i w} ( -1 + i w (e^{-i a} + i a - 1) / a^2 ),
 //   Phi2^ =            1 + i w (e^{+i a} - i a - 1) / a^2,
-//   a = alpha(k) = (k.v - omega(k)) dt,  w = omega(k) dt,  C(k) = -i omega(k) / k.
-// For a rigidly translating hull (E_{t+dt}(x) = E_t(x - v dt)) the bracket equals
-//   E^_t beta (e^{-i beta} - e^{-i w}) / (beta - w),  beta = k.v dt,
-// which is the exact integral over the step of the source dZ/dt = -i omega Z + C dE/dt:
-// the hull's elevation E enters the wave field through its time derivative only, so a
-// stationary hull makes no waves and one step of dt equals two steps of dt/2.
-//
-// Physical model (our choice, stated in the README): E(x, t) = +draft * p(x - x_ship(t)),
-// p = sqrt(1 - (2 x'/length)^2 - (2 y'/beam)^2) (a half-ellipsoid hull, x' along the
-// heading), blurred by exp(-k^2 blur^2 / 2) in the Fourier domain as the paper does.
-// dE/dt is the volume flux the moving hull displaces (up ahead of the bow, down behind
-// the stern, as Michell's thin-ship sources), entered with the convention's elevation rule
-// Z^ += -i omega/k E^. Its radiated (far-field) waves equal exactly those of a surface
-// pressure patch that holds a static depression of depth `draft` under the hull
-// (p^ = rho omega^2/k E^, i.e. p = rho g draft for long hulls): at the resonant wave
-// vectors k.v = omega(k), which alone make the steady wake, the two forcings coincide.
-//
-// The convolution runs on a P x P patch (P = 2M in the paper) around the ship with its own
-// small FFT; the hull spectrum is analytic (half-ellipsoid: 2 pi a b j1(q)/q), sub-cell
-// positions enter as the phase exp(-i k.delta) and the patch result is added to the big
-// spatial field with periodic wrap at the grid edge (the propagator's FFT is periodic too).
+//   a = alpha(k) = (k.v - omega(k)) dt,  w = omega(k) dt.
+// E (m) is the hull's elevation draft * sqrt(1 - (2 x'/length)^2 - (2 y'/beam)^2) (x' along the
+// heading), blurred by exp(-k^2 blur^2 / 2); for a rigid translation the bracket is
+// E^_t beta (e^{-i beta} - e^{-i w}) / (beta - w), beta = k.v dt: a hull at rest makes no waves.
+// The convolution runs on a P x P patch around each ship with its own small FFT, added to the
+// spatial field (m^2/s) with periodic wrap at the grid edge.
 #include <complex>
 #include <cstdint>
 #include <vector>
@@ -53,7 +38,7 @@ struct HullParams {
 /// One point of a timed path.
 struct PathPoint {
   /// Time at which the hull centre is here (unit: s).
-  double t = 0.0;
+  double t_s = 0.0;
   /// Position along the grid's columns (unit: m).
   double x_m = 0.0;
   /// Position along the grid's rows (unit: m).
@@ -121,7 +106,7 @@ struct ShipPoseNow {
 };
 
 /// Reads the scene's `ships` array (absent: none): length_m, beam_m, draft_m, optional blur_m,
-/// `path`, an array of {t, x_m, y_m} with non-decreasing t, and an optional `steering` object
+/// `path`, an array of {t_s, x_m, y_m} with non-decreasing t_s, and an optional `steering` object
 /// {max_speed_mps, max_accel_mps2, time_constant_s} (SteeringParams). Errors name the JSON path.
 std::vector<Ship> parse_ships(const JsonIn& root);
 

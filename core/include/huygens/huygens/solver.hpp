@@ -1,18 +1,12 @@
 #pragma once
-// The "solver": "huygens" scene (docs/design.md section 6) on the Huygens propagator of paper 004
-// section 3. Pipeline per full step (stages are timed and counted separately):
-//   propagate -> cutoff -> spectrum -> drops (only when the scene has drops) -> height
-// With the issue 3 features (each costs nothing when the scene does not name it):
-//   propagate -> cutoff -> ships (paper eq. 2, spatial) -> spectrum -> drops -> wind (ambient
-//   sea advanced in the spectral domain) -> height (StokesHeight: first order 1 transform, or
-//   eq. 3's second order 3 transforms, with the wind sea superposed) .
-// Displayed frames j = 1 .. D-1 of D per step are the cubic Hermite interpolants of eta and
-// etadot at the two ends of the last step (time_interp.hpp), with no transform.
-// Still sea (issue 4; HuygensScene::still_skip): without ships and wind, every 16 steps the
-// propagator's energy_bound() is compared with the energy of a 1e-7 m plane wave over the grid;
-// below it the state is zeroed and steps only advance time (stage "still", no transform) until
-// a timed drop or cmd::Drop wakes it. A cmd::Drop's height is made lazily (next step or read).
-// Test hook: inject_nonfinite_for_test (not reachable from a scene).
+// The "huygens" solver (docs/design.md 6, docs/huygens.md, docs/ocean.md): the scene's keys
+// parsed into HuygensScene, and the adapter of the Huygens propagator (paper 004 section 3) to
+// the solver interface. Stages of a full step, each made only when the scene names its feature:
+//   propagate -> cutoff -> ships (eq. 2, spatial) -> spectrum -> drops -> wind (spectral)
+//   -> height (first order, or eq. 3's second-order Stokes height, the wind sea superposed)
+// Displayed frames j = 1 .. D-1 of D per step are cubic Hermite interpolants of eta and etadot
+// between the last two full steps (time_interp.hpp; no transform). A still sea (no ships or
+// wind, energy below a threshold) is zeroed and skipped until a drop (HuygensScene::still_skip).
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,7 +23,7 @@ namespace huygens {
 /// An elevation released from rest (initial "gaussian" or a timed drop).
 struct GaussianSource {
   /// Release time (unit: s); 0 for initial conditions.
-  double t = 0;
+  double t_s = 0;
   /// Centre (unit: m), in the full grid's frame.
   double x_m = 0, y_m = 0;
   /// Standard deviation of the Gaussian (unit: m).
@@ -66,7 +60,9 @@ struct HuygensScene {
   /// Ambient JONSWAP wind sea; absent = calm.
   bool has_wind = false;
   WindParams wind;
-  /// Still-sea skip (issue 4): without ships and wind, when energy_bound() of the propagator
+  /// What the "render" block asks a viewer for (RenderInfo::request); the solver ignores it.
+  RenderRequest render;
+  /// Still-sea skip: without ships and wind, when energy_bound() of the propagator
   /// falls below the energy of a plane wave of amplitude still_amplitude_m over the grid,
   ///   E_still = 1/2 rho (g + sigma k1^2/rho) a^2 L^2,  k1 = 2 pi / L,
   /// the state is set to a flat sea at rest (spectrum and heights zeroed) and steps only
@@ -81,6 +77,8 @@ struct HuygensScene {
 
 /// Parses and checks a "huygens" scene; every error is a SceneError naming the JSON path.
 HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options = {});
+/// The "huygens" solver of a scene (make_solver's factory for this solver).
+std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
 
 class HuygensSolver : public Solver {
  public:
@@ -112,8 +110,16 @@ class HuygensSolver : public Solver {
   /// by the next step, or by the next height()/height_rate()/outputs() before it) and
   /// cmd::ShipTarget (ShipWaves::steer at time(): the ship leaves its path and heads for the
   /// target with bounded acceleration and speed; refused for an unknown ship, a non-finite
-  /// value or a target outside the grid).
+  /// value or a target outside the grid) and cmd::Toggle (toggle()).
   bool apply(const Command& c) override;
+  /// cmd::Toggle between steps: "stokes" switches the height between eq. 3's second order and
+  /// first order (a StokesHeight of the other order is made on the first switch and kept);
+  /// "wind" stops or resumes superposing the wind sea (it keeps advancing, so it comes back
+  /// where it would be), refused when the scene has none (nothing is allocated for it).
+  bool toggle(const cmd::Toggle& t);
+  /// The visible region, depth, hulls, display rate, toggles ("stokes"; "wind" with a wind sea)
+  /// and the scene's render block.
+  RenderInfo render_info() override;
   /// The ships' poses at time() (ShipWaves::pose), at most out.size().
   std::size_t ship_poses(std::span<ShipState> out) const override;
   /// The ship stage (null without ships), for tests.
@@ -149,12 +155,20 @@ class HuygensSolver : public Solver {
   bool drop_due() const;
   /// Every still_check_every steps: enters the still state when the energy bound is below the threshold.
   void check_still();
+  /// Before a step with D > 1: the current height becomes the previous full step (eta0_, etadot0_).
+  void keep_previous_step();
+  /// The ship stage: every ship's waves of [t0, t0 + dt] into the spatial field, checked.
+  void add_ships(double t0);
+  /// The drops stage: timed drops due in the coming step enter the spectrum with their phase.
+  void release_drops();
 
   HuygensScene scene_;
   HuygensPropagator prop_;
   std::unique_ptr<ShipWaves> ships_;             // only with ships
   std::unique_ptr<WindSea> wind_;                // only with wind
   std::unique_ptr<StokesHeight> stokes_;         // only with stokes or wind (else the propagator's packed height)
+  std::unique_ptr<StokesHeight> stokes_spare_;   // the other order, once "stokes" was toggled
+  bool wind_on_ = true;                          // "wind" toggle: the sea is superposed
   AlignedBuffer<float> eta_, etadot_;            // StokesHeight outputs (only with stokes_)
   AlignedBuffer<float> eta0_, etadot0_, frame_;  // previous full step + one displayed frame (only D > 1)
   std::size_t next_drop_ = 0;

@@ -1,30 +1,13 @@
 #pragma once
-// Displayed height from the wave field used as velocity potential (paper 004 eq. 3,
-// docs/design.md 3.4). For one mode Z = a e^{i theta} (theta = k.x - omega t) eq. 3 reads
-//   eta = i k/omega a e^{i theta} - a^2 k^3 / (2 omega^2) e^{2 i theta}.
-// Generalisation to any field (exact for a single progressive mode):
+// Displayed height from the wave field Z (velocity potential, m^2/s), paper 004 eq. 3
+// (docs/design.md 3.4, docs/ocean.md). For one mode Z = a e^{i theta} eq. 3 reads
+//   eta = i k/omega a e^{i theta} - a^2 k^3 / (2 omega^2) e^{2 i theta};  for any field:
 //   eta1 = Re IFFT[i k/omega Z^],     etadot1 = Re IFFT[k Z^],
 //   chi  = IFFT[i k^{3/2} / (sqrt(2) omega) Z^],   chidot = IFFT[k^{3/2}/sqrt(2) Z^],
-//   eta2 = Re(chi^2),                 etadot2 = Re(2 chi chidot).
-// A progressive wave of elevation A cos(theta) in deep gravity water gets the textbook
-// Stokes profile A cos(theta) + (k A^2 / 2) cos(2 theta). Caveat for mixed fields: chi^2
-// only holds sum-wavenumber products with one sign convention. A standing pattern
-// A cos(k x) cos(omega t) (the +k and -k modes together) gives
-//   eta2 = (k A^2 / 4) (1 + cos 2kx) cos 2 omega t:
-// a spurious spatially uniform (mean) term (k A^2/4) cos(2 omega t) and a second harmonic of
-// half the progressive amplitude; in general pairs of nearly opposite modes leak into long
-// wavelengths. Use it for seas and wakes made of progressive waves.
-//
-// Transforms (N x N, complex-to-complex, inverse): first order packs the two real fields
-// into one, Re(eta1) + i Re(etadot1), from the Hermitian parts of their spectra:
-//   X^(k) = H[i k/omega Y^](k) + i H[k Y^](k),  H[A](k) = (A(k) + conj A(-k)) / 2;
-// second order needs chi and chidot as full complex fields (Re and Im of each enter the
-// squares), so 4 more real fields = 2 more transforms: 3 per output in all, 1 without Stokes.
-// Six independent real fields in complex transforms of two: 3 is the minimum.
-// Passes over the N x N field per call (besides the transforms): one pass over the spectrum by
-// pairs of mirror rows (r, N - r), reading Z^ and the wind sea once and writing the three
-// transform inputs (per-mode tables on one quadrant, (N/2+1)^2 values), and one pass over the
-// visible region of the transform outputs.
+//   eta = eta1 + Re(chi^2) (m),       etadot = etadot1 + Re(2 chi chidot) (m/s).
+// Exact for progressive waves (deep water: A cos theta + (k A^2 / 2) cos 2 theta); a standing
+// pattern gets a spurious mean term (docs/ocean.md). First order packs eta1 + i etadot1 into one
+// inverse N x N transform; second order adds chi and chidot: 3 transforms, one pass over Z^.
 #include <cstddef>
 #include <cstdint>
 
@@ -67,6 +50,12 @@ class StokesHeight {
 
  private:
   bool run(const cfloat* zhat, float zscale, const cfloat* extra, const cfloat* extra_phase, float* eta, float* etadot);
+  /// The pass over the spectrum Y^ = zscale Z^ + W^ (interleaved floats; extra null without a
+  /// sea, phase the quadrant P when the sea is W^(0) P): writes the transform inputs X, chi^, chidot^.
+  void fill_inputs(const float* z, float zscale, const float* extra, const float* phase);
+  /// The visible region of the transform outputs into eta, etadot; false when one is not finite.
+  bool extract_first_order(float* eta, float* etadot) const;
+  bool extract_second_order(float* eta, float* etadot) const;
 
   int n_;
   int m_;

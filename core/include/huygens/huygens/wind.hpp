@@ -1,25 +1,14 @@
 #pragma once
-// Wind sea (paper 004 section 3, "a pseudo-random spectrum of wind waves" added in the
-// Fourier domain; docs/design.md 3.3). Spectrum: JONSWAP (Hasselmann et al. 1973), chosen over
-// Phillips because its level and peak follow from the wind speed and fetch (Phillips'
-// constant A is arbitrary), and it reduces to Pierson-Moskowitz for a developed sea:
+// Wind sea (paper 004 section 3: a pseudo-random spectrum added in the Fourier domain;
+// docs/design.md 3.3, docs/ocean.md). JONSWAP (Hasselmann et al. 1973):
 //   S(omega) = alpha g^2 omega^-5 exp(-5/4 (omega_p/omega)^4) gamma^exp(-(omega-omega_p)^2/(2 s^2 omega_p^2)),
-//   s = 0.07 (omega <= omega_p) or 0.09; x = g F / U^2 (capped at 1.7e4, the developed sea);
-//   omega_p = 22 (g/U) x^(-1/3),  alpha = 0.076 x^(-0.22),  gamma = 3.3.
-// Direction: D(theta) = (2/pi) cos^2(theta - theta_w) for |theta - theta_w| < pi/2, else 0,
-// so every component travels downwind (a progressive sea: only the +k component of each
-// wave is present, Z = -i omega/k a e^{i k.x}, and it moves its own way).
-// Wavenumber density: F(kx, ky) = S(omega(k)) D(theta) c_g(k) / k (unit: m^4), so that
-// sum F dk^2 = integral S d omega. A grid mode gets elevation amplitude a = sqrt(2 F dk^2) times a
-// unit complex Gaussian drawn from a counter-based generator keyed by (seed, mode index):
-// same seed, same sea, for any thread count and grid ordering.
-//
-// Role in the pipeline (our choice): an ambient sea, not a state perturbation. It is kept in
-// the spectral domain as W^(k, t) = W^(k, 0) e^{-i omega t}, exactly periodic on the grid,
-// and superposed on the solver's spectrum when heights are made (StokesHeight::compute's
-// `extra`). It is neither absorbed by the margin nor decays, so the sea stays statistically
-// steady for ever at no N x N transform; linear superposition with ship waves is exact and
-// the second-order height sees both.
+//   s = 0.07 (omega <= omega_p) or 0.09; x = g F / U^2 (at most 1.7e4, the developed sea);
+//   omega_p = 22 (g/U) x^(-1/3),  alpha = 0.076 x^(-0.22),  gamma = 3.3;
+// direction D(theta) = (2/pi) cos^2(theta - theta_w) downwind only; wavenumber density
+// F(kx, ky) = S(omega(k)) D(theta) c_g(k) / k (m^4). A grid mode gets elevation amplitude
+// sqrt(2 F dk^2) (m) times a unit complex Gaussian keyed by (seed, mode): same seed, same sea.
+// The sea is ambient: W^(k, t) = W^(k, 0) e^{-i omega t} is superposed on the solver's spectrum
+// when heights are made, neither absorbed nor decaying, at no N x N transform.
 #include <cstdint>
 #include <vector>
 

@@ -85,7 +85,6 @@ class Solver {
 /// Builds the solver the scene names. Throws SceneError (JSON path) for a bad scene.
 std::unique_ptr<Solver> make_solver(const Scene& scene, const RunOptions& options = {});
 
-/// Per-solver factories (each defined with its solver).
-std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
+// Each solver's factory make_<solver>_solver() is declared in its adapter, huygens/<solver>/solver.hpp.
 
 }  // namespace huygens
