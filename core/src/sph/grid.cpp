@@ -50,26 +50,4 @@ SphCellGather::SphCellGather(std::size_t capacity)
   scratch_ = AlignedBuffer<float>(std::size_t(threads_) * kMaxArrays * (cap_ + 16));
 }
 
-SphCellGather::Cursor::Cursor(const SphGrid& grid, SphCellGather& gather, int thread, const float* const* src,
-                              int arrays)
-    : grid_(&grid), arrays_(arrays), cap_(gather.cap_), own_(thread < gather.threads_) {
-  for (int a = 0; a < kMaxArrays; ++a) {
-    src_[a] = a < arrays ? src[a] : nullptr;
-    dst_[a] = own_ ? gather.scratch_.data() + (std::size_t(thread) * kMaxArrays + a) * (gather.cap_ + 16) : nullptr;
-  }
-}
-
-int SphCellGather::Cursor::gather(int cx, int cy, int cz) {
-  std::size_t cnt = 0;
-  floor_end_ = 0;
-  const bool fits = grid_->for_each_row(cx, cy, cz, [&](std::uint32_t b, std::uint32_t e, int kz) {
-    if (cnt + (e - b) > cap_) return false;
-    for (int a = 0; a < arrays_; ++a) std::copy(src_[a] + b, src_[a] + e, dst_[a] + cnt);
-    cnt += e - b;
-    if (kz == 0) floor_end_ = static_cast<std::uint32_t>(cnt);
-    return true;
-  });
-  return fits ? static_cast<int>(cnt) : -1;
-}
-
 }  // namespace huygens

@@ -92,7 +92,13 @@ class SphCellGather {
   /// gathered once per thread). `src` holds `arrays` arrays in the grid's sorted order.
   class Cursor {
    public:
-    Cursor(const SphGrid& grid, SphCellGather& gather, int thread, const float* const* src, int arrays);
+    Cursor(const SphGrid& grid, SphCellGather& gather, int thread, const float* const* src, int arrays)
+        : grid_(&grid), arrays_(arrays), cap_(gather.cap_), own_(thread < gather.threads_) {
+      for (int a = 0; a < kMaxArrays; ++a) {
+        src_[a] = a < arrays ? src[a] : nullptr;
+        dst_[a] = own_ ? gather.scratch_.data() + (std::size_t(thread) * kMaxArrays + a) * (gather.cap_ + 16) : nullptr;
+      }
+    }
     /// The gathered copy of src[a].
     const float* scratch(int a) const { return dst_[a]; }
     /// Visits the candidates of cell (cx, cy, cz): fn(true, 0, count, floor_end) once on the
@@ -118,8 +124,20 @@ class SphCellGather {
     }
 
    private:
-    /// Copies the candidates into the scratch; the count, or -1 when they do not fit.
-    int gather(int cx, int cy, int cz);
+    /// Copies the candidates into the scratch; the count, or -1 when they do not fit. Inline, with
+    /// the constructor, so the cursor's state stays in registers in the neighbour loops.
+    int gather(int cx, int cy, int cz) {
+      std::size_t cnt = 0;
+      floor_end_ = 0;
+      const bool fits = grid_->for_each_row(cx, cy, cz, [&](std::uint32_t b, std::uint32_t e, int kz) {
+        if (cnt + (e - b) > cap_) return false;
+        for (int a = 0; a < arrays_; ++a) std::copy(src_[a] + b, src_[a] + e, dst_[a] + cnt);
+        cnt += e - b;
+        if (kz == 0) floor_end_ = static_cast<std::uint32_t>(cnt);
+        return true;
+      });
+      return fits ? static_cast<int>(cnt) : -1;
+    }
     const SphGrid* grid_;
     const float* src_[kMaxArrays];
     float* dst_[kMaxArrays];
