@@ -7,7 +7,7 @@
 // reaches the column, then bisection). Only particles of the 3 x 3 x 3 neighbour cells of the
 // SPH grid (cell = support radius >= R) are visited. The container walls x = 0, lx, y = 0, ly and
 // the floor are mirrors, as in the solver: phi includes the mirror images of the particles (the
-// evaluation point is mirrored instead), so columns next to a wall do not dip (they did by ~R/2).
+// evaluation point is mirrored instead), so columns next to a wall do not dip.
 // Normals come from central differences of the heights: n = (-dh/dx, -dh/dy, 1) / |...|.
 #include <cstddef>
 #include <span>
