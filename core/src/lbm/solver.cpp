@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 
@@ -70,6 +71,20 @@ class LbmSolver final : public Solver {
   }
   std::size_t height_rows() const override { return static_cast<std::size_t>(sim_.params().rows); }
   std::size_t height_cols() const override { return static_cast<std::size_t>(sim_.params().cols); }
+  /// Cell centres ((c + 1/2) dx, (r + 1/2) dx), the rest level (mean initial eta, the flat
+  /// ground that far down), the bed, the obstacles, the fixed step; no toggles.
+  RenderInfo render_info() override {
+    const LbmParams& p = sim_.params();
+    RenderInfo r = from_scene;
+    r.grid = RenderGrid{height_rows(), height_cols(), p.cell_m, 0.5 * p.cell_m, 0.5 * p.cell_m};
+    r.rest_level_m = mean_level(height());
+    if (r.rest_level_m > 0.0) r.depth_m = r.rest_level_m;
+    r.bed_m = bed_;
+    r.dt_s = r.frame_dt_s = p.dt_s;
+    return r;
+  }
+  /// The scene's render block and obstacle shapes (set by make_lbm_solver).
+  RenderInfo from_scene;
 
  private:
   void refresh() {
@@ -271,7 +286,8 @@ DamFlow parse_initial(const JsonIn& lb, const LbmParams& p, LbmFields& f) {
 }
 
 // "obstacles": solid circles (centre x_m, y_m, radius_m) and rectangles [x0, x1) x [y0, y1).
-void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f) {
+void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f, std::vector<RenderObstacle>& shapes) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   f.solid.assign(cell_count(p), 0);
   for (const JsonIn& ob : lb.array("obstacles")) {
     const std::string type = ob.string("type", "", {"circle", "rect"});
@@ -283,6 +299,11 @@ void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f) {
         const double x = xc - cx, y = yc - cy;
         if (x * x + y * y <= rad * rad) f.solid[i] = 1;
       });
+      RenderObstacle s{RenderObstacle::Kind::cylinder};
+      s.centre_m = {cx, cy};
+      s.radius_m = rad;
+      s.z0_m = -kInf, s.z1_m = kInf;
+      shapes.push_back(s);
     } else {
       ob.allow_only({"type", "x0_m", "x1_m", "y0_m", "y1_m"});
       const double x0 = ob.number("x0_m", -1e9, 1e9), x1 = ob.number("x1_m", -1e9, 1e9);
@@ -290,6 +311,7 @@ void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f) {
       for_each_cell(p, [&](std::size_t i, double x, double y) {
         if (x >= x0 && x < x1 && y >= y0 && y < y1) f.solid[i] = 1;
       });
+      shapes.push_back(RenderObstacle{RenderObstacle::Kind::box, {x0, y0, -kInf}, {x1, y1, kInf}});
     }
   }
 }
@@ -374,6 +396,7 @@ LbmScene parse_lbm_scene(const Scene& scene) {
   root.allow_only({"solver", "lbm", "description", "render"});
   const JsonIn lb = root.object("lbm");
   LbmScene s;
+  s.render = parse_render_request(root);
   lb.allow_only({"grid", "time", "water", "bed", "bed_force", "initial", "boundaries", "inflow", "outflow", "obstacles",
                  "force"});
   LbmParams& p = s.params;
@@ -381,7 +404,7 @@ LbmScene parse_lbm_scene(const Scene& scene) {
   const std::optional<double> tau = parse_water(lb, p);
   parse_bed(lb, scene, p, s.fields);
   const DamFlow dam = parse_initial(lb, p, s.fields);
-  parse_obstacles(lb, p, s.fields);
+  parse_obstacles(lb, p, s.fields, s.obstacles);
   parse_boundaries(lb, p);
   ParseNotes notes;
   notes.dt_given = parse_time(lb, s.fields, dam.signal_speed_mps, p);
@@ -395,7 +418,10 @@ LbmScene parse_lbm_scene(const Scene& scene) {
 }
 
 std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene) {
-  return std::make_unique<LbmSolver>(scene.params, scene.fields);
+  auto solver = std::make_unique<LbmSolver>(scene.params, scene.fields);
+  solver->from_scene.request = scene.render;
+  solver->from_scene.obstacles = scene.obstacles;
+  return solver;
 }
 
 std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions&) {

@@ -6,9 +6,11 @@
 // its Stoker (1957) middle state (stoker.hpp). Errors are SceneError naming the JSON path; a
 // parameter lbm_check() refuses is named by the scene key that set it.
 #include <memory>
+#include <vector>
 
 #include "huygens/common/scene.hpp"
 #include "huygens/lbm/shallow.hpp"
+#include "huygens/pipeline/render_info.hpp"
 
 namespace huygens {
 
@@ -21,6 +23,11 @@ struct LbmScene {
   LbmParams params;
   /// Initial bed, depth, velocity and obstacle cells, row-major (rows, cols) (units in LbmFields).
   LbmFields fields;
+  /// What the scene's "render" block asks a viewer for (RenderInfo::request).
+  RenderRequest render;
+  /// The obstacles as shapes for a viewer: cylinders (circles) and boxes (rects) through the
+  /// whole water column (z from -infinity to +infinity; unit: m).
+  std::vector<RenderObstacle> obstacles;
 };
 
 /// Parses the scene's "lbm" block and checks it with lbm_check(); throws SceneError naming the
