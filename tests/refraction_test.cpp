@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -126,18 +125,15 @@ TEST(Refraction, DefaultSceneLinearisedWithinOneTexel) {
   RunOptions ro;
   ro.measure_plans = false;
   auto solver = make_solver(scene, ro);
-  const nlohmann::json& doc = *scene.doc;
-  const double n = doc["grid"]["n"].get<double>(), len = doc["grid"]["length_m"].get<double>();
-  const double margin = doc["grid"].value("margin", 0.0);
+  const RenderInfo info = solver->render_info();  // where the viewer places the field
   GridPlacement g;
-  g.rows = solver->height_rows();
-  g.cols = solver->height_cols();
-  g.dx = len / n;
-  g.x0 = g.y0 = margin * g.dx;
+  g.rows = info.grid.rows;
+  g.cols = info.grid.cols;
+  g.dx = info.grid.dx_m;
+  g.x0 = info.grid.x0_m;
+  g.y0 = info.grid.y0_m;
   RefractionParams p;
-  p.ground_z = doc["water"].contains("depth_m") && doc["water"]["depth_m"].is_number()
-                   ? -doc["water"]["depth_m"].get<double>()
-                   : -3.0;  // SceneGeometry::kDeepGround
+  p.ground_z = info.depth_m ? -*info.depth_m : -3.0;  // SceneView::kDeepGround
   while (solver->time() < 1.5) solver->step();
   const auto h = solver->height();
   const std::vector<float> eta(h.begin(), h.end());

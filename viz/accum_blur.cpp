@@ -33,9 +33,9 @@ AccumBlur::AccumBlur(int width, int height)
     }
   combine_lut_.upload(comb.data(), GL_RED, GL_UNSIGNED_BYTE);
   const auto vs = gl::fullscreen_vertex_shader();
-  split_ = gl::program_from_strings(vs, gl::read_text_file(gl::shader_path("blur_split.frag")), "blur_split");
-  combine_ = gl::program_from_strings(vs, gl::read_text_file(gl::shader_path("blur_combine.frag")), "blur_combine");
-  float_ = gl::program_from_strings(vs, gl::read_text_file(gl::shader_path("blur_float.frag")), "blur_float");
+  split_ = gl::program_from_strings(vs, gl::shader_source("blur_split.frag"), "blur_split");
+  combine_ = gl::program_from_strings(vs, gl::shader_source("blur_combine.frag"), "blur_combine");
+  float_ = gl::program_from_strings(vs, gl::shader_source("blur_float.frag"), "blur_float");
   split_.set("u_src", 0);
   split_.set("u_split_lut", 1);
   combine_.set("u_accum", 0);

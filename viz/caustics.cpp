@@ -35,9 +35,9 @@ CausticsRenderer::CausticsRenderer(const CausticsParams& params)
       target_(params.texture_width, params.texture_height, params.float_target ? GL_R32F : GL_R8),
       fb_(target_) {
   caustics_mesh_init(params_, mesh_);
-  const std::string vs = gl::read_text_file(gl::shader_path("caustics.vert"));
-  const std::string gs = gl::read_text_file(gl::shader_path("caustics.geom"));
-  const std::string fs = gl::read_text_file(gl::shader_path("caustics.frag"));
+  const std::string vs = std::string(gl::shader_source("caustics.vert"));
+  const std::string gs = std::string(gl::shader_source("caustics.geom"));
+  const std::string fs = std::string(gl::shader_source("caustics.frag"));
   mip_prog_ = gl::program_from_strings(vs, fs, "caustics (MIP)");
   explicit_prog_ = gl::program_from_strings(vs, with_define(fs, "EXPLICIT"), "caustics (explicit)", gs);
   shadow_prog_ = gl::program_from_strings(kShadowVs, kShadowFs, "caustics shadow");

@@ -9,7 +9,6 @@
 namespace huygens {
 
 struct WindowOptions {
-  std::string scene_file;
   int width = 1280, height = 720;
   int subsample = 4;
   RenderSettings settings;
@@ -22,7 +21,7 @@ struct WindowOptions {
   bool paused = false;
 };
 
-/// Runs the window until it is closed; returns the process exit code.
-int run_window(const WindowOptions& opt);
+/// Runs `scene`'s solver in the window until it is closed; returns the process exit code.
+int run_window(ViewerSolver scene, const WindowOptions& opt);
 
 }  // namespace huygens

@@ -1,36 +1,50 @@
 #include "headless.hpp"
 
-#include "huygens/common/scene.hpp"
-#include "huygens/pipeline/solver.hpp"
-#include "scene_view.hpp"
+#include <stdexcept>
+#include <vector>
+
+#include "huygens/pipeline/runner.hpp"
 
 namespace huygens {
 
-HeadlessResult render_headless(const HeadlessOptions& opt) {
-  const Scene scene = load_scene(opt.scene_file);
-  RunOptions ro;
-  ro.measure_plans = false;  // FFTW_ESTIMATE: the same plan, hence the same image, every run
-  std::unique_ptr<Solver> solver = make_solver(scene, ro);
-  const SceneGeometry geo = scene_geometry(scene, *solver);
-  WaterRenderer renderer(geo.grid, geo.ground_z, opt.subsample);
-  renderer.set_height_offset(geo.height_offset);
-  const OrbitCamera cam = opt.custom_camera ? opt.camera
-                                            : default_camera(geo.grid.x0, geo.grid.y0, geo.grid.cols * geo.grid.dx,
-                                                             geo.grid.rows * geo.grid.dx);
+HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
+  const SceneView view = scene_view(scene.info);
+  WaterRenderer renderer(view.grid, view.ground_z, opt.subsample);
+  renderer.set_height_offset(view.height_offset);
+  const GridPlacement& g = view.grid;
+  const OrbitCamera cam = opt.custom_camera ? opt.camera : default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
   RenderTarget target(opt.width, opt.height);
-  const double dt_display = geo.dt / geo.display_per_step;
+
+  // the window's path with the manual clock: the runner publishes every step at or before the
+  // display time into the frame ring, and the frame drawn is sampled from the ring
+  RunnerParams rp;
+  rp.manual_clock = true;
+  Runner runner(std::move(scene.solver), rp);
+  runner.start();
+  std::vector<float> field(g.rows * g.cols);
+  std::vector<ShipPose> ships;
   HeadlessResult res;
   for (int k = 0; k < opt.frames; ++k) {
-    const double t = opt.time + k * dt_display;
-    while (solver->time() + geo.dt <= t + 1e-9 * geo.dt) solver->step();
-    renderer.set_heights(solver->height());
-    renderer.set_ships(solver_ship_poses(geo, *solver));  // where the solver has them
+    const double t = opt.time + k * view.frame_dt;
+    runner.show(t);
+    if (!runner.wait_shown()) {
+      runner.stop();
+      runner.rethrow_if_failed();
+      throw std::runtime_error("headless: the simulation ended before display time " + std::to_string(t) + " s");
+    }
+    const FramePair frames = runner.frames();
+    frames.sample(runner.display_time(), field);  // the newest frame (the clock never runs ahead of it)
+    renderer.set_heights(field);
+    frame_ships(view, frames, runner.display_time(), ships);  // where the solver has them
+    renderer.set_ships(ships);
     renderer.times.enabled = (k + 1 == opt.frames);
     renderer.render(cam, opt.settings, target);
+    res.steps = frames.newest->info.step;
+    res.field_time = frames.newest->info.time_s;
   }
+  runner.stop();
+  runner.rethrow_if_failed();
   res.image = target.read();
-  res.steps = solver->steps();
-  res.field_time = solver->time();
   res.times = renderer.times;
   return res;
 }

@@ -1,22 +1,23 @@
 #pragma once
-// Headless capture (docs/design.md 5.4): a scene stepped synchronously with its fixed time step
-// and seeds, rendered into an offscreen target with no window and no display server
-// (the caller makes a GL context current: gl::HeadlessContext, EGL surfaceless). The same
-// options give the same image.
+// Headless capture (docs/viz.md): the scene's solver runs on the same Runner and frame ring as the
+// window, with the runner's manual clock instead of the wall clock, and is drawn into an
+// offscreen target with no window and no display server (the caller makes a GL context current:
+// gl::HeadlessContext, EGL surfaceless). The same options give the same image.
 //
-// Frame k (k = 0 .. frames-1) shows display time T + k dt / display_per_step; the solver is
-// stepped until its time is the last full step at or before the display time (no
-// interpolation: deterministic, and exact at step times). The image is the last frame.
+// Frame k (k = 0 .. frames-1) shows display time T + k frame_dt (RenderInfo::frame_dt_s); the
+// runner publishes every step at or before it, and the frame drawn is the newest (the last full
+// step at or before the display time: no interpolation, deterministic, exact at step times).
+// The image is the last frame.
 #include <string>
 
 #include "camera.hpp"
 #include "gl.hpp"
 #include "renderer.hpp"
+#include "scene_view.hpp"
 
 namespace huygens {
 
 struct HeadlessOptions {
-  std::string scene_file;
   /// Frames to render (unit: frames).
   int frames = 1;
   /// Display time of the first frame (unit: s).
@@ -33,13 +34,15 @@ struct HeadlessOptions {
 
 struct HeadlessResult {
   gl::Image8 image;
-  /// Solver steps taken and the simulated time of the last frame's field (unit: s).
+  /// Solver steps and the simulated time of the last frame's field (unit: s).
   long long steps = 0;
   double field_time = 0.0;
   RenderTimes times;
 };
 
-/// Renders the scene as described. Throws SceneError for a bad scene, gl::GlError for GL.
-HeadlessResult render_headless(const HeadlessOptions& opt);
+/// Renders `scene`'s solver as described (make it with open_viewer_solver and RunOptions with
+/// measure_plans = false for the same image every run). Throws gl::GlError for GL, and what the
+/// solver threw (NonFiniteError naming the stage) when the simulation stopped.
+HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt);
 
 }  // namespace huygens

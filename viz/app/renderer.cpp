@@ -81,10 +81,10 @@ namespace {
 constexpr int kGroundTexSize = 512;
 
 gl::Program load_program(const char* vs, const char* fs, bool with_ground_common) {
-  std::string vsrc = gl::read_text_file(gl::shader_path(vs));
-  std::string fsrc = gl::read_text_file(gl::shader_path(fs));
+  std::string vsrc = std::string(gl::shader_source(vs));
+  std::string fsrc = std::string(gl::shader_source(fs));
   if (with_ground_common)
-    fsrc = "#version 330 core\n" + gl::read_text_file(gl::shader_path("ground_common.glsl")) + "\n" + fsrc;
+    fsrc = "#version 330 core\n" + std::string(gl::shader_source("ground_common.glsl")) + "\n" + fsrc;
   return gl::program_from_strings(vsrc, fsrc, std::string(vs) + " + " + fs);
 }
 
@@ -140,29 +140,9 @@ void append_hull(const ShipPose& s, std::vector<float>& out) {
 
 }  // namespace
 
-WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int subsample)
-    : grid_(grid), ground_z_(ground_z), subsample_(std::max(1, subsample)) {
-  gl::check("before WaterRenderer");
-  layout_ = make_mesh_layout(grid_.rows, grid_.cols, static_cast<std::size_t>(subsample_));
+// Surface mesh buffers: static (x, y), dynamic heights, per-view coefficients, triangle indices.
+void WaterRenderer::build_surface_mesh() {
   const std::size_t nv = layout_.vertex_rows() * layout_.vertex_cols();
-  eta_.assign(grid_.rows * grid_.cols, 0.0f);
-  mesh_h_.assign(nv, 0.0f);
-  diffs_.assign(2 * grid_.rows * grid_.cols, 0.0f);
-
-  surface_prog_ = load_program("surface.vert", "surface.frag", true);
-  ground_prog_ = load_program("ground.vert", "ground.frag", true);
-  ship_prog_ = gl::program_from_files("ship.vert", "ship.frag");
-
-  const int cols = static_cast<int>(grid_.cols), rows = static_cast<int>(grid_.rows);
-  diffs_tex_ = gl::Texture(cols, rows, GL_RG32F);
-  diffs_tex_.set_filter(GL_LINEAR, GL_LINEAR);
-  coef_tex_ = gl::Texture(cols, rows, GL_RGBA32F);
-  coef_tex_.set_filter(GL_LINEAR, GL_LINEAR);
-  flat_light_tex_ = gl::Texture(1, 1, GL_R8);
-  const std::uint8_t one = 255;
-  flat_light_tex_.upload(&one, GL_RED, GL_UNSIGNED_BYTE);
-
-  // surface mesh: static (x, y), dynamic heights, per-view coefficients, triangle indices
   std::vector<float> xy;
   xy.reserve(2 * nv);
   for (std::size_t l = 0; l < layout_.vertex_rows(); ++l)
@@ -199,7 +179,31 @@ WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int sub
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, surface_ibo_);
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(idx.size() * sizeof(std::uint32_t)), idx.data(),
                GL_STATIC_DRAW);
+}
 
+WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int subsample)
+    : grid_(grid), ground_z_(ground_z), subsample_(std::max(1, subsample)) {
+  gl::check("before WaterRenderer");
+  layout_ = make_mesh_layout(grid_.rows, grid_.cols, static_cast<std::size_t>(subsample_));
+  const std::size_t nv = layout_.vertex_rows() * layout_.vertex_cols();
+  eta_.assign(grid_.rows * grid_.cols, 0.0f);
+  mesh_h_.assign(nv, 0.0f);
+  diffs_.assign(2 * grid_.rows * grid_.cols, 0.0f);
+
+  surface_prog_ = load_program("surface.vert", "surface.frag", true);
+  ground_prog_ = load_program("ground.vert", "ground.frag", true);
+  ship_prog_ = gl::program_from_shaders("ship.vert", "ship.frag");
+
+  const int cols = static_cast<int>(grid_.cols), rows = static_cast<int>(grid_.rows);
+  diffs_tex_ = gl::Texture(cols, rows, GL_RG32F);
+  diffs_tex_.set_filter(GL_LINEAR, GL_LINEAR);
+  coef_tex_ = gl::Texture(cols, rows, GL_RGBA32F);
+  coef_tex_.set_filter(GL_LINEAR, GL_LINEAR);
+  flat_light_tex_ = gl::Texture(1, 1, GL_R8);
+  const std::uint8_t one = 255;
+  flat_light_tex_.upload(&one, GL_RED, GL_UNSIGNED_BYTE);
+
+  build_surface_mesh();
   // ground: one large quad, 5 visible extents wide, centred on the visible region
   const double w = grid_.cols * grid_.dx, h = grid_.rows * grid_.dx;
   const float gx0 = static_cast<float>(grid_.x0 - 2.0 * w), gx1 = static_cast<float>(grid_.x0 + 3.0 * w);
@@ -323,6 +327,53 @@ void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettin
   glUniform1f(p.loc("u_ground_z"), static_cast<float>(ground_z_));
 }
 
+// The water surface: the subsampled mesh with per-pixel normals, refraction, Fresnel, glint.
+void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) const {
+  const gl::Program& p = surface_prog_;
+  set_common_uniforms(p, s, camera);
+  glUniformMatrix4fv(p.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  diffs_tex_.bind(2);
+  coef_tex_.bind(3);
+  glUniform1i(p.loc("u_diffs"), 2);
+  glUniform1i(p.loc("u_coef"), 3);
+  glUniform2f(p.loc("u_grid_origin"), static_cast<float>(grid_.x0), static_cast<float>(grid_.y0));
+  glUniform2f(p.loc("u_grid_size"), static_cast<float>(grid_.cols), static_cast<float>(grid_.rows));
+  glUniform1f(p.loc("u_dx"), static_cast<float>(grid_.dx));
+  const ViewRays v = camera.rays();
+  glUniform3f(p.loc("u_eye"), static_cast<float>(v.eye.x), static_cast<float>(v.eye.y), static_cast<float>(v.eye.z));
+  glUniform1i(p.loc("u_ortho"), v.ortho ? 1 : 0);
+  glUniform3f(p.loc("u_view_dir"), static_cast<float>(v.dir.x), static_cast<float>(v.dir.y),
+              static_cast<float>(v.dir.z));
+  glUniform1f(p.loc("u_index"), s.index);
+  glUniform1i(p.loc("u_exact"), s.exact_refraction ? 1 : 0);
+  glUniform1i(p.loc("u_fresnel"), static_cast<int>(s.fresnel));
+  glUniform1i(p.loc("u_glint"), s.sun_glint ? 1 : 0);
+  glUniform1i(p.loc("u_absorption"), s.absorption ? 1 : 0);
+  glUniform3fv(p.loc("u_absorb"), 1, glm::value_ptr(s.absorb_rgb));
+  glUniform3fv(p.loc("u_water_colour"), 1, glm::value_ptr(s.water_colour));
+  glUniform3fv(p.loc("u_sky"), 1, glm::value_ptr(s.sky_colour));
+  glUniform3fv(p.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
+  glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
+  glBindVertexArray(surface_vao_);
+  glDrawElements(GL_TRIANGLES, surface_index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+// The hulls at their poses (Wigley hulls below the waterline).
+void WaterRenderer::draw_ships(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
+  std::vector<float> tri;
+  for (const ShipPose& sp : ships_) append_hull(sp, tri);
+  ship_vertex_count_ = static_cast<GLsizei>(tri.size() / 3);
+  glBindVertexArray(ship_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
+  ship_prog_.use();
+  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
+  const glm::vec3 eye(camera.eye());
+  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
+  glDrawArrays(GL_TRIANGLES, 0, ship_vertex_count_);
+}
+
 void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, const RenderTarget& target) {
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
@@ -367,53 +418,10 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, use_caustics ? caustics_->texture() : flat_light_tex_.id());
 
-  // water surface
-  if (s.draw_water) {
-    const gl::Program& p = surface_prog_;
-    set_common_uniforms(p, s, camera);
-    glUniformMatrix4fv(p.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-    diffs_tex_.bind(2);
-    coef_tex_.bind(3);
-    glUniform1i(p.loc("u_diffs"), 2);
-    glUniform1i(p.loc("u_coef"), 3);
-    glUniform2f(p.loc("u_grid_origin"), static_cast<float>(grid_.x0), static_cast<float>(grid_.y0));
-    glUniform2f(p.loc("u_grid_size"), static_cast<float>(grid_.cols), static_cast<float>(grid_.rows));
-    glUniform1f(p.loc("u_dx"), static_cast<float>(grid_.dx));
-    const ViewRays v = camera.rays();
-    glUniform3f(p.loc("u_eye"), static_cast<float>(v.eye.x), static_cast<float>(v.eye.y), static_cast<float>(v.eye.z));
-    glUniform1i(p.loc("u_ortho"), v.ortho ? 1 : 0);
-    glUniform3f(p.loc("u_view_dir"), static_cast<float>(v.dir.x), static_cast<float>(v.dir.y),
-                static_cast<float>(v.dir.z));
-    glUniform1f(p.loc("u_index"), s.index);
-    glUniform1i(p.loc("u_exact"), s.exact_refraction ? 1 : 0);
-    glUniform1i(p.loc("u_fresnel"), static_cast<int>(s.fresnel));
-    glUniform1i(p.loc("u_glint"), s.sun_glint ? 1 : 0);
-    glUniform1i(p.loc("u_absorption"), s.absorption ? 1 : 0);
-    glUniform3fv(p.loc("u_absorb"), 1, glm::value_ptr(s.absorb_rgb));
-    glUniform3fv(p.loc("u_water_colour"), 1, glm::value_ptr(s.water_colour));
-    glUniform3fv(p.loc("u_sky"), 1, glm::value_ptr(s.sky_colour));
-    glUniform3fv(p.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
-    glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
-    glBindVertexArray(surface_vao_);
-    glDrawElements(GL_TRIANGLES, surface_index_count_, GL_UNSIGNED_INT, nullptr);
-  }
+  if (s.draw_water) draw_surface(camera, s, mvp);
   lap(times.surface);
 
-  // ships
-  if (s.draw_ship && !ships_.empty()) {
-    std::vector<float> tri;
-    for (const ShipPose& sp : ships_) append_hull(sp, tri);
-    ship_vertex_count_ = static_cast<GLsizei>(tri.size() / 3);
-    glBindVertexArray(ship_vao_);
-    glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
-    ship_prog_.use();
-    glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-    glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
-    const glm::vec3 eye(camera.eye());
-    glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
-    glDrawArrays(GL_TRIANGLES, 0, ship_vertex_count_);
-  }
+  if (s.draw_ship && !ships_.empty()) draw_ships(camera, s, mvp);
   lap(times.ship);
   // ground seen directly, drawn last so the depth test skips what the water and ships cover
   set_common_uniforms(ground_prog_, s, camera);

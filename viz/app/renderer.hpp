@@ -1,5 +1,5 @@
 #pragma once
-// The scene renderer of huygens-viz (docs/design.md section 5.1, paper 004 section 4): the
+// The scene renderer of huygens-viz (docs/design.md 5, docs/viz.md, paper 004 section 4): the
 // ground plane, the water surface as a subsampled mesh with per-pixel normals from a
 // full-resolution height-difference texture, refraction of the ground (linearised texture
 // coordinates or exact Snell per pixel), Fresnel sky reflection and sun glint, depth
@@ -135,6 +135,9 @@ class WaterRenderer {
   RenderTimes times;
 
  private:
+  void build_surface_mesh();
+  void draw_surface(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) const;
+  void draw_ships(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void update_linearisation(const OrbitCamera& camera, float index);
   void build_ground_texture(const RenderSettings& s);
   void set_common_uniforms(const gl::Program& p, const RenderSettings& s, const OrbitCamera& cam) const;

@@ -1,63 +1,64 @@
 #pragma once
-// What the renderer needs to know about a scene besides the heights: where the visible
-// region sits in the world, how deep the ground is, the display rate, the ships' hulls, and
-// where the ships are. A ship is drawn where the SOLVER has it (Solver::ship_poses, carried by
-// every frame as FrameInfo::ships): a ship steered by cmd::ShipTarget leaves its scene path.
-// The scene path (piecewise linear; heading along the path) is only the fallback for a
-// solver that reports no pose.
+// What the viewer knows of a scene: only what the solver tells it (Solver::render_info, core
+// render_info.hpp) and the frames. The scene file is read by the core (load_scene, or the built-in
+// default.json through parse_scene_text) and the solver made by make_solver; the viewer never
+// parses the scene's JSON and has no physics of its own. A ship is drawn where the frames put it
+// (FrameInfo::ships, the solver's poses: a ship steered by cmd::ShipTarget too) with its hull.
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "huygens/common/scene.hpp"
+#include "huygens/pipeline/frame.hpp"
+#include "huygens/pipeline/render_info.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "refraction.hpp"
 #include "renderer.hpp"
 
 namespace huygens {
 
-/// A ship as the scene file describes it (named apart from the core's huygens::ShipPath).
-struct SceneShipPath {
-  /// Hull size (unit: m).
-  double length = 1.0, beam = 0.3, draft = 0.05;
-  /// Waypoints: time (unit: s) and position (unit: m).
-  std::vector<double> t, x, y;
-  /// Pose at time `time` along the scene path (holds the end points outside the path).
-  ShipPose pose(double time) const;
-  /// The hull placed at a pose the solver reports.
-  ShipPose pose(const ShipState& s) const;
-};
-
-struct SceneGeometry {
+/// The viewer's placement of a solver's heightfield, from its RenderInfo.
+struct SceneView {
   GridPlacement grid;
-  /// Ground plane height (unit: m): -depth_m of the scene, or -kDeepGround for deep water.
-  double ground_z = -2.0;
-  /// Full step (unit: s) and displayed frames per step.
-  double dt = 0.05;
-  int display_per_step = 3;
-  std::vector<SceneShipPath> ships;
-  /// Level of the water at rest in the solver's height() (unit: m): 0 for elevation fields
-  /// (Huygens); the mean initial height for solvers whose height is a depth or a level
-  /// above the floor (LBM, SPH). The renderer draws height() - height_offset.
+  /// Ground plane height (unit: m): -depth, or -kDeepGround for deep water.
+  double ground_z = -kDeepGround;
+  /// Level of the water at rest in height() (unit: m; RenderInfo::rest_level_m), subtracted.
   double height_offset = 0.0;
+  /// Simulated time between two displayed frames (unit: s; RenderInfo::frame_dt_s).
+  double frame_dt = 1.0 / 60.0;
+  std::vector<RenderHull> hulls;
   /// Depth at which deep-water scenes draw their ground (unit: m).
   static constexpr double kDeepGround = 3.0;
+  /// Hull i placed at a pose the frames carry.
+  ShipPose ship(std::size_t i, const ShipState& s) const;
 };
 
-/// Reads the geometry of `scene` for the solver (before its first step). Uses grid.n,
-/// grid.length_m, grid.margin (docs/design.md 6); other solvers are placed at the origin with
-/// the spacing their meta() reports ("dx"), else 1 cm, and the ground at their mean
-/// initial height below the rest level.
-SceneGeometry scene_geometry(const Scene& scene, Solver& solver);
+SceneView scene_view(const RenderInfo& info);
 
-/// The ships to draw for `solver` in its current state: the poses it reports (ship_poses), each
-/// with its scene hull; ships it does not report follow their scene path at solver.time().
-/// For the synchronous callers (headless capture, --benchmark); the window reads the poses from
-/// the frames instead (FramePair::ship).
-std::vector<ShipPose> solver_ship_poses(const SceneGeometry& geo, const Solver& solver);
+/// The ships of a frame pair at display time t (FramePair::ship), each with its hull.
+void frame_ships(const SceneView& view, const FramePair& frames, double t, std::vector<ShipPose>& out);
 
-/// Applies a scene file's "render" block (caustics: bool, blur: "accumulation" | "float" | "none").
-void apply_scene_render_block(const std::string& scene_file, RenderSettings& s);
+/// Applies what the scene's "render" block asked for (caustics, blur) to the settings.
+void apply_render_request(const RenderRequest& request, RenderSettings& s);
+
+/// A solver made for the viewer, and what it tells the viewer.
+struct ViewerSolver {
+  /// The loaded scene, kept only to make a fresh solver for Reset (make_solver).
+  Scene scene;
+  RunOptions options;
+  std::unique_ptr<Solver> solver;
+  RenderInfo info;
+  /// The scene as the user named it (a path, or "built-in NAME").
+  std::string name;
+};
+
+/// Loads `arg` through load_scene and makes its solver; an empty `arg` is the built-in
+/// default.json, and an `arg` that names no file but a built-in scene ("ocean" or "ocean.json")
+/// is that scene (both compiled into the program, parsed by parse_scene_text).
+/// Throws SceneError for a bad scene or a file that does not exist.
+ViewerSolver open_viewer_solver(const std::string& arg, const RunOptions& options);
+
+/// Base names of the built-in scenes, space separated.
+const char* builtin_scene_names();
 
 }  // namespace huygens

@@ -12,10 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -23,7 +21,6 @@
 #include "gl.hpp"
 #include "huygens/pipeline/command.hpp"
 #include "huygens/pipeline/runner.hpp"
-#include "huygens/common/scene.hpp"
 #include "scene_view.hpp"
 
 namespace huygens {
@@ -34,13 +31,17 @@ struct App {
   GLFWwindow* window = nullptr;
   Runner* runner = nullptr;
   WindowOptions opt;
-  SceneGeometry geo;
+  /// The scene as the user named it.
+  std::string scene_name;
+  SceneView view;
   OrbitCamera camera;
   RenderSettings settings;
   std::vector<float> field;
   bool show_panel = true;
   bool interpolate = true;
-  bool stokes = true, wind = true;
+  /// The solver's run-time features (RenderInfo::toggles) and their state as the panel shows it;
+  /// as the scene has them at start (and after Reset).
+  std::vector<RenderToggle> toggles, toggles_at_start;
   bool screenshot_requested = false;
   int screenshot_count = 0;
   std::string last_screenshot;
@@ -82,24 +83,29 @@ bool cursor_hit(const App& a, double cx, double cy, glm::dvec2& hit) {
     const double s = (z - o.z) / d.z;
     if (s <= 0) return false;
     p = o + s * d;
-    const GridPlacement& g = a.geo.grid;
+    const GridPlacement& g = a.view.grid;
     const double fj = (p.x - g.x0) / g.dx, fi = (p.y - g.y0) / g.dx;
     if (fj < 0 || fi < 0 || fj > g.cols - 1 || fi > g.rows - 1) return false;
     z = a.field[static_cast<std::size_t>(std::lround(fi)) * g.cols + static_cast<std::size_t>(std::lround(fj))] -
-        a.geo.height_offset;
+        a.view.height_offset;
   }
   hit = {p.x, p.y};
   return true;
 }
 
-// The ships to draw at display time t: the solver's poses carried by the frames (a dragged ship
-// is where the simulation has steered it, not where the cursor or the scene path is); the scene
-// path only for a ship the frames do not carry.
-void update_ship_poses(App& a, const FramePair& fp, double t, double t_newest) {
-  a.ships_drawn.resize(a.geo.ships.size());
-  for (std::size_t i = 0; i < a.geo.ships.size(); ++i) {
-    ShipState st;
-    a.ships_drawn[i] = fp && fp.ship(i, t, st) ? a.geo.ships[i].pose(st) : a.geo.ships[i].pose(t_newest);
+// Refused commands come back from the runner: a refused toggle's control is un-ticked (set back
+// to the state the solver kept), anything else is shown in the panel.
+void take_refused(App& a) {
+  Command c;
+  while (a.runner->next_refused(c)) {
+    if (const auto* t = std::get_if<cmd::Toggle>(&c)) {
+      for (RenderToggle& g : a.toggles)
+        if (t->feature == g.name) g.on = !t->on;
+      a.message = std::string("refused: toggle ") + std::string(t->feature.view()) + (t->on ? " on" : " off");
+    } else {
+      a.message = std::string("refused: ") + command_kind(c);
+    }
+    std::printf("huygens-viz: %s\n", a.message.c_str());
   }
 }
 
@@ -147,6 +153,7 @@ void on_key(App& a, int key) {
       break;
     case GLFW_KEY_R:
       a.runner->send(cmd::Reset{});  // a fresh solver: the ships follow their scene paths again
+      a.toggles = a.toggles_at_start;
       break;
     case GLFW_KEY_F1:
       a.show_panel = !a.show_panel;
@@ -273,15 +280,95 @@ void scroll_callback(GLFWwindow* w, double, double yoff) {
   a.camera.distance = std::clamp(a.camera.distance * std::pow(0.9, yoff), 0.2, 500.0);
 }
 
+// The features: the solver's toggles (only those it has: RenderInfo::toggles; a refused one is
+// un-ticked by take_refused) and the renderer's switches.
+void panel_features(App& a) {
+  for (std::size_t i = 0; i < a.toggles.size(); ++i) {
+    RenderToggle& t = a.toggles[i];
+    if (i > 0) ImGui::SameLine();
+    if (ImGui::Checkbox(t.label.c_str(), &t.on)) a.runner->send(cmd::Toggle{CommandName{t.name}, t.on});
+  }
+  ImGui::Checkbox("time interpolation", &a.interpolate);
+  ImGui::SameLine();
+  ImGui::Checkbox("caustics", &a.settings.caustics);
+  ImGui::SameLine();
+  ImGui::Checkbox("blur", &a.settings.blur);
+  ImGui::SameLine();
+  ImGui::Checkbox("float blur", &a.settings.blur_float);
+  ImGui::Checkbox("exact Snell (E)", &a.settings.exact_refraction);
+  ImGui::SameLine();
+  ImGui::Checkbox("sun glint", &a.settings.sun_glint);
+  ImGui::SameLine();
+  ImGui::Checkbox("absorption", &a.settings.absorption);
+  int fres = static_cast<int>(a.settings.fresnel);
+  ImGui::Combo("Fresnel (F)", &fres, "off\0paper clamp(1-2.5 n.v)\0Schlick\0");
+  a.settings.fresnel = static_cast<FresnelModel>(fres);
+  ImGui::Checkbox("water", &a.settings.draw_water);
+  ImGui::SameLine();
+  ImGui::Checkbox("ships", &a.settings.draw_ship);
+}
+
+void panel_parameters(App& a) {
+  ImGui::SliderFloat("refractive index", &a.settings.index, 1.0f, 2.0f, "%.3f");
+  ImGui::SliderInt("mesh subsampling", &a.subsample, 1, 16);
+  ImGui::SliderFloat3("absorption 1/m", &a.settings.absorb_rgb.x, 0.0f, 2.0f, "%.3f");
+  if (ImGui::SliderFloat3("sun direction", &a.settings.sun_dir.x, -1.0f, 1.0f, "%.2f"))
+    a.settings.sun_dir.z = std::max(a.settings.sun_dir.z, 0.05f);
+  float ts = static_cast<float>(a.time_scale);
+  if (ImGui::SliderFloat("time scale", &ts, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) {
+    a.time_scale = ts;
+    a.runner->send(cmd::SetParam{CommandName{"time_scale"}, a.time_scale});
+  }
+  ImGui::SliderFloat("stone radius m", &a.stone_radius, 0.01f, 0.5f, "%.3f", ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("stone depth m", &a.stone_depth, 0.001f, 0.1f, "%.3f", ImGuiSliderFlags_Logarithmic);
+}
+
+// Simulation stages from the newest frame's counters (a stage the scene does not use costs
+// nothing and is not listed), then the render passes of the last frame.
+void panel_timing(App& a, const WaterRenderer& r, const FramePair& fp) {
+  if (!ImGui::BeginTable("timing", 3, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) return;
+  ImGui::TableSetupColumn("stage");
+  ImGui::TableSetupColumn("ms/call");
+  ImGui::TableSetupColumn("calls");
+  ImGui::TableHeadersRow();
+  auto row = [](const char* name, double ms, unsigned long long calls) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(name);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.3f", ms);
+    ImGui::TableNextColumn();
+    ImGui::Text("%llu", calls);
+  };
+  if (fp) {
+    const auto& names = a.runner->stage_names();
+    for (std::size_t i = 0; i < fp.newest->stages.size() && i < names.size(); ++i) {
+      const StageCounter& c = fp.newest->stages[i];
+      if (c.calls == 0) continue;
+      row(("sim: " + names[i]).c_str(), 1e-6 * static_cast<double>(c.ns) / static_cast<double>(c.calls),
+          static_cast<unsigned long long>(c.calls));
+    }
+  }
+  const RenderTimes& t = r.times;
+  row("render: mesh+normals (CPU)", t.prepare, 0);
+  row("render: upload", t.upload, 0);
+  row("render: caustics", t.caustics, 0);
+  row("render: ground", t.ground, 0);
+  row("render: surface", t.surface, 0);
+  row("render: ship", t.ship, 0);
+  ImGui::EndTable();
+}
+
 void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("huygens-viz");
-  ImGui::Text("%s", a.opt.scene_file.c_str());
+  ImGui::Text("%s", a.scene_name.c_str());
   ImGui::Text("t = %.3f s, step %lld, %.1f fps", fp ? fp.newest->info.time_s : 0.0,
               fp ? static_cast<long long>(fp.newest->info.step) : 0LL, fps);
   ImGui::Text("commands applied %llu, refused %llu", static_cast<unsigned long long>(a.runner->commands_applied()),
               static_cast<unsigned long long>(a.runner->commands_rejected()));
+  if (!a.message.empty()) ImGui::TextUnformatted(a.message.c_str());
   if (a.runner->failed()) ImGui::TextColored(ImVec4(1, 0.3f, 0.3f, 1), "%s", a.runner->error().message.c_str());
   bool paused = a.runner->paused();
   if (ImGui::Checkbox("pause (space)", &paused)) on_key(a, GLFW_KEY_SPACE);
@@ -289,78 +376,9 @@ void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   if (ImGui::Button("reset (R)")) on_key(a, GLFW_KEY_R);
   ImGui::SameLine();
   if (ImGui::Button("screenshot (S)")) on_key(a, GLFW_KEY_S);
-
-  if (ImGui::CollapsingHeader("features", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (ImGui::Checkbox("Stokes (2nd order)", &a.stokes)) a.runner->send(cmd::Toggle{CommandName{"stokes"}, a.stokes});
-    ImGui::SameLine();
-    if (ImGui::Checkbox("wind", &a.wind)) a.runner->send(cmd::Toggle{CommandName{"wind"}, a.wind});
-    ImGui::Checkbox("time interpolation", &a.interpolate);
-    ImGui::SameLine();
-    ImGui::Checkbox("caustics", &a.settings.caustics);
-    ImGui::SameLine();
-    ImGui::Checkbox("blur", &a.settings.blur);
-    ImGui::SameLine();
-    ImGui::Checkbox("float blur", &a.settings.blur_float);
-    ImGui::Checkbox("exact Snell (E)", &a.settings.exact_refraction);
-    ImGui::SameLine();
-    ImGui::Checkbox("sun glint", &a.settings.sun_glint);
-    ImGui::SameLine();
-    ImGui::Checkbox("absorption", &a.settings.absorption);
-    int fres = static_cast<int>(a.settings.fresnel);
-    ImGui::Combo("Fresnel (F)", &fres, "off\0paper clamp(1-2.5 n.v)\0Schlick\0");
-    a.settings.fresnel = static_cast<FresnelModel>(fres);
-    ImGui::Checkbox("water", &a.settings.draw_water);
-    ImGui::SameLine();
-    ImGui::Checkbox("ships", &a.settings.draw_ship);
-  }
-  if (ImGui::CollapsingHeader("parameters", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::SliderFloat("refractive index", &a.settings.index, 1.0f, 2.0f, "%.3f");
-    ImGui::SliderInt("mesh subsampling", &a.subsample, 1, 16);
-    ImGui::SliderFloat3("absorption 1/m", &a.settings.absorb_rgb.x, 0.0f, 2.0f, "%.3f");
-    if (ImGui::SliderFloat3("sun direction", &a.settings.sun_dir.x, -1.0f, 1.0f, "%.2f"))
-      a.settings.sun_dir.z = std::max(a.settings.sun_dir.z, 0.05f);
-    float ts = static_cast<float>(a.time_scale);
-    if (ImGui::SliderFloat("time scale", &ts, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) {
-      a.time_scale = ts;
-      a.runner->send(cmd::SetParam{CommandName{"time_scale"}, a.time_scale});
-    }
-    ImGui::SliderFloat("stone radius m", &a.stone_radius, 0.01f, 0.5f, "%.3f", ImGuiSliderFlags_Logarithmic);
-    ImGui::SliderFloat("stone depth m", &a.stone_depth, 0.001f, 0.1f, "%.3f", ImGuiSliderFlags_Logarithmic);
-  }
-  if (ImGui::CollapsingHeader("timing (ms)", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (ImGui::BeginTable("timing", 3, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg)) {
-      ImGui::TableSetupColumn("stage");
-      ImGui::TableSetupColumn("ms/call");
-      ImGui::TableSetupColumn("calls");
-      ImGui::TableHeadersRow();
-      auto row = [](const char* name, double ms, unsigned long long calls) {
-        ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(name);
-        ImGui::TableNextColumn();
-        ImGui::Text("%.3f", ms);
-        ImGui::TableNextColumn();
-        ImGui::Text("%llu", calls);
-      };
-      if (fp) {
-        const auto& names = a.runner->stage_names();
-        for (std::size_t i = 0; i < fp.newest->stages.size() && i < names.size(); ++i) {
-          const StageCounter& c = fp.newest->stages[i];
-          if (c.calls == 0) continue;  // a stage the scene does not use costs nothing
-          row(("sim: " + names[i]).c_str(), 1e-6 * static_cast<double>(c.ns) / static_cast<double>(c.calls),
-              static_cast<unsigned long long>(c.calls));
-        }
-      }
-      const RenderTimes& t = r.times;
-      row("render: mesh+normals (CPU)", t.prepare, 0);
-      row("render: upload", t.upload, 0);
-      row("render: caustics", t.caustics, 0);
-      row("render: ground", t.ground, 0);
-      row("render: surface", t.surface, 0);
-      row("render: ship", t.ship, 0);
-      ImGui::EndTable();
-    }
-  }
+  if (ImGui::CollapsingHeader("features", ImGuiTreeNodeFlags_DefaultOpen)) panel_features(a);
+  if (ImGui::CollapsingHeader("parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters(a);
+  if (ImGui::CollapsingHeader("timing (ms)", ImGuiTreeNodeFlags_DefaultOpen)) panel_timing(a, r, fp);
   if (!a.last_screenshot.empty()) ImGui::Text("last screenshot: %s", a.last_screenshot.c_str());
   ImGui::TextWrapped(
       "left click: stone; left drag on a ship: move it; right drag: orbit; shift+right or "
@@ -368,16 +386,15 @@ void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   ImGui::End();
 }
 
-}  // namespace
-
-int run_window(const WindowOptions& opt) {
+// A GL 3.3 core window with its context current, or null (the message is printed).
+GLFWwindow* open_window(const WindowOptions& opt, const std::string& scene_name) {
   glfwSetErrorCallback([](int code, const char* msg) { std::fprintf(stderr, "GLFW error %d: %s\n", code, msg); });
   if (!glfwInit()) {
     std::fprintf(stderr,
                  "huygens-viz: no display (GLFW could not initialise). Without a display server use\n"
                  "  huygens-viz %s --headless --frames 60 --screenshot out.png\n",
-                 opt.scene_file.c_str());
-    return 1;
+                 scene_name.c_str());
+    return nullptr;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -387,133 +404,150 @@ int run_window(const WindowOptions& opt) {
   if (!window) {
     glfwTerminate();
     std::fprintf(stderr, "huygens-viz: could not create a GL 3.3 core window\n");
-    return 1;
+    return nullptr;
   }
   glfwMakeContextCurrent(window);
   glfwSwapInterval(opt.auto_frames > 0 ? 0 : 1);
+  return window;
+}
 
+// The renderer for the scene's view at mesh subsampling `subsample`, showing the current field.
+std::unique_ptr<WaterRenderer> make_renderer(const App& a, int subsample) {
+  auto r = std::make_unique<WaterRenderer>(a.view.grid, a.view.ground_z, subsample);
+  r->set_height_offset(a.view.height_offset);
+  r->times.enabled = true;
+  r->set_heights(a.field);
+  return r;
+}
+
+// One displayed frame: the newest frames sampled at the display time, the scene drawn and
+// blitted, the panel over it, the screenshot if one was asked for, the swap.
+void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fps) {
+  take_refused(a);
+  const FramePair fp = a.runner->frames();
+  const double t = a.interpolate ? a.runner->display_time() : std::numeric_limits<double>::infinity();
+  if (fp) {
+    fp.sample(t, a.field);
+    renderer.set_heights(a.field);
+  }
+  // the hulls at the same display time as the heights, where the solver has them (a dragged ship
+  // is where the simulation has steered it, not where the cursor is)
+  if (fp) frame_ships(a.view, fp, t, a.ships_drawn);
+  renderer.set_ships(a.ships_drawn);
+  int fw, fh;
+  glfwGetFramebufferSize(a.window, &fw, &fh);
+  if (fw > 0 && fh > 0) {
+    if (target.width() != fw || target.height() != fh) target = RenderTarget(fw, fh);
+    renderer.render(a.camera, a.settings, target);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, target.fbo());
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glBlitFramebuffer(0, 0, fw, fh, 0, 0, fw, fh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fw, fh);
+  }
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  if (a.show_panel) panel(a, renderer, fp, fps);
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (a.screenshot_requested && fw > 0 && fh > 0) {
+    a.screenshot_requested = false;
+    save_screenshot(a, fw, fh);  // what the window shows, panel included (F1 hides it)
+  }
+  glfwSwapBuffers(a.window);
+}
+
+// --auto-frames: a left click in the middle of the window halfway (through the mouse handler),
+// then the S key's screenshot and Esc, as a user would.
+void automate(App& a, long frame) {
+  const int n = a.opt.auto_frames;
+  if (n <= 0) return;
+  if (frame == n / 2) {
+    int ww, wh;
+    glfwGetWindowSize(a.window, &ww, &wh);
+    on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0, 0.5 * ww, 0.5 * wh);
+    on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0, 0.5 * ww, 0.5 * wh);
+  }
+  if (frame == n) on_key(a, GLFW_KEY_S);  // same path as the S key
+  if (frame == n + 1) on_key(a, GLFW_KEY_ESCAPE);
+}
+
+// The window's loop until it is closed; returns the frames drawn.
+long frame_loop(App& a) {
+  a.subsample = a.opt.subsample;
+  std::unique_ptr<WaterRenderer> renderer = make_renderer(a, a.subsample);
+  RenderTarget target;
+  long frame = 0;
+  auto t_last = std::chrono::steady_clock::now();
+  double fps = 0.0;
+  while (!glfwWindowShouldClose(a.window) && !a.quit) {
+    glfwPollEvents();
+    hold_drag_target(a);
+    if (a.subsample != renderer->subsample()) {
+      renderer.reset();  // free the old GL objects first
+      renderer = make_renderer(a, a.subsample);
+    }
+    draw_frame(a, *renderer, target, fps);
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - t_last).count();
+    t_last = now;
+    fps = 0.9 * fps + 0.1 * (dt > 0 ? 1.0 / dt : 0.0);
+    automate(a, ++frame);
+  }
+  return frame;
+}
+
+void install_callbacks(GLFWwindow* window, App& a) {
+  glfwSetWindowUserPointer(window, &a);
+  glfwSetKeyCallback(window, key_callback);
+  glfwSetMouseButtonCallback(window, mouse_button_callback);
+  glfwSetCursorPosCallback(window, cursor_callback);
+  glfwSetScrollCallback(window, scroll_callback);
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains the callbacks installed above
+  ImGui_ImplOpenGL3_Init("#version 330 core");
+}
+
+}  // namespace
+
+int run_window(ViewerSolver scene, const WindowOptions& opt) {
+  GLFWwindow* window = open_window(opt, scene.name);
+  if (!window) return 1;
   int code = 0;
   {
     App a;
     a.window = window;
     a.opt = opt;
     a.settings = opt.settings;
-    const Scene scene = load_scene(opt.scene_file);
-    RunOptions ro;
-    ro.measure_plans = false;
-    std::unique_ptr<Solver> solver = make_solver(scene, ro);
-    a.geo = scene_geometry(scene, *solver);
-    // the panel's solver toggles start as the scene has them
-    a.stokes =
-        scene.doc->contains("stokes") && (*scene.doc)["stokes"].is_boolean() && (*scene.doc)["stokes"].get<bool>();
-    a.wind = scene.doc->contains("wind") && (*scene.doc)["wind"].is_object();
-    const GridPlacement& g = a.geo.grid;
-    a.field.assign(g.rows * g.cols, 0.0f);
-    {
-      auto h = solver->height();
-      std::copy(h.begin(), h.end(), a.field.begin());
-    }
-    a.ships_drawn = solver_ship_poses(a.geo, *solver);  // until the first frame arrives
+    a.scene_name = scene.name;
+    a.view = scene_view(scene.info);
+    a.toggles = a.toggles_at_start = scene.info.toggles;  // as the scene has them
+    const GridPlacement& g = a.view.grid;
+    const auto h = scene.solver->height();
+    a.field.assign(h.begin(), h.end());
     a.camera = default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
     RunnerParams rp;
     rp.realtime = true;
     rp.start_paused = opt.paused;
-    Runner runner(std::move(solver), rp, [scene, ro] { return make_solver(scene, ro); });
+    // Reset makes a fresh solver from the same scene
+    Runner runner(std::move(scene.solver), rp, [s = scene.scene, ro = scene.options] { return make_solver(s, ro); });
     a.runner = &runner;
-    glfwSetWindowUserPointer(window, &a);
-    glfwSetKeyCallback(window, key_callback);
-    glfwSetMouseButtonCallback(window, mouse_button_callback);
-    glfwSetCursorPosCallback(window, cursor_callback);
-    glfwSetScrollCallback(window, scroll_callback);
-
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;
-    ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains the callbacks installed above
-    ImGui_ImplOpenGL3_Init("#version 330 core");
-
-    {
-      auto make_renderer = [&](int subsample) {
-        auto r = std::make_unique<WaterRenderer>(g, a.geo.ground_z, subsample);
-        r->set_height_offset(a.geo.height_offset);
-        r->times.enabled = true;
-        r->set_heights(a.field);
-        return r;
-      };
-      a.subsample = opt.subsample;
-      std::unique_ptr<WaterRenderer> renderer_ptr = make_renderer(a.subsample);
-      RenderTarget target;
-      runner.start();
-      long frame = 0;
-      auto t_last = std::chrono::steady_clock::now();
-      double fps = 0.0;
-      while (!glfwWindowShouldClose(window) && !a.quit) {
-        glfwPollEvents();
-        hold_drag_target(a);
-        if (a.subsample != renderer_ptr->subsample()) {
-          renderer_ptr.reset();  // free the old GL objects first
-          renderer_ptr = make_renderer(a.subsample);
-        }
-        WaterRenderer& renderer = *renderer_ptr;
-        FramePair fp = runner.frames();
-        const double t = a.interpolate ? runner.display_time() : std::numeric_limits<double>::infinity();
-        if (fp) {
-          fp.sample(t, a.field);
-          renderer.set_heights(a.field);
-        }
-        // the hulls at the same display time as the heights, where the solver has them
-        update_ship_poses(a, fp, t, fp ? fp.newest->info.time_s : 0.0);
-        renderer.set_ships(a.ships_drawn);
-
-        int fw, fh;
-        glfwGetFramebufferSize(window, &fw, &fh);
-        if (fw > 0 && fh > 0) {
-          if (target.width() != fw || target.height() != fh) target = RenderTarget(fw, fh);
-          renderer.render(a.camera, a.settings, target);
-          glBindFramebuffer(GL_READ_FRAMEBUFFER, target.fbo());
-          glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-          glBlitFramebuffer(0, 0, fw, fh, 0, 0, fw, fh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-          glBindFramebuffer(GL_FRAMEBUFFER, 0);
-          glViewport(0, 0, fw, fh);
-        }
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        if (a.show_panel) panel(a, renderer, fp, fps);
-        ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        if (a.screenshot_requested && fw > 0 && fh > 0) {
-          a.screenshot_requested = false;
-          save_screenshot(a, fw, fh);  // what the window shows, panel included (F1 hides it)
-        }
-        glfwSwapBuffers(window);
-
-        const auto now = std::chrono::steady_clock::now();
-        const double dt = std::chrono::duration<double>(now - t_last).count();
-        t_last = now;
-        fps = 0.9 * fps + 0.1 * (dt > 0 ? 1.0 / dt : 0.0);
-        ++frame;
-        if (opt.auto_frames > 0 && frame == opt.auto_frames / 2) {
-          // a left click in the middle of the window, through the mouse handler
-          int ww, wh;
-          glfwGetWindowSize(window, &ww, &wh);
-          on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0, 0.5 * ww, 0.5 * wh);
-          on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0, 0.5 * ww, 0.5 * wh);
-        }
-        if (opt.auto_frames > 0 && frame == opt.auto_frames) on_key(a, GLFW_KEY_S);  // same path as the S key
-        if (opt.auto_frames > 0 && frame == opt.auto_frames + 1) on_key(a, GLFW_KEY_ESCAPE);
-      }
-      runner.stop();
-      std::printf("huygens-viz: %ld frames, commands applied %llu, refused %llu\n", frame,
-                  static_cast<unsigned long long>(runner.commands_applied()),
-                  static_cast<unsigned long long>(runner.commands_rejected()));
-      if (runner.failed()) {
-        std::fprintf(stderr, "huygens-viz: simulation stopped: %s\n", runner.error().message.c_str());
-        code = 3;
-      }
-      if (opt.auto_frames > 0 && a.screenshot_count == 0) code = 1;
+    install_callbacks(window, a);
+    runner.start();
+    const long frames = frame_loop(a);
+    runner.stop();
+    std::printf("huygens-viz: %ld frames, commands applied %llu, refused %llu\n", frames,
+                static_cast<unsigned long long>(runner.commands_applied()),
+                static_cast<unsigned long long>(runner.commands_rejected()));
+    if (runner.failed()) {
+      std::fprintf(stderr, "huygens-viz: simulation stopped: %s\n", runner.error().message.c_str());
+      code = 3;
     }
+    if (opt.auto_frames > 0 && a.screenshot_count == 0) code = 1;
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

@@ -62,11 +62,9 @@ class HeadlessContext {
 // ---------------------------------------------------------------------------------
 // Shaders
 
-/// Absolute path of a file in the project's shaders/ directory (baked in at build time
-/// through the HUYGENS_SHADER_DIR compile definition of huygens_gl).
-std::string shader_path(std::string_view file);
-/// Whole file as a string; throws GlError if it cannot be read.
-std::string read_text_file(const std::string& path);
+/// The source of a file of the project's shaders/ directory by base name ("caustics.vert"),
+/// compiled into huygens_gl at build time (huygens_embed); throws GlError for an unknown name.
+std::string_view shader_source(std::string_view file);
 
 /// A linked GLSL program. Move-only RAII wrapper around the GL name.
 class Program {
@@ -101,9 +99,9 @@ class Program {
 /// error messages. Throws GlError with the compile or link log. `geometry` may be empty.
 Program program_from_strings(std::string_view vertex_src, std::string_view fragment_src, std::string_view name,
                              std::string_view geometry_src = {});
-/// Same from files; relative paths are taken relative to shaders/ (shader_path()).
-Program program_from_files(const std::string& vertex_file, const std::string& fragment_file,
-                           const std::string& geometry_file = {});
+/// Same from the compiled-in shaders/ files (shader_source()); `geometry_file` may be empty.
+Program program_from_shaders(std::string_view vertex_file, std::string_view fragment_file,
+                             std::string_view geometry_file = {});
 
 /// The vertex shader of a full-screen triangle (no vertex buffer needed: draw with
 /// glDrawArrays(GL_TRIANGLES, 0, 3) and any VAO bound). Outputs `vec2 uv` in [0,1]^2.
