@@ -181,7 +181,7 @@ TEST(ShipWaves, PatchSpectrumIsTheRigidTranslationFormula) {
   double err = 0, ref = 0;
   for (int r = 0; r < P; ++r)
     for (int c = 0; c < P; ++c) {
-      const double kx = 2 * kPi / (P * dx) * (c < P / 2 ? c : c - P), ky = 2 * kPi / (P * dx) * (r < P / 2 ? r : r - P);
+      const double kx = fft_wavenumber(c, P, P * dx), ky = fft_wavenumber(r, P, P * dx);
       const double k = std::hypot(kx, ky);
       if (k == 0) continue;
       const double om = omega(w, k);
