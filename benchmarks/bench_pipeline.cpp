@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -39,15 +41,14 @@ std::string pool_scene(bool with_wave) {
   return s.dump();
 }
 
-}  // namespace
+// ---- publishing cost against one step (interleaved repeats, medians) ----
+struct PublishCost {
+  double step_ms = 0, full_ms = 0, vis_ms = 0;  // a step, publishing 512^2 and the visible frame
+  std::size_t vis_rows = 0, vis_cols = 0;
+  bool vis_rate = false;  // the visible frame carries eta_dot
+};
 
-void bench_pipeline(Context& ctx) {
-  const int threads = ctx.threads.back();
-  fft_set_threads(threads);
-  omp_set_num_threads(threads);
-  const int reps = ctx.quick ? 15 : 60;
-
-  // ---- publishing cost against one step (interleaved repeats, medians) ----
+PublishCost publish_cost(int reps) {
   std::unique_ptr<Solver> solver = make_solver(parse_scene_text(pool_scene(true)));
   const std::size_t stages = solver->stats().all().size();
   FrameRing full(512, 512, stages);  // a 512 x 512 frame, as the issue states the target
@@ -55,13 +56,12 @@ void bench_pipeline(Context& ctx) {
   std::vector<float> eta512(512 * 512, 0.001f), rate512(512 * 512, 0.002f);
   for (int i = 0; i < 3; ++i) solver->step();
   std::vector<double> t_step, t_full, t_vis;
-  std::int64_t step = 0;
   for (int i = 0; i < reps; ++i) {
     auto t0 = std::chrono::steady_clock::now();
     solver->step();
     t_step.push_back(seconds_since(t0));
     t0 = std::chrono::steady_clock::now();
-    full.publish(FrameInfo{step, 0.0, 0}, eta512, rate512, solver->stats().all());
+    full.publish(FrameInfo{i, 0.0, 0}, eta512, rate512, solver->stats().all());
     t_full.push_back(seconds_since(t0));
     t0 = std::chrono::steady_clock::now();
     visible.publish(FrameInfo{solver->steps(), solver->time(), 0}, solver->height(), solver->height_rate(),
@@ -72,28 +72,24 @@ void bench_pipeline(Context& ctx) {
       full.acquire();
       visible.acquire();
     }
-    ++step;
   }
-  const double step_ms = median_of(t_step) * 1e3;
+  return {median_of(t_step) * 1e3, median_of(t_full) * 1e3, median_of(t_vis) * 1e3,
+          solver->height_rows(),   solver->height_cols(),   !solver->height_rate().empty()};
+}
 
-  // ---- latency: drop command -> first frame that shows it (runner as fast as possible) ----
-  RunnerParams rp;
-  rp.realtime = false;
-  rp.omp_threads = threads;
-  // with a ring wave in the pool, so that it never goes still (a still sea skips its steps,
-  // and the latency is to be measured against full steps)
-  Runner runner(make_solver(parse_scene_text(pool_scene(true))), rp);
-  const std::size_t vis_rows = solver->height_rows(), vis_cols = solver->height_cols();
-  const bool vis_rate = !solver->height_rate().empty();
-  solver.reset();
-  const std::size_t rows = runner.solver().height_rows(), cols = runner.solver().height_cols();
-  const double dx = 15.0 / 512, margin = 64;
-  const auto run0 = std::chrono::steady_clock::now();
-  runner.start();
-  while (!runner.frames()) std::this_thread::yield();
-  const int drops = ctx.quick ? 12 : 40;
-  std::vector<double> lat_ms;
+// ---- latency: drop command -> first frame that shows it (runner as fast as possible) ----
+struct Latency {
+  std::vector<double> ms;  // per drop
   int not_shown = 0;
+  double run_step_ms = 0, stage_ms = 0;  // the runner's wall time per step, its stages' time per step
+  std::string failure;
+};
+
+// Sends drop k at a different phase of the step each time (after a few undisturbed steps), on a
+// grid of cells far from each other and from the margin, and waits for the frame that counts it.
+void send_drops(Context& ctx, Runner& runner, std::size_t cols, Latency& lat) {
+  const double dx = 15.0 / 512, margin = 64;
+  const int drops = ctx.quick ? 12 : 40;
   // the runner's step period, from a short undisturbed stretch (for the send phases below)
   const std::uint64_t f0 = runner.frames_published();
   const auto p0 = std::chrono::steady_clock::now();
@@ -101,10 +97,8 @@ void bench_pipeline(Context& ctx) {
   const double period_ms =
       seconds_since(p0) * 1e3 / static_cast<double>(std::max<std::uint64_t>(runner.frames_published() - f0, 1));
   for (int k = 1; k <= drops && !runner.failed(); ++k) {
-    // send at a different phase of the step each time (after a few undisturbed steps)
     std::this_thread::sleep_for(
         std::chrono::microseconds(static_cast<long>(period_ms * 1e3 * (3 + ((k * 37) % 100) / 100.0))));
-    // positions on a grid of cells far from each other and from the margin
     const std::size_t col = 40 + static_cast<std::size_t>((k * 53) % 300),
                       row_i = 40 + static_cast<std::size_t>((k * 97) % 300);
     const float x = static_cast<float>((static_cast<double>(col) + margin) * dx);
@@ -122,48 +116,81 @@ void bench_pipeline(Context& ctx) {
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
     if (runner.failed()) break;
-    lat_ms.push_back(seconds_since(t0) * 1e3);
+    lat.ms.push_back(seconds_since(t0) * 1e3);
     // "shows it": a depression of order `depth` at the drop's cell
-    if (!(f.newest->eta[row_i * cols + col] < eta_before - 0.3f * depth)) ++not_shown;
+    if (!(f.newest->eta[row_i * cols + col] < eta_before - 0.3f * depth)) ++lat.not_shown;
   }
+}
+
+Latency measure_latency(Context& ctx, int threads) {
+  RunnerParams rp;
+  rp.realtime = false;
+  rp.omp_threads = threads;
+  // with a ring wave in the pool, so that it never goes still (a still sea skips its steps,
+  // and the latency is to be measured against full steps)
+  Runner runner(make_solver(parse_scene_text(pool_scene(true))), rp);
+  Latency lat;
+  const std::size_t cols = runner.solver().height_cols();  // before start(): then the runner owns it
+  const auto run0 = std::chrono::steady_clock::now();
+  runner.start();
+  while (!runner.frames()) std::this_thread::yield();
+  send_drops(ctx, runner, cols, lat);
   runner.stop();
-  const double run_wall = seconds_since(run0);
-  (void)rows;
   // a full step of the runner: its wall time per step (step + publish + commands), which is
   // what a latency is made of; and the stage time alone for comparison
   const double steps_run = static_cast<double>(std::max<std::int64_t>(runner.solver().steps(), 1));
-  const double run_step_ms = run_wall * 1e3 / steps_run;
+  lat.run_step_ms = seconds_since(run0) * 1e3 / steps_run;
   double ns = 0;
   for (const auto& st : runner.solver().stats().all()) ns += static_cast<double>(st.ns);
-  const double stage_ms = ns * 1e-6 / steps_run;
-  if (runner.failed()) {
-    ctx.expect(false, "pipeline: runner failed: " + runner.error().message);
-    return;
-  }
+  lat.stage_ms = ns * 1e-6 / steps_run;
+  if (runner.failed()) lat.failure = runner.error().message;
+  return lat;
+}
+
+void report_latency(Context& ctx, const Latency& lat) {
   Table l({"drops", "median ms", "max ms", "runner step ms", "stage ms/step", "median steps", "max steps",
            "target steps", "not shown"});
-  const double med = median_of(lat_ms), mx = *std::max_element(lat_ms.begin(), lat_ms.end());
-  l.add({std::to_string(lat_ms.size()), fmt("%.2f", med), fmt("%.2f", mx), fmt("%.2f", run_step_ms),
-         fmt("%.2f", stage_ms), fmt("%.2f", med / run_step_ms), fmt("%.2f", mx / run_step_ms), "2",
-         std::to_string(not_shown)});
+  const double med = median_of(lat.ms), mx = *std::max_element(lat.ms.begin(), lat.ms.end());
+  l.add({std::to_string(lat.ms.size()), fmt("%.2f", med), fmt("%.2f", mx), fmt("%.2f", lat.run_step_ms),
+         fmt("%.2f", lat.stage_ms), fmt("%.2f", med / lat.run_step_ms), fmt("%.2f", mx / lat.run_step_ms), "2",
+         std::to_string(lat.not_shown)});
   ctx.report("pipeline", "latency: drop command -> first frame that shows it (runner as fast as possible)", l);
-  ctx.expect(not_shown == 0, "pipeline: every drop shows in the first frame that counts it");
+  ctx.expect(lat.not_shown == 0, "pipeline: every drop shows in the first frame that counts it");
+}
 
-  // ---- publishing cost table: against the step on this thread and the runner's step ----
+// The publishing cost table: against the step on this thread and the runner's step.
+void report_publish(Context& ctx, const PublishCost& pc, double run_step_ms, int reps, int threads) {
   Table t({"frame", "fields", "MB copied", "publish ms", "step ms", "publish/step %", "runner step ms",
            "publish/runner step %", "target %", "reps"});
   double worst_pct = 0;
   auto row = [&](const std::string& name, std::size_t r, std::size_t c, bool rate, double ms) {
     const double mb = static_cast<double>(r * c * sizeof(float) * (rate ? 2 : 1)) / 1e6;
-    t.add({name, rate ? "eta + eta_dot" : "eta", fmt("%.2f", mb), fmt("%.3f", ms), fmt("%.2f", step_ms),
-           fmt("%.2f", 100 * ms / step_ms), fmt("%.2f", run_step_ms), fmt("%.2f", 100 * ms / run_step_ms), "5",
+    t.add({name, rate ? "eta + eta_dot" : "eta", fmt("%.2f", mb), fmt("%.3f", ms), fmt("%.2f", pc.step_ms),
+           fmt("%.2f", 100 * ms / pc.step_ms), fmt("%.2f", run_step_ms), fmt("%.2f", 100 * ms / run_step_ms), "5",
            std::to_string(reps)});
-    worst_pct = std::max(worst_pct, 100 * ms / std::min(step_ms, run_step_ms));
+    worst_pct = std::max(worst_pct, 100 * ms / std::min(pc.step_ms, run_step_ms));
   };
-  row("512 x 512", 512, 512, true, median_of(t_full) * 1e3);
-  row(fmt("%zu x %zu (visible)", vis_rows, vis_cols), vis_rows, vis_cols, vis_rate, median_of(t_vis) * 1e3);
+  row("512 x 512", 512, 512, true, pc.full_ms);
+  row(fmt("%zu x %zu (visible)", pc.vis_rows, pc.vis_cols), pc.vis_rows, pc.vis_cols, pc.vis_rate, pc.vis_ms);
   ctx.report("pipeline", fmt("publishing a frame vs one Huygens step, n = 512 (%d threads)", threads), t);
   if (worst_pct >= 5) std::printf("note: publishing costs up to %.2f %% of a step (target < 5 %%)\n", worst_pct);
+}
+
+}  // namespace
+
+void bench_pipeline(Context& ctx) {
+  const int threads = ctx.threads.back();
+  fft_set_threads(threads);
+  omp_set_num_threads(threads);
+  const int reps = ctx.quick ? 15 : 60;
+  const PublishCost pc = publish_cost(reps);
+  const Latency lat = measure_latency(ctx, threads);
+  if (!lat.failure.empty()) {
+    ctx.expect(false, "pipeline: runner failed: " + lat.failure);
+    return;
+  }
+  report_latency(ctx, lat);
+  report_publish(ctx, pc, lat.run_step_ms, reps, threads);
 }
 
 }  // namespace huygens::bench

@@ -60,106 +60,110 @@ Measured dam(int na, float cfl, double T_end) {
   return m;
 }
 
+// Throughput and stage split.
+void sph_throughput(Context& ctx) {
+  // wall-clock rates, and the rate per CPU-second of the process (on a shared, loaded machine the wall
+  // rate understates what the cores deliver; both are printed)
+  Table t({"particles", "threads", "steps", "steps/s", "Mparticle-steps/s", "per core", "per CPU-s", "neighbour %",
+           "density %", "forces %", "integration %"});
+  const std::vector<std::size_t> sizes = {3000, 30000, 300000};
+  for (std::size_t n : sizes) {
+    for (int th : ctx.threads) {
+      omp_set_num_threads(th);
+      SphSystem s(pool_params(n));
+      const int warm = 3;
+      for (int k = 0; k < warm; ++k) s.step();
+      s.stats().reset_counts();
+      const int steps = n <= 3000    ? (ctx.quick ? 200 : 1000)
+                        : n <= 30000 ? (ctx.quick ? 20 : 100)
+                                     : (ctx.quick ? 2 : 10);
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
+      for (int k = 0; k < steps; ++k) s.step();
+      const double sec = seconds_since(t0);
+      const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+      double tot = 0;
+      for (const auto& st : s.stats().all()) tot += double(st.ns);
+      auto pct = [&](int id) { return fmt("%.1f", 100.0 * double(s.stats()[id].ns) / tot); };
+      const double rate = double(s.count()) * steps / sec;
+      t.add({std::to_string(s.count()), std::to_string(th), std::to_string(steps), num(steps / sec, 4),
+             num(rate * 1e-6, 4), num(rate * 1e-6 / th, 4), num(double(s.count()) * steps / cpu * 1e-6, 4),
+             pct(s.stage_ids().neighbours), pct(s.stage_ids().density), pct(s.stage_ids().forces),
+             pct(s.stage_ids().integration)});
+    }
+  }
+  omp_set_num_threads(ctx.threads.back());
+  ctx.report(
+      "sph",
+      "step throughput (targets: 3000-particle pool >= 1000 steps/s; >= 1.5 M particle-steps/s per core at 300 000)",
+      t);
+}
+
+// The grid neighbour search against all pairs: same physics, same state.
+void sph_grid_vs_all_pairs(Context& ctx) {
+  Table t({"particles", "grid step ms", "all-pairs step ms", "speed-up", "max |d rho|/rho0", "max |d a|/max|a - g|"});
+  for (std::size_t n : {1000ul, 3000ul}) {
+    SphSystem s(pool_params(n));
+    for (int k = 0; k < 20; ++k) s.step();
+    const std::size_t m = s.count();
+    std::vector<float> a1(m), b1(m), c1(m), r1(m), a2(m), b2(m), c2(m), r2(m);
+    const double tg = median_seconds(ctx.quick ? 3 : 7, [&] { s.grid_accelerations(a1, b1, c1, r1); });
+    const double tb = median_seconds(ctx.quick ? 1 : 3, [&] { s.brute_force_accelerations(a2, b2, c2, r2); });
+    double amax = 0, da = 0, dr = 0;
+    // the neighbour sums make a - g (pressure and viscosity; gravity is added after): their
+    // float summation order is compared against that sum's largest magnitude (about g in a pool
+    // at rest, where the net acceleration a itself nearly vanishes)
+    const auto g = s.gravity();
+    for (std::size_t i = 0; i < m; ++i)
+      amax = std::max(amax, double(std::hypot(a1[i] - g[0], b1[i] - g[1], c1[i] - g[2])));
+    for (std::size_t i = 0; i < m; ++i) {
+      da = std::max(da, double(std::hypot(a1[i] - a2[i], b1[i] - b2[i], c1[i] - c2[i])));
+      dr = std::max(dr, double(std::fabs(r1[i] - r2[i])));
+    }
+    dr /= s.params().rest_density_kgpm3;
+    da /= amax;
+    t.add({std::to_string(m), num(tg * 1e3, 4), num(tb * 1e3, 4), num(tb / tg, 3), num(dr, 3), num(da, 3)});
+    ctx.expect(
+        dr < 1e-5 && da < 1e-3,
+        "sph grid and all-pairs neighbour search give the same densities (and forces to float summation order)");
+  }
+  ctx.report("sph", "uniform grid (counting sort, 27 cells) vs O(n^2) all pairs, density + forces of one step", t);
+}
+
+// Run time against error: dam-break front and density error against spacing and time step.
+void sph_front_error(Context& ctx) {
+  std::vector<std::pair<double, double>> pts;
+  for (const MartinMoycePoint& p : martin_moyce_1952()) pts.emplace_back(p.T, p.Z);
+  const double T_end = ctx.quick ? 2.5 : 5.0;
+  Table t({"particles across a", "spacing mm", "cfl", "steps", "wall s", "max density error %",
+           "mean front error % (T <= " + num(T_end, 2) + ")", "max front error %"});
+  const std::vector<int> nas = ctx.quick ? std::vector<int>{6, 8} : std::vector<int>{8, 12, 16};
+  const std::vector<float> cfls = ctx.quick ? std::vector<float>{0.15f} : std::vector<float>{0.075f, 0.15f, 0.3f};
+  for (int na : nas)
+    for (float cfl : cfls) {
+      const Measured m = dam(na, cfl, T_end);
+      double sum = 0, mx = 0;
+      int cnt = 0;
+      for (const auto& [T, Z] : pts) {
+        if (T > T_end) continue;
+        auto it = std::lower_bound(m.T.begin(), m.T.end(), T);
+        if (it == m.T.end() || it == m.T.begin()) continue;
+        const double zs = m.Z[static_cast<std::size_t>(it - m.T.begin())];
+        const double e = std::fabs(zs - Z) / Z;
+        sum += e;
+        mx = std::max(mx, e);
+        ++cnt;
+      }
+      t.add({std::to_string(na), num(57.15 / na, 3), num(cfl, 3), std::to_string(m.steps), num(m.wall, 3),
+             num(100 * m.max_comp, 3), num(100 * sum / std::max(cnt, 1), 3), num(100 * mx, 3)});
+    }
+  ctx.report("sph", "run time against error: Martin & Moyce dam break (both series)", t);
+}
+
 }  // namespace
 
 void bench_sph(Context& ctx) {
-  // --- throughput and stage split
-  {
-    // wall-clock rates, and the rate per CPU-second of the process (on a shared, loaded machine the wall
-    // rate understates what the cores deliver; both are printed)
-    Table t({"particles", "threads", "steps", "steps/s", "Mparticle-steps/s", "per core", "per CPU-s", "neighbour %",
-             "density %", "forces %", "integration %"});
-    const std::vector<std::size_t> sizes = {3000, 30000, 300000};
-    for (std::size_t n : sizes) {
-      for (int th : ctx.threads) {
-        omp_set_num_threads(th);
-        SphSystem s(pool_params(n));
-        const int warm = 3;
-        for (int k = 0; k < warm; ++k) s.step();
-        s.stats().reset_counts();
-        const int steps = n <= 3000    ? (ctx.quick ? 200 : 1000)
-                          : n <= 30000 ? (ctx.quick ? 20 : 100)
-                                       : (ctx.quick ? 2 : 10);
-        const auto t0 = std::chrono::steady_clock::now();
-        const std::clock_t c0 = std::clock();
-        for (int k = 0; k < steps; ++k) s.step();
-        const double sec = seconds_since(t0);
-        const double cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
-        double tot = 0;
-        for (const auto& st : s.stats().all()) tot += double(st.ns);
-        auto pct = [&](int id) { return fmt("%.1f", 100.0 * double(s.stats()[id].ns) / tot); };
-        const double rate = double(s.count()) * steps / sec;
-        t.add({std::to_string(s.count()), std::to_string(th), std::to_string(steps), num(steps / sec, 4),
-               num(rate * 1e-6, 4), num(rate * 1e-6 / th, 4), num(double(s.count()) * steps / cpu * 1e-6, 4),
-               pct(s.stage_ids().neighbours), pct(s.stage_ids().density), pct(s.stage_ids().forces),
-               pct(s.stage_ids().integration)});
-      }
-    }
-    omp_set_num_threads(ctx.threads.back());
-    ctx.report(
-        "sph",
-        "step throughput (targets: 3000-particle pool >= 1000 steps/s; >= 1.5 M particle-steps/s per core at 300 000)",
-        t);
-  }
-  // --- grid neighbour search against all pairs, same physics, same state
-  {
-    Table t({"particles", "grid step ms", "all-pairs step ms", "speed-up", "max |d rho|/rho0", "max |d a|/max|a - g|"});
-    for (std::size_t n : {1000ul, 3000ul}) {
-      SphSystem s(pool_params(n));
-      for (int k = 0; k < 20; ++k) s.step();
-      const std::size_t m = s.count();
-      std::vector<float> a1(m), b1(m), c1(m), r1(m), a2(m), b2(m), c2(m), r2(m);
-      const double tg = median_seconds(ctx.quick ? 3 : 7, [&] { s.grid_accelerations(a1, b1, c1, r1); });
-      const double tb = median_seconds(ctx.quick ? 1 : 3, [&] { s.brute_force_accelerations(a2, b2, c2, r2); });
-      double amax = 0, da = 0, dr = 0;
-      // the neighbour sums make a - g (pressure and viscosity; gravity is added after): their
-      // float summation order is compared against that sum's largest magnitude (about g in a pool
-      // at rest, where the net acceleration a itself nearly vanishes)
-      const auto g = s.gravity();
-      for (std::size_t i = 0; i < m; ++i)
-        amax = std::max(amax, double(std::hypot(a1[i] - g[0], b1[i] - g[1], c1[i] - g[2])));
-      for (std::size_t i = 0; i < m; ++i) {
-        da = std::max(da, double(std::hypot(a1[i] - a2[i], b1[i] - b2[i], c1[i] - c2[i])));
-        dr = std::max(dr, double(std::fabs(r1[i] - r2[i])));
-      }
-      dr /= s.params().rest_density_kgpm3;
-      da /= amax;
-      t.add({std::to_string(m), num(tg * 1e3, 4), num(tb * 1e3, 4), num(tb / tg, 3), num(dr, 3), num(da, 3)});
-      ctx.expect(
-          dr < 1e-5 && da < 1e-3,
-          "sph grid and all-pairs neighbour search give the same densities (and forces to float summation order)");
-    }
-    ctx.report("sph", "uniform grid (counting sort, 27 cells) vs O(n^2) all pairs, density + forces of one step", t);
-  }
-  // --- run time against error: dam-break front and density error vs spacing and time step
-  {
-    std::vector<std::pair<double, double>> pts;
-    for (const MartinMoycePoint& p : martin_moyce_1952()) pts.emplace_back(p.T, p.Z);
-    const double T_end = ctx.quick ? 2.5 : 5.0;
-    Table t({"particles across a", "spacing mm", "cfl", "steps", "wall s", "max density error %",
-             "mean front error % (T <= " + num(T_end, 2) + ")", "max front error %"});
-    const std::vector<int> nas = ctx.quick ? std::vector<int>{6, 8} : std::vector<int>{8, 12, 16};
-    const std::vector<float> cfls = ctx.quick ? std::vector<float>{0.15f} : std::vector<float>{0.075f, 0.15f, 0.3f};
-    for (int na : nas)
-      for (float cfl : cfls) {
-        const Measured m = dam(na, cfl, T_end);
-        double sum = 0, mx = 0;
-        int cnt = 0;
-        for (const auto& [T, Z] : pts) {
-          if (T > T_end) continue;
-          auto it = std::lower_bound(m.T.begin(), m.T.end(), T);
-          if (it == m.T.end() || it == m.T.begin()) continue;
-          const double zs = m.Z[static_cast<std::size_t>(it - m.T.begin())];
-          const double e = std::fabs(zs - Z) / Z;
-          sum += e;
-          mx = std::max(mx, e);
-          ++cnt;
-        }
-        t.add({std::to_string(na), num(57.15 / na, 3), num(cfl, 3), std::to_string(m.steps), num(m.wall, 3),
-               num(100 * m.max_comp, 3), num(100 * sum / std::max(cnt, 1), 3), num(100 * mx, 3)});
-      }
-    ctx.report("sph", "run time against error: Martin & Moyce dam break (both series)", t);
-  }
+  for (const auto part : {sph_throughput, sph_grid_vs_all_pairs, sph_front_error}) part(ctx);
 }
 
 }  // namespace huygens::bench

@@ -52,48 +52,77 @@ struct Budget {
 };
 Budget budget(HuygensSolver& s) { return {s.propagator().energy(), max_abs(s.height())}; }
 
+// ---- skip what a scene doesn't need ------------------------------------------------------------
+struct SkipConfig {
+  std::string name;
+  bool cutoff, drops, plane;
+};
+
+const std::vector<SkipConfig> kSkipConfigs = {{"humps only (cutoff off)", false, false, false},
+                                              {"+ cutoff", true, false, false},
+                                              {"+ cutoff + drops", true, true, false},
+                                              {"+ cutoff + drops + plane wave (default.json)", true, true, true},
+                                              {"humps + plane wave (cutoff off)", false, false, true}};
+
+// The default scene with the features of c only, warmed up (3 steps) with its counters reset.
+std::unique_ptr<HuygensSolver> skip_solver(const nlohmann::json& base, const SkipConfig& c) {
+  nlohmann::json j = base;
+  j["grid"]["cutoff"] = c.cutoff;
+  if (!c.drops) j.erase("drops");
+  if (!c.plane) {
+    nlohmann::json init = nlohmann::json::array();
+    for (const auto& e : j["initial"])
+      if (e["type"] != "plane_wave") init.push_back(e);
+    j["initial"] = init;
+  }
+  auto s = std::make_unique<HuygensSolver>(scene_from(j));
+  for (int i = 0; i < 3; ++i) s->step();  // warm-up
+  s->propagator().stats().reset_counts();
+  return s;
+}
+
+// The per-stage rows of one configuration (absent stages listed as such), its whole-step row,
+// and the checks that an absent feature costs zero: no calls of its stage.
+void skip_rows(Context& ctx, const SkipConfig& c, const HuygensSolver& s, int steps, double ms, Table& t, Table& sum) {
+  std::uint64_t transforms = 0;
+  int run = 0;
+  for (const auto& st : s.stats().all()) {
+    t.add({c.name, st.name, std::to_string(st.calls), fmt("%.4f", st.ns * 1e-6 / steps),
+           fmt("%.3g", double(st.transforms) / steps), std::to_string(st.bytes)});
+    transforms += st.transforms;
+    run += st.calls > 0;
+  }
+  for (const char* name : {"cutoff", "spectrum", "drops"}) {
+    bool present = false;
+    for (const auto& st : s.stats().all()) present |= st.name == name;
+    if (!present) t.add({c.name, std::string(name) + " (absent)", "0", "0", "0", "0"});
+  }
+  sum.add({c.name, fmt("%.3f", ms), fmt("%.3g", double(transforms) / steps), std::to_string(run)});
+  for (const auto& st : s.stats().all()) {
+    if (st.name == "cutoff" && !c.cutoff) ctx.expect(st.calls == 0, "skip: cutoff stage ran without the cutoff");
+    if (st.name == "drops" && !c.drops) ctx.expect(st.calls == 0, "skip: drops stage ran without drops");
+    if (st.name == "drops" && c.drops) ctx.expect(st.calls == 5, "skip: the five drops of default.json ran once each");
+  }
+  if (!c.cutoff) ctx.expect(transforms == static_cast<std::uint64_t>(steps), "skip: one transform per step without cutoff");
+}
+
 }  // namespace
 
-// ---- skip what a scene doesn't need ------------------------------------------------------------
 void bench_skip(Context& ctx) {
   const nlohmann::json base = default_scene_json();
-  struct Config {
-    std::string name;
-    bool cutoff, drops, plane;
-  };
-  const std::vector<Config> configs = {{"humps only (cutoff off)", false, false, false},
-                                       {"+ cutoff", true, false, false},
-                                       {"+ cutoff + drops", true, true, false},
-                                       {"+ cutoff + drops + plane wave (default.json)", true, true, true},
-                                       {"humps + plane wave (cutoff off)", false, false, true}};
   // 9.5 s or 50 s at dt = 0.05 s: every drop (t <= 9 s) happens
   const int steps = ctx.quick ? 190 : 1000;
-  Table t({"scene", "stage", "calls", "ms/step", "transforms/step", "bytes"});
-  Table sum({"scene", "ms/step (median of rounds)", "transforms/step", "stages run"});
   // one thread, and the configurations interleaved in rounds (median per configuration): a shared,
   // loaded machine then slows every configuration alike
   const int threads_before = omp_get_max_threads();
   fft_set_threads(1);
   omp_set_num_threads(1);
   std::vector<std::unique_ptr<HuygensSolver>> solvers;
-  for (const auto& c : configs) {
-    nlohmann::json j = base;
-    j["grid"]["cutoff"] = c.cutoff;
-    if (!c.drops) j.erase("drops");
-    if (!c.plane) {
-      nlohmann::json init = nlohmann::json::array();
-      for (const auto& e : j["initial"])
-        if (e["type"] != "plane_wave") init.push_back(e);
-      j["initial"] = init;
-    }
-    solvers.push_back(std::make_unique<HuygensSolver>(scene_from(j)));
-    for (int i = 0; i < 3; ++i) solvers.back()->step();  // warm-up
-    solvers.back()->propagator().stats().reset_counts();
-  }
+  for (const auto& c : kSkipConfigs) solvers.push_back(skip_solver(base, c));
   const int rounds = 10;
-  std::vector<std::vector<double>> round_ms(configs.size());
+  std::vector<std::vector<double>> round_ms(kSkipConfigs.size());
   for (int r = 0; r < rounds; ++r)
-    for (std::size_t k = 0; k < configs.size(); ++k) {
+    for (std::size_t k = 0; k < kSkipConfigs.size(); ++k) {
       const int todo = steps / rounds + (r < steps % rounds ? 1 : 0);
       const auto t0 = std::chrono::steady_clock::now();
       for (int i = 0; i < todo; ++i) solvers[k]->step();
@@ -101,35 +130,11 @@ void bench_skip(Context& ctx) {
     }
   fft_set_threads(threads_before);
   omp_set_num_threads(threads_before);
-  for (std::size_t k = 0; k < configs.size(); ++k) {
-    const auto& c = configs[k];
-    HuygensSolver& s = *solvers[k];
+  Table t({"scene", "stage", "calls", "ms/step", "transforms/step", "bytes"});
+  Table sum({"scene", "ms/step (median of rounds)", "transforms/step", "stages run"});
+  for (std::size_t k = 0; k < kSkipConfigs.size(); ++k) {
     std::sort(round_ms[k].begin(), round_ms[k].end());
-    const double ms = round_ms[k][round_ms[k].size() / 2];
-    std::uint64_t transforms = 0;
-    int run = 0;
-    for (const auto& st : s.stats().all()) {
-      t.add({c.name, st.name, std::to_string(st.calls), fmt("%.4f", st.ns * 1e-6 / steps),
-             fmt("%.3g", double(st.transforms) / steps), std::to_string(st.bytes)});
-      transforms += st.transforms;
-      run += st.calls > 0;
-    }
-    // the stages that are not registered at all cost nothing and are listed as absent
-    for (const char* name : {"cutoff", "spectrum", "drops"}) {
-      bool present = false;
-      for (const auto& st : s.stats().all()) present |= st.name == name;
-      if (!present) t.add({c.name, std::string(name) + " (absent)", "0", "0", "0", "0"});
-    }
-    sum.add({c.name, fmt("%.3f", ms), fmt("%.3g", double(transforms) / steps), std::to_string(run)});
-    // an absent feature costs zero: no calls of its stage
-    for (const auto& st : s.stats().all()) {
-      if (st.name == "cutoff" && !c.cutoff) ctx.expect(st.calls == 0, "skip: cutoff stage ran without the cutoff");
-      if (st.name == "drops" && !c.drops) ctx.expect(st.calls == 0, "skip: drops stage ran without drops");
-      if (st.name == "drops" && c.drops)
-        ctx.expect(st.calls == 5, "skip: the five drops of default.json ran once each");
-    }
-    if (!c.cutoff)
-      ctx.expect(transforms == static_cast<std::uint64_t>(steps), "skip: one transform per step without cutoff");
+    skip_rows(ctx, kSkipConfigs[k], *solvers[k], steps, round_ms[k][round_ms[k].size() / 2], t, sum);
   }
   ctx.report("skip",
              fmt("default.json (%s), features one at a time: per-stage counters over %d steps, one thread",

@@ -74,107 +74,132 @@ bool contained(const std::string& outcome) {
          outcome.rfind("stopped: ", 0) == 0;
 }
 
+// What every part of the LBM stress shares: the shipped scene, its cell size (m) and gravity (m/s^2).
+struct LbmStress {
+  nlohmann::json base;
+  double cell = 0, g = 0;
+};
+
+// ---- 1. the long run of the hardest shipped LBM scene
+struct LbmLongRun {
+  double worst_drift = 0, worst_froude = 0;  // max |V/V0 - 1|, max Froude number
+  std::string failure;
+};
+
+// Steps `steps` times with a budget and a table row every tenth of the run.
+LbmLongRun run_lbm_long(Solver& s, const LbmStress& st, long steps, double v0, Table& t) {
+  LbmLongRun lr;
+  Progress bar("stress dam_break.json (lbm)", steps);
+  auto t0 = std::chrono::steady_clock::now();
+  for (long i = 1; i <= steps; ++i) {
+    s.step();
+    if (i % (steps / 10) != 0) continue;
+    const double ms = seconds_since(t0) * 1e3 / static_cast<double>(steps / 10);
+    const LbmBudget b = lbm_budget(s, st.cell, st.g);
+    if (!b.finite) {
+      lr.failure = "NON-FINITE, NOT REPORTED at step " + std::to_string(i);
+      break;
+    }
+    lr.worst_drift = std::max(lr.worst_drift, std::abs(b.volume_m3 / v0 - 1));
+    lr.worst_froude = std::max(lr.worst_froude, b.max_froude);
+    t.add({std::to_string(i), num(s.time(), 6), num(b.volume_m3, 8), num(b.volume_m3 / v0 - 1, 3), num(b.max_speed, 4),
+           num(b.max_froude, 4), num(b.min_depth, 4), fmt("%.3f", ms)});
+    bar.update(i);
+    t0 = std::chrono::steady_clock::now();
+  }
+  return lr;
+}
+
+void lbm_long_run(Context& ctx, const LbmStress& st) {
+  const long steps = ctx.quick ? 2000 : 100000;
+  auto s = make_solver(parse_scene_text(st.base.dump(), "scenes/dam_break.json"));
+  const double dt = s->meta()["dt"].get<double>();
+  Table t({"step", "t s", "volume m^3", "V/V0 - 1", "max |u| m/s", "max Froude", "min depth m", "ms/step"});
+  const LbmBudget b = lbm_budget(*s, st.cell, st.g);
+  const double v0 = b.volume_m3;
+  t.add({"0", "0", num(v0, 8), "0", num(b.max_speed, 4), num(b.max_froude, 4), num(b.min_depth, 4), "-"});
+  LbmLongRun lr;
+  lr.worst_froude = b.max_froude;
+  try {
+    const LbmLongRun r = run_lbm_long(*s, st, steps, v0, t);
+    lr.worst_drift = r.worst_drift;
+    lr.worst_froude = std::max(lr.worst_froude, r.worst_froude);
+    lr.failure = r.failure;
+  } catch (const std::exception& e) {
+    lr.failure = e.what();
+  }
+  // closed walls: the volume is conserved exactly by the scheme (sum of populations); float
+  // rounding of ~4e4 cells random-walks far below 1e-4 over 1e5 steps
+  const bool bounded = lr.failure.empty() && lr.worst_drift <= 1e-4;
+  const std::string verdict =
+      bounded ? fmt("bounded (volume drift at most %.2g, Froude at most %.3f)", lr.worst_drift, lr.worst_froude)
+              : "NOT bounded: " + (lr.failure.empty() ? fmt("volume drift %.2g", lr.worst_drift) : lr.failure);
+  ctx.report("stress",
+             fmt("%ld steps of dam_break.json (LBM, dt %.4g s, %.0f s simulated): budgets; verdict: %s", steps, dt,
+                 steps * dt, verdict.c_str()),
+             t);
+  ctx.expect(bounded, "stress: dam_break.json (LBM) long run stays finite and conserves its volume to 1e-4");
+}
+
+// ---- 2. the edge of its limits: every input either runs finite or is refused / stopped by name
+struct Edge {
+  std::string name;
+  std::function<void(nlohmann::json&)> edit;
+};
+
+Edge cfl_edge(double c) {
+  return {fmt("CFL %.2f (dt from the fastest initial signal)", c),
+          [c](nlohmann::json& j) { j["lbm"]["time"] = {{"cfl", c}}; }};
+}
+Edge ratio_edge(double r) {
+  return {fmt("dam h_L/h_R = %.3g (10 m upstream)", r),
+          [r](nlohmann::json& j) { j["lbm"]["initial"]["dam"]["right_depth_m"] = 10.0 / r; }};
+}
+Edge tau_edge(double t) {
+  return {fmt("tau = %.4g (viscosity from tau)", t), [t](nlohmann::json& j) {
+            j["lbm"]["water"].erase("viscosity_m2s");
+            j["lbm"]["water"]["tau"] = t;
+          }};
+}
+
+void lbm_edges(Context& ctx, const LbmStress& st) {
+  const std::vector<Edge> cases = {cfl_edge(0.25),   cfl_edge(0.5),   cfl_edge(0.75),  cfl_edge(1.0),
+                                   cfl_edge(1.5),    ratio_edge(1.43), ratio_edge(2.0), ratio_edge(5.0),
+                                   ratio_edge(10.0), tau_edge(0.5001), tau_edge(0.51),  tau_edge(0.6),
+                                   tau_edge(2.0),    tau_edge(10.0)};
+  const long steps = ctx.quick ? 300 : 3000;
+  Table t({"input", "steps", "max Froude", "V/V0 - 1", "outcome"});
+  Progress bar("stress lbm limits", static_cast<long long>(cases.size()));
+  long done = 0;
+  for (const Edge& c : cases) {
+    nlohmann::json j = st.base;
+    c.edit(j);
+    LbmBudget b0, b1;
+    std::string outcome = run_lbm(j, 0, &b0);
+    if (outcome.rfind("finite", 0) == 0) outcome = run_lbm(j, steps, &b1);
+    const bool ran = outcome.rfind("finite", 0) == 0;
+    t.add({c.name, std::to_string(steps), ran ? num(b1.max_froude, 4) : "-",
+           ran ? num(b1.volume_m3 / b0.volume_m3 - 1, 3) : "-", outcome});
+    ctx.expect(contained(outcome), "stress: LBM " + c.name + " did not go non-finite silently");
+    bar.update(++done);
+  }
+  ctx.report("stress",
+             "LBM at the edge of its limits (dam_break.json edited): runs finite, or is refused before the run "
+             "naming the JSON path, or stops naming the cell or stage",
+             t);
+}
+
 }  // namespace
 
+// The LBM parts of the stress section, in the order they are printed.
 void stress_lbm(Context& ctx) {
-  const nlohmann::json base = lbm_scene_json("dam_break.json");
-  const double cell = base["lbm"]["grid"]["cell_m"].get<double>();
-  const double g = base["lbm"]["water"]["gravity_mps2"].get<double>();
-
-  // 1. the long run of the hardest shipped LBM scene
-  {
-    const long steps = ctx.quick ? 2000 : 100000;
-    auto s = make_solver(parse_scene_text(base.dump(), "scenes/dam_break.json"));
-    const double dt = s->meta()["dt"].get<double>();
-    Table t({"step", "t s", "volume m^3", "V/V0 - 1", "max |u| m/s", "max Froude", "min depth m", "ms/step"});
-    LbmBudget b = lbm_budget(*s, cell, g);
-    const double v0 = b.volume_m3;
-    t.add({"0", "0", num(v0, 8), "0", num(b.max_speed, 4), num(b.max_froude, 4), num(b.min_depth, 4), "-"});
-    double worst_drift = 0, worst_froude = b.max_froude;
-    std::string failure;
-    Progress bar("stress dam_break.json (lbm)", steps);
-    auto t0 = std::chrono::steady_clock::now();
-    try {
-      for (long i = 1; i <= steps; ++i) {
-        s->step();
-        if (i % (steps / 10) == 0) {
-          const double ms = seconds_since(t0) * 1e3 / static_cast<double>(steps / 10);
-          b = lbm_budget(*s, cell, g);
-          if (!b.finite) {
-            failure = "NON-FINITE, NOT REPORTED at step " + std::to_string(i);
-            break;
-          }
-          worst_drift = std::max(worst_drift, std::abs(b.volume_m3 / v0 - 1));
-          worst_froude = std::max(worst_froude, b.max_froude);
-          t.add({std::to_string(i), num(s->time(), 6), num(b.volume_m3, 8), num(b.volume_m3 / v0 - 1, 3),
-                 num(b.max_speed, 4), num(b.max_froude, 4), num(b.min_depth, 4), fmt("%.3f", ms)});
-          bar.update(i);
-          t0 = std::chrono::steady_clock::now();
-        }
-      }
-    } catch (const std::exception& e) {
-      failure = e.what();
-    }
-    // closed walls: the volume is conserved exactly by the scheme (sum of populations); float
-    // rounding of ~4e4 cells random-walks far below 1e-4 over 1e5 steps
-    const bool bounded = failure.empty() && worst_drift <= 1e-4;
-    ctx.report("stress",
-               fmt("%ld steps of dam_break.json (LBM, dt %.4g s, %.0f s simulated): budgets; verdict: %s", steps,
-                   dt, steps * dt,
-                   bounded ? fmt("bounded (volume drift at most %.2g, Froude at most %.3f)", worst_drift,
-                                 worst_froude)
-                                 .c_str()
-                           : ("NOT bounded: " + (failure.empty() ? fmt("volume drift %.2g", worst_drift) : failure))
-                                 .c_str()),
-               t);
-    ctx.expect(bounded, "stress: dam_break.json (LBM) long run stays finite and conserves its volume to 1e-4");
-  }
-
-  // 2. the edge of its limits: every input either runs finite or is refused / stopped by name
-  {
-    struct Edge {
-      std::string name;
-      std::function<void(nlohmann::json&)> edit;
-    };
-    auto cfl = [](double c) {
-      return Edge{fmt("CFL %.2f (dt from the fastest initial signal)", c),
-                  [c](nlohmann::json& j) { j["lbm"]["time"] = {{"cfl", c}}; }};
-    };
-    auto ratio = [](double r) {
-      return Edge{fmt("dam h_L/h_R = %.3g (10 m upstream)", r), [r](nlohmann::json& j) {
-                    j["lbm"]["initial"]["dam"]["right_depth_m"] = 10.0 / r;
-                  }};
-    };
-    auto tau = [](double t) {
-      return Edge{fmt("tau = %.4g (viscosity from tau)", t), [t](nlohmann::json& j) {
-                    j["lbm"]["water"].erase("viscosity_m2s");
-                    j["lbm"]["water"]["tau"] = t;
-                  }};
-    };
-    const std::vector<Edge> cases = {cfl(0.25),   cfl(0.5),   cfl(0.75),  cfl(1.0),    cfl(1.5),
-                                     ratio(1.43), ratio(2.0), ratio(5.0), ratio(10.0), tau(0.5001),
-                                     tau(0.51),   tau(0.6),   tau(2.0),   tau(10.0)};
-    const long steps = ctx.quick ? 300 : 3000;
-    Table t({"input", "steps", "max Froude", "V/V0 - 1", "outcome"});
-    Progress bar("stress lbm limits", static_cast<long long>(cases.size()));
-    long done = 0;
-    for (const Edge& c : cases) {
-      nlohmann::json j = base;
-      c.edit(j);
-      LbmBudget b0, b1;
-      std::string outcome = run_lbm(j, 0, &b0);
-      if (outcome.rfind("finite", 0) == 0) outcome = run_lbm(j, steps, &b1);
-      const bool ran = outcome.rfind("finite", 0) == 0;
-      t.add({c.name, std::to_string(steps), ran ? num(b1.max_froude, 4) : "-",
-             ran ? num(b1.volume_m3 / b0.volume_m3 - 1, 3) : "-", outcome});
-      ctx.expect(contained(outcome), "stress: LBM " + c.name + " did not go non-finite silently");
-      bar.update(++done);
-    }
-    ctx.report("stress",
-               "LBM at the edge of its limits (dam_break.json edited): runs finite, or is refused before the run "
-               "naming the JSON path, or stops naming the cell or stage",
-               t);
-  }
+  LbmStress st;
+  st.base = lbm_scene_json("dam_break.json");
+  st.cell = st.base["lbm"]["grid"]["cell_m"].get<double>();
+  st.g = st.base["lbm"]["water"]["gravity_mps2"].get<double>();
+  using Part = void (*)(Context&, const LbmStress&);
+  const Part parts[] = {lbm_long_run, lbm_edges};
+  for (const Part part : parts) part(ctx, st);
 }
 
 }  // namespace huygens::bench
