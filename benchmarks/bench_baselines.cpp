@@ -35,11 +35,11 @@
 #include "baseline_fd.hpp"
 #include "baseline_iwave.hpp"
 #include "bench.hpp"
-#include "huygens/validation/reference/cauchy_poisson.hpp"
 #include "huygens/common/dispersion.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/huygens/propagator.hpp"
 #include "huygens/pipeline/time_interp.hpp"
+#include "huygens/validation/reference/cauchy_poisson.hpp"
 
 namespace huygens::bench {
 
@@ -397,7 +397,8 @@ void report_problem(Context& ctx, const Problem& pb, const std::vector<Result>& 
   }
   std::string title = "run time against error, " + pb.name + " (";
   if (pb.kind == Kind::ring)
-    title += fmt("Cauchy-Poisson ring sigma %.2g m, %.0f m periodic, t = %.1f s", pb.sigma_m, pb.length_m, pb.duration_s);
+    title +=
+        fmt("Cauchy-Poisson ring sigma %.2g m, %.0f m periodic, t = %.1f s", pb.sigma_m, pb.length_m, pb.duration_s);
   else
     title += fmt("plane wave lambda %.3g m, %.3g m periodic, t = %.1f s", pb.wavelength_m, pb.length_m, pb.duration_s);
   title += fmt("; FD c = %.4g m/s, %s; one thread; * = Pareto front)", pb.fd_speed, pb.fd_speed_note.c_str());
@@ -462,9 +463,9 @@ void report_headline(Context& ctx, const std::vector<AccuracyCase>& cases, const
         fd_time = r.tps;
       }
     const double h = runs.cheapest(p, "huygens", fd_best), ref = runs.ref_max.at(p);
-    const std::string ratio = fd_best >= 0.5 * ref
-                                  ? fmt("FD does not converge (its best error is %.0f%% of the signal)", 100 * fd_best / ref)
-                                  : ratio_str(fd_time, h);
+    const std::string ratio =
+        fd_best >= 0.5 * ref ? fmt("FD does not converge (its best error is %.0f%% of the signal)", 100 * fd_best / ref)
+                             : ratio_str(fd_time, h);
     hl.add({p, err_str(fd_best), time_str(fd_time), time_str(h), ratio});
   }
   ctx.report("accuracy", "headline: Huygens vs finite differences at equal error (FD's best error; one thread each)",
@@ -511,8 +512,8 @@ void report_breaks(Context& ctx, const std::vector<AccuracyCase>& cases, const R
       for (const auto& r : runs.all)
         if (r.problem == c.pb.name && r.method == m && (!best || r.err < best->err)) best = &r;
       if (!best) continue;
-      br.add({c.pb.name, num(runs.ref_max.at(c.pb.name), 3), m, err_str(best->err), std::to_string(best->n),
-              best->knob, time_str(best->tps), why_it_breaks(m, c.pb)});
+      br.add({c.pb.name, num(runs.ref_max.at(c.pb.name), 3), m, err_str(best->err), std::to_string(best->n), best->knob,
+              time_str(best->tps), why_it_breaks(m, c.pb)});
     }
   ctx.report("accuracy", "where each breaks: the best error each method reached on each problem", br);
 }
@@ -527,8 +528,8 @@ void report_iwave_symbol(Context& ctx) {
   const auto g_raw = iwave_kernel(raw);
   double sum_raw = 0;
   for (double v : g) sum_raw += v;
-  Table ks({"cells per wavelength", "k dx", "G^(k) / (k dx) (Tessendorf)", "with the zero-sum change",
-            "omega error (%)"});
+  Table ks(
+      {"cells per wavelength", "k dx", "G^(k) / (k dx) (Tessendorf)", "with the zero-sum change", "omega error (%)"});
   for (double cpw : {64.0, 32.0, 16.0, 8.0, 4.0}) {
     const double kd = 2 * kPi / cpw;
     const double s = iwave_symbol(g, ip.half, kd), s_raw = iwave_symbol(g_raw, ip.half, kd);

@@ -70,42 +70,38 @@ const char* kUsage =
 int main(int argc, char** argv) {
   using namespace huygens::bench;
   const std::map<std::string, Section> sections = {
-      {"huygens", bench_huygens},
-      {"pipeline", bench_pipeline},
-      {"ships", bench_ships},
-      {"lbm", bench_lbm},
-      {"sph", bench_sph},
-      {"accuracy", bench_accuracy},
-      {"skip", bench_skip},
-      {"stress", bench_stress},
-      {"interp", bench_interp},
-      {"render", bench_render},
+      {"huygens", bench_huygens}, {"pipeline", bench_pipeline}, {"ships", bench_ships}, {"lbm", bench_lbm},
+      {"sph", bench_sph},         {"accuracy", bench_accuracy}, {"skip", bench_skip},   {"stress", bench_stress},
+      {"interp", bench_interp},   {"render", bench_render},
   };
   Context ctx;
   std::string csv;
   std::vector<std::string> chosen;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--quick") ctx.quick = true;
-    else if (a == "--csv" && i + 1 < argc) csv = argv[++i];
+    if (a == "--quick")
+      ctx.quick = true;
+    else if (a == "--csv" && i + 1 < argc)
+      csv = argv[++i];
     else if (a == "--threads" && i + 1 < argc) {
       ctx.threads.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) ctx.threads.push_back(std::atoi(t));
     } else if (a == "--help" || a == "-h") {
       std::printf("%s", kUsage);
       for (const auto& [name, fn] : sections) std::printf(", %s", name.c_str());
-      std::printf("\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm)\n"
-                  "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
-                  "  --csv FILE also write every table's rows as CSV\n"
-                  "  --threads  comma-separated thread counts to sweep (default 1,<cores>)\n");
+      std::printf(
+          "\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm)\n"
+          "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
+          "  --csv FILE also write every table's rows as CSV\n"
+          "  --threads  comma-separated thread counts to sweep (default 1,<cores>)\n");
       return 0;
     } else if (a == "all") {
-    } else if (sections.count(a)) chosen.push_back(a);
+    } else if (sections.count(a))
+      chosen.push_back(a);
     else if (const auto colon = a.find(':'); colon != std::string::npos && sections.count(a.substr(0, colon))) {
       chosen.push_back(a.substr(0, colon));  // SECTION:PART runs one part (e.g. stress:sph)
       ctx.parts.push_back(a.substr(colon + 1));
-    }
-    else {
+    } else {
       std::fprintf(stderr, "huygens-bench: unknown argument '%s' (see --help)\n", a.c_str());
       return 2;
     }

@@ -29,14 +29,14 @@
 
 #include "bench.hpp"
 #include "huygens/common/fft.hpp"
-#include "huygens/huygens/propagator.hpp"
-#include "huygens/huygens/solver.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/huygens/propagator.hpp"
 #include "huygens/huygens/ship_waves.hpp"
+#include "huygens/huygens/solver.hpp"
 #include "huygens/huygens/stokes.hpp"
-#include "huygens/pipeline/time_interp.hpp"
 #include "huygens/huygens/wind.hpp"
+#include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens::bench {
 
@@ -151,8 +151,8 @@ ShipsCase ships_case(const Context& ctx, int n, int threads) {
   c.n = n;
   c.threads = threads;
   c.dt = 3.0 / 60.0;
-  c.len = 15.0 * n / 512.0;                                       // dx = 15/512 m as in the default scene
-  c.margin = 64;                                                  // the paper's M (patch 2M = 128)
+  c.len = 15.0 * n / 512.0;                                        // dx = 15/512 m as in the default scene
+  c.margin = 64;                                                   // the paper's M (patch 2M = 128)
   c.reps = ctx.quick ? 20 : (n <= 256 ? 80 : n <= 512 ? 40 : 20);  // blocks of 4 calls each
   c.wp.speed_mps = 6.0;
   c.wp.direction_deg = 20.0;

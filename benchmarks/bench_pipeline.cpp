@@ -16,9 +16,9 @@
 
 #include "bench.hpp"
 #include "huygens/common/fft.hpp"
+#include "huygens/common/scene.hpp"
 #include "huygens/pipeline/frame.hpp"
 #include "huygens/pipeline/runner.hpp"
-#include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens::bench {

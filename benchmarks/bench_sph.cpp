@@ -123,9 +123,8 @@ void sph_grid_vs_all_pairs(Context& ctx) {
     dr /= s.params().rest_density_kgpm3;
     da /= amax;
     t.add({std::to_string(m), num(tg * 1e3, 4), num(tb * 1e3, 4), num(tb / tg, 3), num(dr, 3), num(da, 3)});
-    ctx.expect(
-        dr < 1e-5 && da < 1e-3,
-        "sph grid and all-pairs neighbour search give the same densities (and forces to float summation order)");
+    ctx.expect(dr < 1e-5 && da < 1e-3,
+               "sph grid and all-pairs neighbour search give the same densities (and forces to float summation order)");
   }
   ctx.report("sph", "uniform grid (counting sort, 27 cells) vs O(n^2) all pairs, density + forces of one step", t);
 }

@@ -25,9 +25,9 @@
 #include "bench.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/common/finite.hpp"
+#include "huygens/common/scene.hpp"
 #include "huygens/huygens/propagator.hpp"
 #include "huygens/huygens/solver.hpp"
-#include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens::bench {
@@ -103,7 +103,8 @@ void skip_rows(Context& ctx, const SkipConfig& c, const HuygensSolver& s, int st
     if (st.name == "drops" && !c.drops) ctx.expect(st.calls == 0, "skip: drops stage ran without drops");
     if (st.name == "drops" && c.drops) ctx.expect(st.calls == 5, "skip: the five drops of default.json ran once each");
   }
-  if (!c.cutoff) ctx.expect(transforms == static_cast<std::uint64_t>(steps), "skip: one transform per step without cutoff");
+  if (!c.cutoff)
+    ctx.expect(transforms == static_cast<std::uint64_t>(steps), "skip: one transform per step without cutoff");
 }
 
 }  // namespace
@@ -262,9 +263,9 @@ void stress_no_cfl(Context& ctx, const nlohmann::json&) {
            ok ? "pass" : "FAIL"});
     ctx.expect(ok, fmt("stress: energy bounded (|E/E0 - 1| <= 1e-3) at dt = %g s (periodic, no cutoff)", dt));
   }
-  ctx.report("stress",
-             "largest stable dt: none (exact rotation); max |E/E0 - 1| over the run, 128^2 periodic, bounded if <= 1e-3",
-             t);
+  ctx.report(
+      "stress",
+      "largest stable dt: none (exact rotation); max |E/E0 - 1| over the run, 128^2 periodic, bounded if <= 1e-3", t);
 }
 
 // ---- 3. extreme inputs on the default scene
@@ -395,8 +396,8 @@ void stress_overflow(Context& ctx, const nlohmann::json& base) {
     ctx.expect(!stage.empty() || outcome == "finite (overflow absorbed)",
                "stress: " + c.name + " did not go non-finite silently");
   }
-  ctx.report("stress", "overflowing inputs: refused with the JSON path, or stopped with NonFiniteError naming the stage",
-             t);
+  ctx.report("stress",
+             "overflowing inputs: refused with the JSON path, or stopped with NonFiniteError naming the stage", t);
 }
 
 // ---- 5. ships: the largest speed a step accepts (a ship may move at most a quarter of its patch

@@ -13,17 +13,15 @@
 #include <vector>
 
 #include "bench.hpp"
-#include "huygens/lbm/shallow.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens::bench {
 
 namespace {
 
-nlohmann::json lbm_scene_json(const std::string& name) {
-  return nlohmann::json::parse(shipped_scene(name));
-}
+nlohmann::json lbm_scene_json(const std::string& name) { return nlohmann::json::parse(shipped_scene(name)); }
 
 // Volume, largest speed and Froude number, shallowest wet cell of the current state.
 struct LbmBudget {
@@ -148,8 +146,9 @@ struct Edge {
 };
 
 Edge cfl_edge(double c) {
-  return {fmt("CFL %.2f (dt from the fastest initial signal)", c),
-          [c](nlohmann::json& j) { j["lbm"]["time"] = {{"cfl", c}}; }};
+  return {fmt("CFL %.2f (dt from the fastest initial signal)", c), [c](nlohmann::json& j) {
+            j["lbm"]["time"] = {{"cfl", c}};
+          }};
 }
 Edge ratio_edge(double r) {
   return {fmt("dam h_L/h_R = %.3g (10 m upstream)", r),
@@ -163,7 +162,7 @@ Edge tau_edge(double t) {
 }
 
 void lbm_edges(Context& ctx, const LbmStress& st) {
-  const std::vector<Edge> cases = {cfl_edge(0.25),   cfl_edge(0.5),   cfl_edge(0.75),  cfl_edge(1.0),
+  const std::vector<Edge> cases = {cfl_edge(0.25),   cfl_edge(0.5),    cfl_edge(0.75),  cfl_edge(1.0),
                                    cfl_edge(1.5),    ratio_edge(1.43), ratio_edge(2.0), ratio_edge(5.0),
                                    ratio_edge(10.0), tau_edge(0.5001), tau_edge(0.51),  tau_edge(0.6),
                                    tau_edge(2.0),    tau_edge(10.0)};

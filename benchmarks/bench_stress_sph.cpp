@@ -17,8 +17,8 @@
 #include "bench.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
-#include "huygens/sph/system.hpp"
 #include "huygens/sph/solver.hpp"
+#include "huygens/sph/system.hpp"
 
 namespace huygens::bench {
 
@@ -29,10 +29,10 @@ SphParams sph_params_of(const std::string& name) {
 }
 
 struct SphBudget {
-  double energy_j = 0;       // kinetic + potential (gravity's lowest corner = 0), unit J
-  double max_speed = 0;      // unit m/s
-  double density_err = 0;    // max (rho / rho0 - 1): compression (free-surface particles read low)
-  std::size_t outside = 0;   // particles outside the container
+  double energy_j = 0;      // kinetic + potential (gravity's lowest corner = 0), unit J
+  double max_speed = 0;     // unit m/s
+  double density_err = 0;   // max (rho / rho0 - 1): compression (free-surface particles read low)
+  std::size_t outside = 0;  // particles outside the container
   bool finite = true;
 };
 
@@ -52,7 +52,8 @@ SphBudget sph_budget(const SphSystem& s) {
     b.energy_j += m * (0.5 * v2 + pe);
     b.max_speed = std::max(b.max_speed, std::sqrt(v2));
     b.density_err = std::max(b.density_err, double(rho[i]) / p.rest_density_kgpm3 - 1);
-    if (x[i] < 0 || y[i] < 0 || z[i] < 0 || x[i] > p.container_m[0] || y[i] > p.container_m[1] || z[i] > p.container_m[2])
+    if (x[i] < 0 || y[i] < 0 || z[i] < 0 || x[i] > p.container_m[0] || y[i] > p.container_m[1] ||
+        z[i] > p.container_m[2])
       ++b.outside;
   }
   return b;
@@ -95,7 +96,7 @@ SphRun run_sph(const SphParams& p, double t_end, int checks) {
     }
     r.t_end = s.time();
     r.steps = s.steps();
-    r.outcome = r.worst.outside           ? "LEAKED"
+    r.outcome = r.worst.outside         ? "LEAKED"
                 : r.energy_ratio > 1.05 ? fmt("unstable: energy grew %.3g x", r.energy_ratio)
                                         : "finite and contained";
   } catch (const NonFiniteError& e) {
@@ -171,10 +172,11 @@ void sph_long_run(Context& ctx, const SphStress& st) {
   // more than 1 % over the start would be the integrator feeding energy in
   const bool bounded = lr.failure.empty() && lr.worst_out == 0 && lr.worst_e <= 1.01;
   const std::string verdict =
-      bounded ? fmt("bounded (E/E0 at most %.4f, no particle outside, max speed %.3f sqrt(2gH), compression up to %.2f %%)",
-                    lr.worst_e, lr.worst_v, 100 * lr.worst_rho)
-              : "NOT bounded: " +
-                    (lr.failure.empty() ? fmt("E/E0 %.4f, %zu outside", lr.worst_e, lr.worst_out) : lr.failure);
+      bounded
+          ? fmt("bounded (E/E0 at most %.4f, no particle outside, max speed %.3f sqrt(2gH), compression up to %.2f %%)",
+                lr.worst_e, lr.worst_v, 100 * lr.worst_rho)
+          : "NOT bounded: " +
+                (lr.failure.empty() ? fmt("E/E0 %.4f, %zu outside", lr.worst_e, lr.worst_out) : lr.failure);
   ctx.report("stress",
              fmt("%.3g s of sph_dam_break.json (%zu particles, H = %.4g m): budgets; verdict: %s "
                  "(issue 7 targets: max speed < 1.5 sqrt(2gH), density error ~1 %%)",
@@ -188,8 +190,8 @@ void sph_fixed_dt(Context& ctx, const SphStress& st) {
   SphSystem probe(st.base);
   probe.step();
   const double dt_adaptive = probe.dt_stats().last;
-  Table t({"dt s", "dt / adaptive dt", "steps", "E max / E0", "max speed / sqrt(2gH)", "max rho/rho0 - 1 %",
-           "outcome"});
+  Table t(
+      {"dt s", "dt / adaptive dt", "steps", "E max / E0", "max speed / sqrt(2gH)", "max rho/rho0 - 1 %", "outcome"});
   const double t_end = ctx.quick ? 0.1 : 0.4;
   double largest_ok = 0;
   std::string first_failure;
@@ -203,9 +205,9 @@ void sph_fixed_dt(Context& ctx, const SphStress& st) {
     if (!ok && first_failure.empty()) first_failure = r.outcome;
     t.add({num(p.dt_max_s, 3), num(f, 3), std::to_string(r.steps), num(r.energy_ratio, 4),
            num(r.worst.max_speed / st.v_ref, 4), num(100 * r.worst.density_err, 3), r.outcome});
-    ctx.expect(ok || r.outcome.rfind("stopped: ", 0) == 0 || r.outcome == "LEAKED" ||
-                   r.outcome.rfind("unstable", 0) == 0,
-               fmt("stress: SPH at fixed dt %.3g s did not go non-finite silently", p.dt_max_s));
+    ctx.expect(
+        ok || r.outcome.rfind("stopped: ", 0) == 0 || r.outcome == "LEAKED" || r.outcome.rfind("unstable", 0) == 0,
+        fmt("stress: SPH at fixed dt %.3g s did not go non-finite silently", p.dt_max_s));
   }
   ctx.report("stress",
              fmt("SPH largest stable fixed dt over %.2g s of the dam break: %.3g s (%.3g x the adaptive step); "
@@ -234,7 +236,10 @@ const std::vector<SphExtreme> kSphExtremes = {
      },
      0.25},  // it lands after about 0.18 s
     {"gravity 10 g", [](SphParams& p) { p.gravity_mps2[2] *= 10.f; }},
-    {"sideways gravity (container tipped over)", [](SphParams& p) { p.gravity_mps2 = {9.81f, 0.f, 0.f}; }},
+    {"sideways gravity (container tipped over)",
+     [](SphParams& p) {
+       p.gravity_mps2 = {9.81f, 0.f, 0.f};
+     }},
 };
 
 void sph_extremes(Context& ctx, const SphStress& st) {

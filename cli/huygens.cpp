@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "huygens/lbm/shallow.hpp"
 #include "huygens/common/npy.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "huygens/validation/validation.hpp"
 
@@ -54,15 +54,19 @@ const char* kUsage =
 long long parse_count(const char* flag, const char* v, long long lo) {
   char* end = nullptr;
   const long long x = std::strtoll(v, &end, 10);
-  if (!end || *end || x < lo) usage_error(std::string(flag) + " needs an integer >= " + std::to_string(lo) + ", got '" + v + "'");
+  if (!end || *end || x < lo)
+    usage_error(std::string(flag) + " needs an integer >= " + std::to_string(lo) + ", got '" + v + "'");
   return x;
 }
 
 json stats_json(const StageStats& stats) {
   json out = json::array();
   for (const auto& s : stats.all())
-    out.push_back({{"stage", s.name}, {"calls", s.calls}, {"total_ms", s.ns * 1e-6},
-                   {"ms_per_call", s.calls ? s.ns * 1e-6 / s.calls : 0.0}, {"bytes", s.bytes},
+    out.push_back({{"stage", s.name},
+                   {"calls", s.calls},
+                   {"total_ms", s.ns * 1e-6},
+                   {"ms_per_call", s.calls ? s.ns * 1e-6 / s.calls : 0.0},
+                   {"bytes", s.bytes},
                    {"transforms", s.transforms}});
   return out;
 }
@@ -70,8 +74,8 @@ json stats_json(const StageStats& stats) {
 std::string stats_table(const StageStats& stats) {
   Table t({"stage", "calls", "total ms", "ms/call", "transforms", "bytes"});
   for (const auto& s : stats.all())
-    t.add({s.name, std::to_string(s.calls), fmt("%.2f", s.ns * 1e-6), s.calls ? fmt("%.4f", s.ns * 1e-6 / s.calls) : "-",
-           std::to_string(s.transforms), std::to_string(s.bytes)});
+    t.add({s.name, std::to_string(s.calls), fmt("%.2f", s.ns * 1e-6),
+           s.calls ? fmt("%.4f", s.ns * 1e-6 / s.calls) : "-", std::to_string(s.transforms), std::to_string(s.bytes)});
   return t.text();
 }
 
@@ -85,15 +89,25 @@ int cmd_run(int argc, char** argv) {
       if (i + 1 >= argc) usage_error(a + " needs a value");
       return argv[++i];
     };
-    if (a == "--steps") steps = parse_count("--steps", value(), 0);
-    else if (a == "--dump") dump_dir = value();
-    else if (a == "--dump-every") every = parse_count("--dump-every", value(), 1);
-    else if (a == "--stats-json") stats_file = value();
-    else if (a == "--fast-plans") opt.measure_plans = false;
-    else if (a == "--help" || a == "-h") { std::fputs(kUsage, stdout); return 0; }
-    else if (!a.empty() && a[0] == '-') usage_error("unknown option " + a);
-    else if (scene_file.empty()) scene_file = a;
-    else usage_error("more than one scene given");
+    if (a == "--steps")
+      steps = parse_count("--steps", value(), 0);
+    else if (a == "--dump")
+      dump_dir = value();
+    else if (a == "--dump-every")
+      every = parse_count("--dump-every", value(), 1);
+    else if (a == "--stats-json")
+      stats_file = value();
+    else if (a == "--fast-plans")
+      opt.measure_plans = false;
+    else if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else if (!a.empty() && a[0] == '-')
+      usage_error("unknown option " + a);
+    else if (scene_file.empty())
+      scene_file = a;
+    else
+      usage_error("more than one scene given");
   }
   if (scene_file.empty()) usage_error("run needs a SCENE file");
 
@@ -109,7 +123,10 @@ int cmd_run(int argc, char** argv) {
   if (!dump_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(dump_dir, ec);
-    if (ec) { std::fprintf(stderr, "huygens: cannot create %s: %s\n", dump_dir.c_str(), ec.message().c_str()); return 1; }
+    if (ec) {
+      std::fprintf(stderr, "huygens: cannot create %s: %s\n", dump_dir.c_str(), ec.message().c_str());
+      return 1;
+    }
     meta = solver->meta();
     meta["scene"] = scene_file;
     meta["dumps"] = json::array();
@@ -127,8 +144,8 @@ int cmd_run(int argc, char** argv) {
   auto write_entry = [&](json entry, const std::vector<OutputField>& fields, const std::string& suffix) {
     entry["files"] = json::array();
     for (const auto& f : fields) {
-      const std::string name = fmt("%s_%06lld%s.npy", f.name.c_str(), static_cast<long long>(entry["step"].get<long long>()),
-                                   suffix.c_str());
+      const std::string name = fmt("%s_%06lld%s.npy", f.name.c_str(),
+                                   static_cast<long long>(entry["step"].get<long long>()), suffix.c_str());
       write_npy(dump_dir + "/" + name, f.data, f.shape);
       entry["files"].push_back(name);
     }
@@ -142,20 +159,23 @@ int cmd_run(int argc, char** argv) {
       const double dt = meta.value("dt", 0.0);
       for (int j = 1; j < per_step; ++j) {
         const double sj = static_cast<double>(j) / per_step;
-        json entry = {{"step", s - 1}, {"time_s", (static_cast<double>(s - 1) + sj) * dt}, {"interpolated", true},
-                      {"s", sj}, {"display_frame", (s - 1) * per_step + j}};
+        json entry = {{"step", s - 1},
+                      {"time_s", (static_cast<double>(s - 1) + sj) * dt},
+                      {"interpolated", true},
+                      {"s", sj},
+                      {"display_frame", (s - 1) * per_step + j}};
         write_entry(entry, solver->display_outputs(j), fmt("_%d", j));
       }
     }
-    json entry = {{"step", s}, {"time_s", solver->time()}, {"interpolated", false}, {"s", 0.0},
-                  {"display_frame", s * per_step}};
+    json entry = {
+        {"step", s}, {"time_s", solver->time()}, {"interpolated", false}, {"s", 0.0}, {"display_frame", s * per_step}};
     write_entry(entry, solver->outputs(), "");
     save_meta();
   };
   // a run that stops keeps its dumps and says in meta.json where and why it stopped
   auto stopped = [&](const std::string& stage, long long step, const std::string& reason, const char* what) {
-    std::fprintf(stderr, "huygens: run stopped: %s%s; dumps up to the last good step are in %s\n", what,
-                 reason.c_str(), dump_dir.empty() ? "(no dump directory)" : dump_dir.c_str());
+    std::fprintf(stderr, "huygens: run stopped: %s%s; dumps up to the last good step are in %s\n", what, reason.c_str(),
+                 dump_dir.empty() ? "(no dump directory)" : dump_dir.c_str());
     meta["stopped"] = {{"stage", stage}, {"step", step}, {"reason", reason}};
     save_meta();
     return 3;
@@ -187,10 +207,14 @@ int cmd_run(int argc, char** argv) {
   }
 
   std::printf("scene %s (solver %s): %lld steps to t = %.4g s in %.3f s wall\n", scene_file.c_str(),
-              solver->meta().value("solver", "?").c_str(), static_cast<long long>(solver->steps()), solver->time(), wall);
+              solver->meta().value("solver", "?").c_str(), static_cast<long long>(solver->steps()), solver->time(),
+              wall);
   std::printf("%s", stats_table(solver->stats()).c_str());
   if (!stats_file.empty()) {
-    json out = {{"scene", scene_file}, {"steps", solver->steps()}, {"time_s", solver->time()}, {"wall_s", wall},
+    json out = {{"scene", scene_file},
+                {"steps", solver->steps()},
+                {"time_s", solver->time()},
+                {"wall_s", wall},
                 {"stages", stats_json(solver->stats())}};
     write_file_atomic(stats_file, out.dump(2) + "\n");
   }
@@ -203,10 +227,15 @@ int cmd_validate(int argc, char** argv) {
   bool list = false;
   for (int i = 0; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--list") list = true;
-    else if (a == "--help" || a == "-h") { std::fputs(kUsage, stdout); return 0; }
-    else if (!a.empty() && a[0] == '-') usage_error("unknown option " + a);
-    else names.push_back(a);
+    if (a == "--list")
+      list = true;
+    else if (a == "--help" || a == "-h") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else if (!a.empty() && a[0] == '-')
+      usage_error("unknown option " + a);
+    else
+      names.push_back(a);
   }
   auto cases = all_validation_cases();
   if (list) {
@@ -247,7 +276,10 @@ int cmd_validate(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc < 2) usage_error("no command given");
   const std::string cmd = argv[1];
-  if (cmd == "--help" || cmd == "-h" || cmd == "help") { std::fputs(kUsage, stdout); return 0; }
+  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
   if (cmd == "run") return cmd_run(argc - 2, argv + 2);
   if (cmd == "validate") return cmd_validate(argc - 2, argv + 2);
   usage_error("unknown command '" + cmd + "'");

@@ -1,7 +1,5 @@
 // The Huygens propagator (paper 004 section 3): packed height transform, sources, cutoff,
 // energy, rotation, stage counting and non-finite containment.
-#include "huygens/huygens/propagator.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "huygens/huygens/propagator.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 using namespace huygens;
@@ -202,8 +201,8 @@ TEST(HuygensPropagator, EnergyOfPlaneWave) {
   prop.add_plane_wave(lambda, amp, 0.0);
   const Water w;
   const double k = 2 * kPi / lambda;
-  const double expected =
-      0.5 * w.density_kgpm3 * (w.gravity_mps2 + w.surface_tension_npm / w.density_kgpm3 * k * k) * amp * amp * len * len;
+  const double expected = 0.5 * w.density_kgpm3 * (w.gravity_mps2 + w.surface_tension_npm / w.density_kgpm3 * k * k) *
+                          amp * amp * len * len;
   EXPECT_NEAR(prop.energy(), expected, 1e-6 * expected);
 }
 
@@ -357,7 +356,9 @@ TEST(HuygensPropagator, RotationConservesNormAndEnergy) {
     const double tol = spatial ? 2.5e-7 * steps : 1e-6;
     EXPECT_LT(worst_s, tol) << "spatial round trip " << spatial;
     EXPECT_LT(worst_e, tol) << "spatial round trip " << spatial;
-    if (spatial) EXPECT_LT(spectrum_norm(prop), s0);
+    if (spatial) {
+      EXPECT_LT(spectrum_norm(prop), s0);
+    }
   }
 }
 

@@ -1,7 +1,5 @@
 // The "huygens" scene solver: drop scheduling with exact sub-step timing, UI drops through
 // Solver::apply, outputs and the per-stage counters.
-#include "huygens/huygens/solver.hpp"
-
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,6 +8,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
+
+#include "huygens/huygens/solver.hpp"
 
 using namespace huygens;
 

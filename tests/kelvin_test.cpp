@@ -75,8 +75,8 @@ TEST(Kelvin, FollowsTheWiderFiniteDepthWedge) {
   Water w;
   w.surface_tension_npm = 0;
   w.depth_m = 1.0;
-  const double fr =
-      kDepthFroude * std::sqrt(w.gravity_mps2 * w.depth_m) / std::sqrt(w.gravity_mps2 * 1.0);  // hull Froude number of that speed
+  const double fr = kDepthFroude * std::sqrt(w.gravity_mps2 * w.depth_m) /
+                    std::sqrt(w.gravity_mps2 * 1.0);  // hull Froude number of that speed
   WakeGrid g;
   WakeTrack t;
   const WakeMeasurement m = measure_reference(w, fr, g, t, 45.0);

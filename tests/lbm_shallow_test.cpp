@@ -1,8 +1,6 @@
 // D2Q9 shallow-water LBM (paper 002 sec. 2, Zhou 2004): equilibrium against Zhou's form and its
 // moments, refusals before the run, mass, lake at rest (centred vs naive bed term), wave speed,
 // Stoker dam breaks, inflow discharge, determinism across thread counts, failure containment.
-#include "huygens/lbm/shallow.hpp"
-
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -11,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "huygens/validation/lbm_cases.hpp"
 

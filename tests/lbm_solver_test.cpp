@@ -173,19 +173,32 @@ TEST(LbmScene, BedAndInitialErrorsNameTheirPath) {
       {"unknown bed", [](json& j) { j["lbm"]["bed"]["type"] = "stairs"; }, "$.lbm.bed.type"},
       {"bump without width", [](json& j) { j["lbm"]["bed"].erase("half_width_m"); }, "$.lbm.bed.half_width_m"},
       {"flat bed with a bump key", [](json& j) { j["lbm"]["bed"]["type"] = "flat"; }, "$.lbm.bed.half_width_m"},
-      {"npy without file", [](json& j) { j["lbm"]["bed"] = {{"type", "npy"}}; }, "$.lbm.bed.file"},
+      {"npy without file",
+       [](json& j) {
+         j["lbm"]["bed"] = {{"type", "npy"}};
+       },
+       "$.lbm.bed.file"},
       {"bed force", [](json& j) { j["lbm"]["bed_force"] = "upwind"; }, "$.lbm.bed_force"},
       {"no initial", [](json& j) { j["lbm"].erase("initial"); }, "$.lbm.initial"},
       {"no level", [](json& j) { j["lbm"]["initial"].erase("surface_m"); }, "$.lbm.initial"},
       {"depth and surface", [](json& j) { j["lbm"]["initial"]["depth_m"] = 1.0; }, "$.lbm.initial.surface_m"},
-      {"velocity element", [](json& j) { j["lbm"]["initial"]["velocity_mps"] = {0.0, "fast"}; },
+      {"velocity element",
+       [](json& j) {
+         j["lbm"]["initial"]["velocity_mps"] = {0.0, "fast"};
+       },
        "$.lbm.initial.velocity_mps[1]"},
       {"velocity size", [](json& j) { j["lbm"]["initial"]["velocity_mps"] = {0.0}; }, "$.lbm.initial.velocity_mps"},
-      {"region velocity range", [](json& j) { j["lbm"]["initial"]["regions"][0]["velocity_mps"] = {0.0, 1e5}; },
+      {"region velocity range",
+       [](json& j) {
+         j["lbm"]["initial"]["regions"][0]["velocity_mps"] = {0.0, 1e5};
+       },
        "$.lbm.initial.regions[0].velocity_mps[1]"},
       {"region unknown key", [](json& j) { j["lbm"]["initial"]["regions"][0]["x_m"] = 1.0; },
        "$.lbm.initial.regions[0].x_m"},
-      {"dam without right depth", [](json& j) { j["lbm"]["initial"]["dam"] = {{"x_m", 5.0}, {"left_depth_m", 1.0}}; },
+      {"dam without right depth",
+       [](json& j) {
+         j["lbm"]["initial"]["dam"] = {{"x_m", 5.0}, {"left_depth_m", 1.0}};
+       },
        "$.lbm.initial.dam.right_depth_m"},
   });
 }
@@ -197,11 +210,26 @@ TEST(LbmScene, ObstacleBoundaryAndTimeErrorsNameTheirPath) {
       {"rect with a circle's keys", [](json& j) { j["lbm"]["obstacles"][0]["type"] = "rect"; },
        "$.lbm.obstacles[0].radius_m"},
       {"unknown side", [](json& j) { j["lbm"]["boundaries"]["top"] = "open"; }, "$.lbm.boundaries.top"},
-      {"inflow on a wall", [](json& j) { j["lbm"]["inflow"] = {{"discharge_m2s", 0.1}}; }, "$.lbm.inflow"},
-      {"outflow on a slip side", [](json& j) { j["lbm"]["outflow"] = {{"depth_m", 1.0}}; }, "$.lbm.outflow"},
+      {"inflow on a wall",
+       [](json& j) {
+         j["lbm"]["inflow"] = {{"discharge_m2s", 0.1}};
+       },
+       "$.lbm.inflow"},
+      {"outflow on a slip side",
+       [](json& j) {
+         j["lbm"]["outflow"] = {{"depth_m", 1.0}};
+       },
+       "$.lbm.outflow"},
       {"outflow on the left", [](json& j) { j["lbm"]["boundaries"]["left"] = "outflow"; }, "$.lbm.boundaries.left"},
-      {"force size", [](json& j) { j["lbm"]["force"] = {{"accel_mps2", {0.0}}}; }, "$.lbm.force.accel_mps2"},
-      {"force element", [](json& j) { j["lbm"]["force"] = {{"accel_mps2", {0.0, "down"}}}; },
+      {"force size",
+       [](json& j) {
+         j["lbm"]["force"] = {{"accel_mps2", {0.0}}};
+       },
+       "$.lbm.force.accel_mps2"},
+      {"force element",
+       [](json& j) {
+         j["lbm"]["force"] = {{"accel_mps2", {0.0, "down"}}};
+       },
        "$.lbm.force.accel_mps2[1]"},
       {"dt and cfl", [](json& j) { j["lbm"]["time"]["dt_s"] = 0.01; }, "$.lbm.time.cfl"},
       {"zero cfl", [](json& j) { j["lbm"]["time"]["cfl"] = 0.0; }, "$.lbm.time.cfl"},
@@ -277,8 +305,8 @@ TEST(LbmScene, NullVectorsAreZero) {
   j["lbm"]["initial"]["regions"][0]["velocity_mps"] = nullptr;  // the region is at rest
   j["lbm"]["force"] = {{"accel_mps2", nullptr}};
   const LbmScene s = parse_lbm_scene(parse_scene_text(j.dump()));
-  EXPECT_FLOAT_EQ(s.fields.ux_mps[0], 0.1f);   // x = 0.25 m: outside the region
-  EXPECT_FLOAT_EQ(s.fields.ux_mps[5], 0.0f);   // x = 2.75 m: inside
+  EXPECT_FLOAT_EQ(s.fields.ux_mps[0], 0.1f);  // x = 0.25 m: outside the region
+  EXPECT_FLOAT_EQ(s.fields.ux_mps[5], 0.0f);  // x = 2.75 m: inside
   EXPECT_EQ(s.params.accel_mps2[0], 0.0);
   EXPECT_EQ(s.params.accel_mps2[1], 0.0);
   j["lbm"]["initial"]["velocity_mps"] = nullptr;

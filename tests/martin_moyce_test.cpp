@@ -33,6 +33,4 @@ TEST(MartinMoyce, ParserSkipsCommentsHeaderAndEmptyLines) {
   EXPECT_EQ(pts[1].Z, 2.25);
 }
 
-TEST(MartinMoyce, ParserRefusesABadNumber) {
-  EXPECT_THROW(parse_martin_moyce("1.125,x,1.0\n"), std::invalid_argument);
-}
+TEST(MartinMoyce, ParserRefusesABadNumber) { EXPECT_THROW(parse_martin_moyce("1.125,x,1.0\n"), std::invalid_argument); }

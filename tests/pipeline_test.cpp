@@ -21,10 +21,10 @@
 
 #include "huygens/common/fft.hpp"
 #include "huygens/common/finite.hpp"
-#include "huygens/huygens/solver.hpp"
 #include "huygens/common/npy.hpp"
-#include "huygens/pipeline/runner.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/huygens/solver.hpp"
+#include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 using namespace huygens;

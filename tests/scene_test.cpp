@@ -2,6 +2,7 @@
 #include "huygens/common/scene.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -9,8 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "huygens/pipeline/solver.hpp"
-
-#include <sys/wait.h>
 
 using namespace huygens;
 
@@ -64,9 +63,7 @@ TEST(JsonIn, SyntaxErrorNamesLineAndColumn) {
   }
 }
 
-TEST(JsonIn, UnknownSolverIsRefused) {
-  EXPECT_EQ(error_path_of(R"({"solver": "navier"})"), "$.solver");
-}
+TEST(JsonIn, UnknownSolverIsRefused) { EXPECT_EQ(error_path_of(R"({"solver": "navier"})"), "$.solver"); }
 
 // ---- the "huygens" scene (issue 2, validation item 6): one test per kind of error -------------
 namespace {
@@ -101,7 +98,8 @@ TEST(HuygensScene, UnknownKey) {
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": 8, "size": 3})")), "$.grid.size");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drop": [])")), "$.drop");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t_s": 1, "x_m": 1, "y_m": 1, "radius_m": 0.1,
-      "depth_m": 0.01, "colour": 3}])")), "$.drops[0].colour");
+      "depth_m": 0.01, "colour": 3}])")),
+            "$.drops[0].colour");
 }
 
 TEST(HuygensScene, WrongType) {
@@ -116,7 +114,8 @@ TEST(HuygensScene, NegativeSize) {
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": -2.0, "margin": 8})")), "$.grid.length_m");
   EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": -1})")), "$.grid.margin");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t_s": 1, "x_m": 1, "y_m": 1, "radius_m": -0.1,
-      "depth_m": 0.01}])")), "$.drops[0].radius_m");
+      "depth_m": 0.01}])")),
+            "$.drops[0].radius_m");
 }
 
 TEST(HuygensScene, MarginTooLargeForN) {
@@ -133,7 +132,8 @@ TEST(HuygensScene, OutOfRangeValues) {
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(, "time": {"dt_s": -1}})"), "$.time.dt_s");
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g + R"(})"), "$.time");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "drops": [{"t_s": 1, "x_m": 3, "y_m": 1, "radius_m": 0.1,
-      "depth_m": 0.01}])")), "$.drops[0].x_m");
+      "depth_m": 0.01}])")),
+            "$.drops[0].x_m");
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": )" + g +
                           R"(, "time": {"dt_s": 0.1}, "initial": [{"type": "ring"}]})"),
             "$.initial[0].type");
@@ -142,16 +142,19 @@ TEST(HuygensScene, OutOfRangeValues) {
 TEST(HuygensScene, Issue3FeatureErrorsNameTheirPath) {
   // stokes, ships, wind and render are parsed (issue 3); bad values name their JSON path
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
-      "time": {"dt_s": 0.1}, "stokes": "yes"})"), "$.stokes");
+      "time": {"dt_s": 0.1}, "stokes": "yes"})"),
+            "$.stokes");
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
-      "time": {"dt_s": 0.1}, "stokes": true})"), "<no error>");
+      "time": {"dt_s": 0.1}, "stokes": true})"),
+            "<no error>");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 1}])")), "$.ships[0].beam_m");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": {"length_m": 1})")), "$.ships");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "wind": {"speed_mps": 5})")), "$.wind.direction_deg");
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "render": 3)")), "$.render");
   // a ship moving more than a quarter of its patch per step is refused before the run
   EXPECT_EQ(error_path_of(huygens_scene({}, R"(, "ships": [{"length_m": 0.1, "beam_m": 0.03, "draft_m": 0.01,
-      "path": [{"t_s": 0, "x_m": 0.5, "y_m": 1}, {"t_s": 0.1, "x_m": 1.9, "y_m": 1}]}])")), "$.ships");
+      "path": [{"t_s": 0, "x_m": 0.5, "y_m": 1}, {"t_s": 0.1, "x_m": 1.9, "y_m": 1}]}])")),
+            "$.ships");
 }
 
 // Keys of the older format (no unit suffix) are refused at their path, naming the new key.

@@ -1,13 +1,12 @@
 // SPH walls and obstacles (huygens/sph/boundary.hpp): the mirror images at faces, edges and
 // corners with the hydrostatic image pressure of Adami, Hu and Adams 2012 eq. 27, the obstacles'
 // signed distance and ghost tables, and the rest density and energy of a fluid in a closed box.
-#include "huygens/sph/boundary.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "huygens/sph/boundary.hpp"
 #include "huygens/sph/system.hpp"
 
 using namespace huygens;

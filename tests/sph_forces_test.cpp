@@ -1,8 +1,6 @@
 // The SPH pair sums and the density/force passes (huygens/sph/forces.hpp; Mueller, Charypar and
 // Gross 2003 eq. 3, 10, 14; Monaghan 1992 eq. 4.1-4.2): the vector loops equal a scalar sum over
 // exactly [b, e), 1/r by Newton steps, the grid path equals all pairs, the impact viscosity.
-#include "huygens/sph/forces.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +8,7 @@
 #include <vector>
 
 #include "huygens/common/fft.hpp"
+#include "huygens/sph/forces.hpp"
 #include "huygens/sph/system.hpp"
 
 using namespace huygens;

@@ -1,14 +1,14 @@
 // The SPH neighbour grid (huygens/sph/grid.hpp): the counting sort groups every particle in its
 // cell, the 9 row ranges around a cell hold exactly the particles of its 27 neighbour cells, and
 // the per-thread gather copies them with the bottom layer first (or falls back to the ranges).
-#include "huygens/sph/grid.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <vector>
+
+#include "huygens/sph/grid.hpp"
 
 using namespace huygens;
 

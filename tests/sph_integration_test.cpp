@@ -1,13 +1,12 @@
 // The SPH time step and integration (huygens/sph/integration.hpp): dt is the smallest of the CFL,
 // force, viscous and dt_max conditions and names it; symplectic Euler; the clamp keeps particles
 // inside the container and outside obstacles with the velocity into the wall removed.
-#include "huygens/sph/integration.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
+#include "huygens/sph/integration.hpp"
 #include "huygens/sph/system.hpp"
 #include "sph_test_helpers.hpp"
 

@@ -1,13 +1,12 @@
 // SPH kernels (huygens/sph/kernels.hpp; Mueller, Charypar and Gross 2003 eq. 20-22): each
 // integrates to 1 over its support, the gradient and Laplacian are those of the values, and the
 // lattice checks of `huygens validate sph_kernels`.
-#include "huygens/sph/kernels.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "huygens/sph/kernels.hpp"
 #include "huygens/validation/sph_cases.hpp"
 
 using namespace huygens;

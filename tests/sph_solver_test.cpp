@@ -1,14 +1,13 @@
 // The SPH solver adapter (huygens/sph/solver.hpp): every key of the "sph" block lands in its
 // parameter, errors name the JSON path (an old key names its new one), and the shipped scenes
 // build, run, dump and take commands.
-#include "huygens/sph/solver.hpp"
-
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/sph/solver.hpp"
 #include "scenes_dir.hpp"
 
 using namespace huygens;
@@ -91,16 +90,17 @@ TEST(SphScene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(path_of(with(R"(, "bogus": 1)")), "$.sph.bogus");
   EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1], )" + kOkFluid + "}}"),
             "$.sph.container_m");
-  EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, -1, 0.1], )" + kOkFluid +
-                    "}}"),
-            "$.sph.container_m[1]");
+  EXPECT_EQ(
+      path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, -1, 0.1], )" + kOkFluid + "}}"),
+      "$.sph.container_m[1]");
   EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1], "fluid": [
                { "min_m": [0, 0, 0], "max_m": [0.3, 0.1, 0.05] } ]}})"),
             "$.sph.fluid[0].max_m");
   EXPECT_EQ(path_of(with(R"(, "surface": {"radius_factor": 3.0})")), "$.sph.surface.radius_factor");
   EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "cone"} ])")), "$.sph.obstacles[0].type");
-  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "cylinder", "centre_m": [0.05], "radius_m": 0.01, "z1_m": 0.1} ])")),
-            "$.sph.obstacles[0].centre_m");
+  EXPECT_EQ(
+      path_of(with(R"(, "obstacles": [ {"type": "cylinder", "centre_m": [0.05], "radius_m": 0.01, "z1_m": 0.1} ])")),
+      "$.sph.obstacles[0].centre_m");
   EXPECT_EQ(path_of(with(R"(, "time": {"cfl": 2})")), "$.sph.time.cfl");
   // unstable settings are refused before the run, with the reason
   EXPECT_EQ(path_of(with(R"(, "artificial_viscosity": 0.001)")), "$.sph.artificial_viscosity");

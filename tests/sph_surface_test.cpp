@@ -2,12 +2,11 @@
 // neighbour cells equals phi over every particle, a flat slab gives a flat field at the height
 // sph_flat_iso() promises (half a spacing above the top layer) with vertical normals, and the
 // settled and tilted cases of `huygens validate sph_heightfield` at test size.
-#include "huygens/sph/surface.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "huygens/sph/surface.hpp"
 #include "huygens/sph/system.hpp"
 #include "huygens/validation/sph_cases.hpp"
 #include "sph_test_helpers.hpp"

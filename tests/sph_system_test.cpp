@@ -1,8 +1,6 @@
 // The SPH particle system (huygens/sph/system.hpp): fluid placement, bitwise determinism across
 // thread counts, non-finite values stopped with the stage named, interaction, and the physics of
 // `huygens validate` at test size (hydrostatic column, Martin & Moyce dam break, no leakage).
-#include "huygens/sph/system.hpp"
-
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -12,6 +10,7 @@
 #include <limits>
 
 #include "huygens/common/finite.hpp"
+#include "huygens/sph/system.hpp"
 #include "huygens/validation/sph_cases.hpp"
 #include "sph_test_helpers.hpp"
 

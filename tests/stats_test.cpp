@@ -43,9 +43,7 @@ TEST(StageTimer, CountsACallAndItsWallTime) {
 TEST(StageStats, ResetKeepsNamesAndBytes) {
   StageStats s;
   const int i = s.add("spectrum", 4096);
-  {
-    StageTimer t(s[i]);
-  }
+  { StageTimer t(s[i]); }
   s[i].transforms += 3;
   s.reset_counts();
   EXPECT_EQ(s[i].name, "spectrum");

@@ -286,7 +286,8 @@ TEST_F(VizRender, HeadlessRenderIsDeterministic) {
   EXPECT_NEAR(a.field_time, 0.05, 1e-12);
   const std::string file = huygens::test::scenes_dir() + "/default.json";
   ASSERT_TRUE(std::filesystem::exists(file)) << file;
-  EXPECT_EQ(render_headless(viewer_solver(file), o).image.pixels, a.image.pixels) << "built-in default.json vs " << file;
+  EXPECT_EQ(render_headless(viewer_solver(file), o).image.pixels, a.image.pixels)
+      << "built-in default.json vs " << file;
 }
 
 // Golden images of the shipped scenes at 256 x 256. Generated once (see tests/golden/README.md):
@@ -299,7 +300,8 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
   const std::filesystem::path golden_dir = golden_env && *golden_env ? golden_env : "tests/golden";
   int compared = 0;
   for (const char* name : {"default", "ring", "ocean", "kelvin", "pond"}) {
-    const std::filesystem::path scene = std::filesystem::path(huygens::test::scenes_dir()) / (std::string(name) + ".json");
+    const std::filesystem::path scene =
+        std::filesystem::path(huygens::test::scenes_dir()) / (std::string(name) + ".json");
     const std::filesystem::path golden = golden_dir / (std::string(name) + ".png");
     if (!std::filesystem::exists(scene)) continue;  // scenes arrive with their solvers
     ASSERT_TRUE(std::filesystem::exists(golden)) << "missing golden " << golden << "; generate it with\n  huygens-viz "

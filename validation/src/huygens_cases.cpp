@@ -4,6 +4,8 @@
 // eq. 3): Kelvin wake, Froude trend, capillary threshold, ship step consistency, Stokes profile,
 // interpolation order. `huygens validate` prints these rows and
 // tests/validation_huygens_test.cpp asserts them.
+#include "huygens/validation/huygens_cases.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -12,12 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "huygens/validation/reference/cauchy_poisson.hpp"
+#include "huygens/common/report.hpp"
 #include "huygens/huygens/propagator.hpp"
 #include "huygens/huygens/solver.hpp"
+#include "huygens/validation/reference/cauchy_poisson.hpp"
 #include "huygens/validation/reference/kelvin.hpp"
-#include "huygens/validation/huygens_cases.hpp"
-#include "huygens/common/report.hpp"
 #include "huygens/validation/validation.hpp"
 
 namespace huygens {

@@ -1,16 +1,17 @@
 // Validation cases of the shallow-water LBM (paper 002): wave speed, mass, lake at rest over the
 // Goutal-Maurel bump, Stoker dam breaks and their convergence, the h_L/h_R = 10 dam, and the
 // Strouhal number of a cylinder wake. `huygens validate` prints them; the tests run cheaper ones.
+#include "huygens/validation/lbm_cases.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
 
-#include "huygens/lbm/shallow.hpp"
 #include "huygens/common/report.hpp"
-#include "huygens/pipeline/solver.hpp"
+#include "huygens/lbm/shallow.hpp"
 #include "huygens/lbm/stoker.hpp"
-#include "huygens/validation/lbm_cases.hpp"
+#include "huygens/pipeline/solver.hpp"
 #include "huygens/validation/validation.hpp"
 
 namespace huygens {
@@ -270,10 +271,10 @@ std::vector<ValidationRow> stoker_rows() {
 std::vector<ValidationRow> stoker_10_rows() {
   const auto r = lbm_dam_break_1d(10.0, 1024);
   const bool ok = !r.refused.empty() || (r.stopped.empty() && std::isfinite(r.l1_relative));
-  ValidationRow row = check("lbm_stoker_10",
-                            r.refused.empty() ? "ran: L1 relative error, 1024 cells"
-                                              : "refused before running: Froude number of the flow",
-                            r.refused.empty() ? r.l1_relative : r.froude, kLbmMaxFroude, ok ? 0.0 : 1.0, 0.0);
+  ValidationRow row = check(
+      "lbm_stoker_10",
+      r.refused.empty() ? "ran: L1 relative error, 1024 cells" : "refused before running: Froude number of the flow",
+      r.refused.empty() ? r.l1_relative : r.froude, kLbmMaxFroude, ok ? 0.0 : 1.0, 0.0);
   const auto u = lbm_dam_break_1d(10.0, 1024, 0.55, 0.5, false);
   ValidationRow unchecked = check("lbm_stoker_10",
                                   u.stopped.empty() ? "refusal skipped: ran to the end, L1 relative error"

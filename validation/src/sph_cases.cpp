@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "huygens/common/report.hpp"
-#include "huygens/sph/system.hpp"
 #include "huygens/sph/surface.hpp"
+#include "huygens/sph/system.hpp"
 
 namespace huygens {
 
@@ -188,8 +188,8 @@ DamRun run_dam(int na, double T_end, double t_end, float container_len) {
         out.T.push_back(s.time() * Ts);
         out.Z.push_back(front());
         for (std::size_t i = 0; i < s.count(); ++i) {
-          const bool in = s.x()[i] >= 0 && s.x()[i] <= p.container_m[0] && s.y()[i] >= 0 && s.y()[i] <= p.container_m[1] &&
-                          s.z()[i] >= 0 && s.z()[i] <= p.container_m[2];
+          const bool in = s.x()[i] >= 0 && s.x()[i] <= p.container_m[0] && s.y()[i] >= 0 &&
+                          s.y()[i] <= p.container_m[1] && s.z()[i] >= 0 && s.z()[i] <= p.container_m[2];
           out.inside = out.inside && in;
         }
       }

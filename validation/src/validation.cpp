@@ -4,9 +4,14 @@
 
 namespace huygens {
 
-ValidationRow check(std::string case_name, std::string quantity, double measured, double expected,
-                    double error, double tolerance) {
-  return ValidationRow{std::move(case_name), std::move(quantity), measured, expected, error, tolerance,
+ValidationRow check(std::string case_name, std::string quantity, double measured, double expected, double error,
+                    double tolerance) {
+  return ValidationRow{std::move(case_name),
+                       std::move(quantity),
+                       measured,
+                       expected,
+                       error,
+                       tolerance,
                        std::isfinite(error) && error <= tolerance};
 }
 

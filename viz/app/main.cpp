@@ -86,8 +86,10 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
       o.subsample = std::stoi(next());
       if (o.subsample < 1 || o.subsample > 64) throw std::invalid_argument("--subsample must be in [1, 64]");
     } else if (a == "--exact" || a == "--schlick" || a == "--no-caustics" || a == "--benchmark") {
-      (a == "--exact" ? o.exact : a == "--schlick" ? o.schlick : a == "--no-caustics" ? o.no_caustics : o.benchmark) =
-          true;
+      (a == "--exact"         ? o.exact
+       : a == "--schlick"     ? o.schlick
+       : a == "--no-caustics" ? o.no_caustics
+                              : o.benchmark) = true;
     } else if (a == "--auto-frames") {
       o.auto_frames = std::stoi(next());
     } else if (!a.empty() && a[0] == '-') {
@@ -143,9 +145,15 @@ std::vector<std::string> benchmark_row(WaterRenderer& renderer, const OrbitCamer
     tot.push_back(r.prepare + r.upload + r.caustics + r.ground + r.surface + r.ship);
   }
   const double total = median(tot);
-  return {std::to_string(w) + "x" + std::to_string(h), fmt("%.2f", median(pr)), fmt("%.2f", median(up)),
-          fmt("%.2f", median(ca)), fmt("%.2f", median(gr)), fmt("%.2f", median(su)), fmt("%.2f", median(sh)),
-          fmt("%.2f", total), fmt("%.2f", sim_per_frame),
+  return {std::to_string(w) + "x" + std::to_string(h),
+          fmt("%.2f", median(pr)),
+          fmt("%.2f", median(up)),
+          fmt("%.2f", median(ca)),
+          fmt("%.2f", median(gr)),
+          fmt("%.2f", median(su)),
+          fmt("%.2f", median(sh)),
+          fmt("%.2f", total),
+          fmt("%.2f", sim_per_frame),
           fmt("%.1f", 100.0 * sim_per_frame / (sim_per_frame + total)) + " %"};
 }
 

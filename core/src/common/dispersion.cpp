@@ -14,14 +14,12 @@ double omega(const Water& w, double k) {
 }
 
 double phase_speed(const Water& w, double k) {
-  if (k <= 0.0)
-    return w.deep() ? std::numeric_limits<double>::infinity() : std::sqrt(w.gravity_mps2 * w.depth_m);
+  if (k <= 0.0) return w.deep() ? std::numeric_limits<double>::infinity() : std::sqrt(w.gravity_mps2 * w.depth_m);
   return omega(w, k) / k;
 }
 
 double group_speed(const Water& w, double k) {
-  if (k <= 0.0)
-    return w.deep() ? std::numeric_limits<double>::infinity() : std::sqrt(w.gravity_mps2 * w.depth_m);
+  if (k <= 0.0) return w.deep() ? std::numeric_limits<double>::infinity() : std::sqrt(w.gravity_mps2 * w.depth_m);
   // omega^2 = F(k) T(k) with F = g k + s k^3, T = tanh(k h); d omega/dk = (F' T + F T') / (2 omega).
   const double s = tension_ratio(w);
   const double f = w.gravity_mps2 * k + s * k * k * k;
@@ -32,12 +30,8 @@ double group_speed(const Water& w, double k) {
   return (df * t + f * dt) / (2.0 * std::sqrt(f * t));
 }
 
-double min_phase_speed(const Water& w) {
-  return std::pow(4.0 * w.gravity_mps2 * tension_ratio(w), 0.25);
-}
+double min_phase_speed(const Water& w) { return std::pow(4.0 * w.gravity_mps2 * tension_ratio(w), 0.25); }
 
-double min_phase_speed_wavenumber(const Water& w) {
-  return std::sqrt(w.gravity_mps2 / tension_ratio(w));
-}
+double min_phase_speed_wavenumber(const Water& w) { return std::sqrt(w.gravity_mps2 / tension_ratio(w)); }
 
 }  // namespace huygens

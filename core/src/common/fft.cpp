@@ -28,9 +28,12 @@ void init_threads_once() {
 void* aligned_alloc64(std::size_t bytes) { return std::aligned_alloc(64, (bytes + 63) / 64 * 64); }
 unsigned flags_of(PlanEffort e) {
   switch (e) {
-    case PlanEffort::estimate: return FFTW_ESTIMATE;
-    case PlanEffort::measure: return FFTW_MEASURE;
-    case PlanEffort::patient: return FFTW_PATIENT;
+    case PlanEffort::estimate:
+      return FFTW_ESTIMATE;
+    case PlanEffort::measure:
+      return FFTW_MEASURE;
+    case PlanEffort::patient:
+      return FFTW_PATIENT;
   }
   return FFTW_MEASURE;
 }
@@ -76,15 +79,14 @@ int fft_set_threads(int threads) {
 
 const char* fft_version() { return fftwf_version; }
 
-Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort)
-    : rows_(rows), cols_(cols) {
+Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort) : rows_(rows), cols_(cols) {
   init_threads_once();
   std::lock_guard lock(planner_mutex());
   // MEASURE/PATIENT overwrite the buffers while planning: plan on scratch copies.
   fftwf_plan p = nullptr;
   if (effort == PlanEffort::estimate) {
-    p = fftwf_plan_dft_2d(rows, cols, reinterpret_cast<fftwf_complex*>(in),
-                          reinterpret_cast<fftwf_complex*>(out), sign, flags_of(effort));
+    p = fftwf_plan_dft_2d(rows, cols, reinterpret_cast<fftwf_complex*>(in), reinterpret_cast<fftwf_complex*>(out), sign,
+                          flags_of(effort));
   } else {
     const std::size_t n = static_cast<std::size_t>(rows) * cols;
     auto* a = static_cast<fftwf_complex*>(aligned_alloc64(n * sizeof(fftwf_complex)));
@@ -93,7 +95,9 @@ Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort e
     if (b != a) std::free(b);
     std::free(a);
   }
-  if (!p) throw std::runtime_error("FFTW could not plan a " + std::to_string(rows) + " x " + std::to_string(cols) + " transform");
+  if (!p)
+    throw std::runtime_error("FFTW could not plan a " + std::to_string(rows) + " x " + std::to_string(cols) +
+                             " transform");
   plan_ = p;
   // Execution on the real buffers goes through fftwf_execute_dft (new-array execute),
   // which needs the same alignment as the planning buffers: all are 64-byte aligned.

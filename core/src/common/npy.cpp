@@ -23,7 +23,8 @@ void write_npy(const std::string& path, std::span<const float> data, const std::
   if (count != data.size()) throw std::invalid_argument("write_npy: shape does not match data size");
   std::ostringstream dict;
   dict << "{'descr': '<f4', 'fortran_order': False, 'shape': (";
-  for (std::size_t i = 0; i < shape.size(); ++i) dict << shape[i] << (shape.size() == 1 || i + 1 < shape.size() ? ", " : "");
+  for (std::size_t i = 0; i < shape.size(); ++i)
+    dict << shape[i] << (shape.size() == 1 || i + 1 < shape.size() ? ", " : "");
   dict << "), }";
   std::string header = dict.str();
   // magic (6) + version (2) + header length (2) + header + '\n' is padded to 64 bytes.

@@ -17,9 +17,7 @@ bool looks_numeric(const std::string& s) {
   std::strtod(s.c_str(), &end);
   return end && *end == '\0';
 }
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 }  // namespace
 
 std::string Table::text() const {

@@ -101,7 +101,9 @@ long long JsonIn::integer(const std::string& key, long long lo, long long hi) co
     }
   }
   const long long x = v.is_number_integer() ? v.get<long long>() : static_cast<long long>(v.get<double>());
-  if (x < lo || x > hi) fail(key, "value " + std::to_string(x) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  if (x < lo || x > hi)
+    fail(key,
+         "value " + std::to_string(x) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
   return x;
 }
 
@@ -165,7 +167,12 @@ Scene parse_scene_text(const std::string& text, const std::string& name) {
     // e.byte is the 1-based offset of the error; translate it into line and column.
     std::size_t line = 1, col = 1;
     for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
+      if (text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
     }
     std::string what = e.what();
     const auto p = what.find("error:");

@@ -82,9 +82,7 @@ HuygensPropagator::HuygensPropagator(const HuygensParams& p)
 
 HuygensPropagator::~HuygensPropagator() = default;
 
-double HuygensPropagator::wavenumber(int i) const {
-  return fft_wavenumber(i, p_.n, p_.length_m);
-}
+double HuygensPropagator::wavenumber(int i) const { return fft_wavenumber(i, p_.n, p_.length_m); }
 
 void HuygensPropagator::build_tables() {
   const int n = p_.n;

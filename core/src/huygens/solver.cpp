@@ -221,8 +221,8 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
   if (scene_.still_skip && !ships_ && !wind_ && scene_.still_check_every > 0) {
     // ships and wind keep the sea alive: no still state with them
     const double k1 = 2.0 * std::numbers::pi / p.length_m, a = scene_.still_amplitude_m;
-    still_energy_ =
-        0.5 * (p.water.density_kgpm3 * p.water.gravity_mps2 + p.water.surface_tension_npm * k1 * k1) * a * a * p.length_m * p.length_m;
+    still_energy_ = 0.5 * (p.water.density_kgpm3 * p.water.gravity_mps2 + p.water.surface_tension_npm * k1 * k1) * a *
+                    a * p.length_m * p.length_m;
     st_still_ = prop_.stats().add("still", 0);
   }
   make_height(0);
@@ -241,8 +241,9 @@ void HuygensSolver::make_height(std::int64_t step) {
     StageTimer timer(prop_.stats()[st_stokes_]);
     const float scale = 1.0f / (static_cast<float>(n) * static_cast<float>(n));
     // with wind: the sea W^(0) P is formed inside the height pass (read once, never written)
-    ok = wind_ && wind_on_ ? stokes_->compute(prop_.spectrum_view().data(), scale, *wind_, eta_.data(), etadot_.data())
-               : stokes_->compute(prop_.spectrum_view().data(), scale, nullptr, eta_.data(), etadot_.data());
+    ok = wind_ && wind_on_
+             ? stokes_->compute(prop_.spectrum_view().data(), scale, *wind_, eta_.data(), etadot_.data())
+             : stokes_->compute(prop_.spectrum_view().data(), scale, nullptr, eta_.data(), etadot_.data());
     prop_.stats()[st_stokes_].transforms += static_cast<std::uint64_t>(stokes_->transforms_per_call());
   }
   if (!ok) throw NonFiniteError(prop_.stats()[st_stokes_].name, step);

@@ -204,7 +204,8 @@ void StokesHeight::fill_inputs(const float* z, float zscale, const float* extra,
   const int threads = std::min(threads_, omp_get_max_threads());
 #pragma omp parallel num_threads(threads) if (n >= kParallelMin)
   {
-    const RowScratch t = row_scratch(scratch_.data() + static_cast<std::size_t>(omp_get_thread_num()) * kScratchRows * n, n);
+    const RowScratch t =
+        row_scratch(scratch_.data() + static_cast<std::size_t>(omp_get_thread_num()) * kScratchRows * n, n);
 #pragma omp for schedule(static)
     for (int r = 0; r <= h; ++r) {
       const int rm = (n - r) & (n - 1);

@@ -163,8 +163,8 @@ void check_stability(const LbmParams& p, LbmLattice& lat, const InitialScan& s) 
     throw LbmRefused("depth_m", "the initial flow has Froude number |u|/sqrt(g h) = " + g6(s.frmax) + " > " +
                                     g6(kLbmMaxFroude) + why + "; lower the velocity or deepen the water");
   if (p.expected_froude > kLbmMaxFroude)
-    throw LbmRefused("expected_froude", "the flow is expected to reach Froude number " + g6(p.expected_froude) +
-                                            " > " + g6(kLbmMaxFroude) + why);
+    throw LbmRefused("expected_froude", "the flow is expected to reach Froude number " + g6(p.expected_froude) + " > " +
+                                            g6(kLbmMaxFroude) + why);
   check_tau(p, lat, smax);
 }
 

@@ -382,9 +382,9 @@ void check_scene(const LbmScene& s, const ParseNotes& notes) {
     lbm_check(s.params, s.fields);
   } catch (const LbmRefused& e) {
     if (e.parameter() == "expected_froude")
-      throw SceneError("$.lbm.initial.dam.right_depth_m", std::string(e.what()) +
-                                                              "; for this dam use a depth ratio h_L/h_R <= " +
-                                                              fmt("%.2f", notes.dam_ratio_max));
+      throw SceneError(
+          "$.lbm.initial.dam.right_depth_m",
+          std::string(e.what()) + "; for this dam use a depth ratio h_L/h_R <= " + fmt("%.2f", notes.dam_ratio_max));
     throw SceneError(refusal_path(e.parameter(), notes), e.what());
   }
 }

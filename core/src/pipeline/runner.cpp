@@ -234,7 +234,8 @@ bool Runner::run_once(bool& pending, double& last_time, std::int64_t steps_origi
   if (!pending) {
     if (paused_ && step_once_ == 0) {
       // paused: everything it will publish is published
-      if (params_.manual_clock) shown_done_.store(shown_req_.load(std::memory_order_acquire), std::memory_order_release);
+      if (params_.manual_clock)
+        shown_done_.store(shown_req_.load(std::memory_order_acquire), std::memory_order_release);
       sleep_s(params_.poll_s);
       return true;
     }

@@ -1,7 +1,7 @@
 #include "huygens/pipeline/solver.hpp"
 
-#include "huygens/lbm/solver.hpp"
 #include "huygens/huygens/solver.hpp"
+#include "huygens/lbm/solver.hpp"
 #include "huygens/sph/solver.hpp"
 
 namespace huygens {

@@ -36,8 +36,8 @@ void SphSystem::compute_density(bool fresh_moment) {
   {
     const float* src[3] = {v.X, v.Y, v.Z};
     SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 3);
-    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), nullptr, nullptr, nullptr, nullptr, nullptr,
-                     nullptr};
+    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), nullptr, nullptr,
+                     nullptr,        nullptr,        nullptr,        nullptr};
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
@@ -85,7 +85,7 @@ void SphSystem::compute_forces() {
                   vz_.data(), P_.data(), irho_.data(), lirho_.data()};
   const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_;
   const float pik = pik_, pbk = pbk_;
-  const float cp = mass_ * k_.spiky_k;                                  // m 45/(pi h^6)
+  const float cp = mass_ * k_.spiky_k;                                // m 45/(pi h^6)
   const float cv = nu_ * p_.rest_density_kgpm3 * mass_ * k_.spiky_k;  // nu rho0 m 45/(pi h^6)
   const float gx = g_[0], gy = g_[1], gz = g_[2];
   float amax2 = 0.f, vmax2 = 0.f;
@@ -108,8 +108,7 @@ void SphSystem::compute_forces() {
                   const SphView& w = g ? sv : v;
                   sph_force_range<false>(w, b, e, im[0], vi, Pi, h, h2, rmin, pik, pbk, acc);
                   for (int k = 1; k <= ni; ++k)
-                    sph_force_range<true>(w, b, im[k].floor ? floor_end : e, im[k], vi, Pi, h, h2, rmin, pik, pbk,
-                                          acc);
+                    sph_force_range<true>(w, b, im[k].floor ? floor_end : e, im[k], vi, Pi, h, h2, rmin, pik, pbk, acc);
                 });
       const float vis = cv * v.IR[i];
       float ax = gx + cp * acc[0] + vis * acc[3];

@@ -1,12 +1,13 @@
 // The Solver for "solver": "sph" scenes: parses the scene's "sph" block, steps SphSystem and
 // extracts the heightfield (paper 000 eq. 5-6) when a frame or dump asks for it.
+#include "huygens/pipeline/solver.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
-#include "huygens/pipeline/solver.hpp"
 #include "huygens/sph/solver.hpp"
 #include "huygens/sph/surface.hpp"
 #include "huygens/sph/system.hpp"

@@ -29,8 +29,7 @@ void SphSystem::allocate(std::size_t n) {
 
 // The fluid blocks on the lattice of cell centres (i + 1/2) dx, leaving out positions outside the
 // container or within dx/2 of an obstacle; `top` = the highest block top (unit: m).
-void SphSystem::place_fluid(std::vector<float>& px, std::vector<float>& py, std::vector<float>& pz,
-                            float& top) const {
+void SphSystem::place_fluid(std::vector<float>& px, std::vector<float>& py, std::vector<float>& pz, float& top) const {
   const float dx = p_.spacing_m;
   top = 0.f;
   auto cell = [dx](float v) { return static_cast<int>(std::floor(v / dx + 0.5f)); };
@@ -80,8 +79,8 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   place_fluid(px, py, pz, top);
   const float rho0 = p_.rest_density_kgpm3;
   const float gmag = std::sqrt(g_[0] * g_[0] + g_[1] * g_[1] + g_[2] * g_[2]);
-  c0_ = p_.sound_speed_mps > 0.f ? p_.sound_speed_mps
-                                 : 10.f * std::sqrt(2.f * std::max(gmag, 1e-3f) * std::max(top, dx));
+  c0_ =
+      p_.sound_speed_mps > 0.f ? p_.sound_speed_mps : 10.f * std::sqrt(2.f * std::max(gmag, 1e-3f) * std::max(top, dx));
   B_ = rho0 * c0_ * c0_ / p_.tait_gamma;
   mvol_ = p_.gradient_correction ? mass_ / rho0 * k_.spiky_k / 3.f : 0.f;
   nu_ = p_.viscosity_m2s + p_.artificial_viscosity * c0_ * h_;

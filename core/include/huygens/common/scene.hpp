@@ -2,12 +2,11 @@
 // Scene files (docs/design.md section 6): JSON parsed into plain parameter structs. Every
 // error names the JSON path of the offending value ("$.grid.n", "$.initial[2].x_m")
 // and is reported by the programs with exit code 2.
-#include <nlohmann/json_fwd.hpp>
-
 #include <array>
 #include <cstddef>
 #include <initializer_list>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>

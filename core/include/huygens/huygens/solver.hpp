@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "huygens/huygens/propagator.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/huygens/propagator.hpp"
 #include "huygens/huygens/ship_waves.hpp"
-#include "huygens/pipeline/solver.hpp"
 #include "huygens/huygens/stokes.hpp"
 #include "huygens/huygens/wind.hpp"
+#include "huygens/pipeline/solver.hpp"
 
 namespace huygens {
 

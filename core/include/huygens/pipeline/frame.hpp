@@ -28,8 +28,8 @@
 #include <vector>
 
 #include "huygens/common/fft.hpp"
-#include "huygens/pipeline/spsc_queue.hpp"
 #include "huygens/common/stats.hpp"
+#include "huygens/pipeline/spsc_queue.hpp"
 
 namespace huygens {
 

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "huygens/pipeline/command.hpp"
-#include "huygens/pipeline/frame.hpp"
-#include "huygens/pipeline/render_info.hpp"
 #include "huygens/common/finite.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/common/stats.hpp"
+#include "huygens/pipeline/command.hpp"
+#include "huygens/pipeline/frame.hpp"
+#include "huygens/pipeline/render_info.hpp"
 
 namespace huygens {
 

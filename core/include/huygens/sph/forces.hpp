@@ -37,8 +37,8 @@ struct SphView {
 
 /// Adds the density sum to `sum` and, with kMoment, the first moment of the spiky gradient to `msum`.
 template <bool kImage, bool kMoment>
-inline void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im, float h,
-                            float h2, float& sum, float& msum) {
+inline void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im, float h, float h2,
+                            float& sum, float& msum) {
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;

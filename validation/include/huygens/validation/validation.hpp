@@ -16,7 +16,7 @@ struct ValidationRow {
   std::string quantity;  ///< what was measured, with its unit
   double measured = 0;
   double expected = 0;
-  double error = 0;      ///< as the case defines it (relative or absolute, see quantity)
+  double error = 0;  ///< as the case defines it (relative or absolute, see quantity)
   double tolerance = 0;
   bool pass = false;
 };
@@ -30,8 +30,8 @@ struct ValidationCase {
 };
 
 /// Helper: a row whose pass flag is error <= tolerance (false when error is not finite).
-ValidationRow check(std::string case_name, std::string quantity, double measured, double expected,
-                    double error, double tolerance);
+ValidationRow check(std::string case_name, std::string quantity, double measured, double expected, double error,
+                    double tolerance);
 
 /// The cases of each solver, in the order `huygens validate` runs them (defined in
 /// huygens_cases.cpp, sph_cases.cpp and lbm_cases.cpp).
