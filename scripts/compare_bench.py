@@ -17,9 +17,9 @@ import statistics
 import sys
 
 # timing and ratio columns of the sections (ms, step/raw, GB/s, MLUPS, steps/s, wall s ...)
-TIMING = re.compile(r"\bms\b|ratio|raw|/ copy|GB/s|MLUPS|steps/s|per CPU-s|per core|speed-up|run time|wall s|time/sim",
-                    re.IGNORECASE)
-NOT_TIMING = re.compile(r"transforms|error|reps", re.IGNORECASE)
+TIMING = re.compile(r"\bms\b|\bratio\b|raw|/ copy|GB/s|MLUPS|steps/s|per CPU-s|per core|speed-up|run time|wall s|"
+                    r"time/sim", re.IGNORECASE)
+NOT_TIMING = re.compile(r"transforms|error|reps|%$", re.IGNORECASE)  # counts, accuracy, shares of a step
 
 
 def read_blocks(path):
@@ -44,8 +44,9 @@ def read_blocks(path):
 
 
 def number(s):
+    """The cell's value ("105 %" reads 105), or None."""
     try:
-        return float(s)
+        return float(s.strip().removesuffix("%"))
     except ValueError:
         return None
 
@@ -86,6 +87,9 @@ def main():
     a = ap.parse_args()
     old, order = collect(a.old)
     new, _ = collect(a.new)
+    # grouped by table, in the order the tables first appear
+    titles = list(dict.fromkeys(k[0] for k in order))
+    order.sort(key=lambda k: titles.index(k[0]))
     last_title = None
     print("== side by side: median over the rounds (old = %d runs, new = %d runs); new / old < 1: new is faster"
           " (for a time) or has less overhead (for a step/raw ratio)" % (len(a.old), len(a.new)))

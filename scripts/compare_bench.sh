@@ -8,10 +8,11 @@
 # every output, and ends with a side-by-side table: for each timing or ratio column of each table
 # both builds print, the median over the rounds of old and new and new / old
 # (scripts/compare_bench.py). Arguments after OLD_REV go to both benches unchanged.
-# HUYGENS_COMPARE_DIR=DIR keeps the worktree and its build in DIR (reused by the next run).
+# HUYGENS_COMPARE_DIR=DIR keeps the worktree and its build in DIR (reused by the next run);
+# HUYGENS_COMPARE_CSV=DIR keeps every run's CSV there (old-ROUND.csv, new-ROUND.csv).
 set -euo pipefail
 [ $# -ge 1 ] || {
-  sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
   exit 2
 }
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -67,3 +68,7 @@ for r in $(seq 1 "$rounds"); do
 done
 echo
 python3 "$root/scripts/compare_bench.py" --old "$out"/old-*.csv --new "$out"/new-*.csv
+if [ -n "${HUYGENS_COMPARE_CSV:-}" ]; then
+  mkdir -p "$HUYGENS_COMPARE_CSV"
+  cp "$out"/*.csv "$HUYGENS_COMPARE_CSV"/
+fi
