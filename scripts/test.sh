@@ -10,6 +10,10 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-deps.sh"
+# habits checked before the build: every C++ file clang-formatted, no function over 80 lines in
+# core/ and validation/
+bash "$root/scripts/check-format.sh"
+(cd "$root" && python3 scripts/function_lengths.py core validation)
 bash "$root/scripts/build.sh"
 # OpenMP threads that sleep at barriers: ctest runs two 2-thread tests at once on 2 cores.
 export OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive}
