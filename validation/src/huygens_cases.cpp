@@ -126,13 +126,19 @@ std::vector<ValidationRow> phase_case() {
 // The 15 m / 512 / margin 64 grid with the paper's cutoff, dt = 1/60 s, Gaussian sigma 0.1 m,
 // A = 1 cm at the centre (a grid node, so r^2 = (i^2 + j^2) dx^2 and the exact solution is
 // needed only at the distinct i^2 + j^2).
-std::vector<ValidationRow> cauchy_poisson_case() {
+// The grid of the ring cases: 15 m, 512^2, margin 64, dt = 1/60 s.
+HuygensParams ring_grid() {
   HuygensParams p;
   p.n = 512;
   p.length_m = 15.0;
   p.margin = 64;
   p.dt_s = 1.0 / 60.0;
   p.effort = PlanEffort::measure;  // FFTW_ESTIMATE picks a ~10x slower 512^2 plan here
+  return p;
+}
+
+std::vector<ValidationRow> cauchy_poisson_case() {
+  const HuygensParams p = ring_grid();
   HuygensPropagator prop(p);
   const double amp = 0.01, sigma = 0.1, x0 = 7.5;
   prop.add_gaussian(x0, x0, sigma, amp);
@@ -254,13 +260,8 @@ std::vector<ValidationRow> energy_cases() {
 // same dx without it (periodic; its images are 60 m away). The 60 m run is one exact step of
 // dt = t (the propagator is exact in time for any dt), so it costs three transforms per time.
 std::vector<ValidationRow> absorption_case(double cutoff_time_s) {
-  HuygensParams p;
+  HuygensParams p = ring_grid();
   p.cutoff_time_s = cutoff_time_s;
-  p.n = 512;
-  p.length_m = 15.0;
-  p.margin = 64;
-  p.dt_s = 1.0 / 60.0;
-  p.effort = PlanEffort::measure;  // FFTW_ESTIMATE picks a ~10x slower 512^2 plan here
   HuygensPropagator prop(p);
   const double amp = 0.01, sigma = 0.1;
   prop.add_gaussian(7.5, 7.5, sigma, amp);
