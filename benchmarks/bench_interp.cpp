@@ -98,7 +98,7 @@ void bench_interp(Context& ctx) {
                    n),
                t);
     // the interpolant must be what it claims: better than linear at every D > 1, and within
-    // the 1 % at the default D = 3
+    // the 1 % target at the default D = 3
     for (const Row& r : rows)
       if (r.d > 1) ctx.expect(r.cubic < r.linear, fmt("interp: cubic beats linear at D = %d (n = %d)", r.d, n));
     for (const Row& r : rows)

@@ -1,4 +1,4 @@
-// Section "ships": the full step of issue 3 (propagate, cutoff, ship, spectrum, wind, height
+// Section "ships": the full step with ship, wind and Stokes (propagate, cutoff, ship, spectrum, wind, height
 // with second-order Stokes) against the raw FFTW transforms it performs, and its stages in
 // units of one raw N x N transform; cost per displayed frame at display_per_step = 3.
 //
@@ -298,7 +298,8 @@ void bench_ships(Context& ctx) {
   fft_set_threads(omp_get_num_procs());
   omp_set_num_threads(omp_get_num_procs());
   ctx.report("ships",
-             "stages of issue 3 against one raw N x N inverse c2c transform (same plan), alternated; median wall ms, "
+             "stages of a full ship + wind + Stokes step against one raw N x N inverse c2c transform (same plan), "
+             "alternated; median wall ms, "
              "median of the per-pair ratios",
              stages);
   ctx.report("ships",

@@ -1,4 +1,4 @@
-// Section "pipeline" (issue 4, "Speed"): the cost of publishing a frame (one memcpy per
+// Section "pipeline": the cost of publishing a frame (one memcpy per
 // field into a free ring slot + the atomic publish) against one Huygens step measured in the
 // same run (target: under 5 %), and the end-to-end latency from a drop command sent by a UI
 // thread to the first frame that shows it, with the runner stepping as fast as possible

@@ -1,4 +1,4 @@
-// Section "stress", LBM part (issue 9): the shallow-water LBM (paper 002 sec. 2) on its hardest
+// Section "stress", LBM part: the shallow-water LBM (paper 002 sec. 2) on its hardest
 // shipped scene, scenes/dam_break.json (a partial dam break through a 75 m breach, 10 m / 7 m),
 // for 1e5 steps (--quick: 2000) with the budgets printed every tenth of the run (volume, largest
 // speed and Froude number, shallowest wet cell) and a verdict; then the edge of its limits: the

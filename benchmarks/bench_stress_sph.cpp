@@ -1,4 +1,4 @@
-// Section "stress", SPH part (issue 9): the SPH solver (paper 000 after MCG03) on its hardest
+// Section "stress", SPH part: the SPH solver (paper 000 after MCG03) on its hardest
 // shipped scene, scenes/sph_dam_break.json (the Martin & Moyce column hitting the far wall),
 // for 10 s of simulated time (--quick: 0.5 s) with budgets printed every tenth of the run
 // (mechanical energy against its start, largest speed against sqrt(2 g H), largest density
@@ -179,7 +179,7 @@ void sph_long_run(Context& ctx, const SphStress& st) {
                 (lr.failure.empty() ? fmt("E/E0 %.4f, %zu outside", lr.worst_e, lr.worst_out) : lr.failure);
   ctx.report("stress",
              fmt("%.3g s of sph_dam_break.json (%zu particles, H = %.4g m): budgets; verdict: %s "
-                 "(issue 7 targets: max speed < 1.5 sqrt(2gH), density error ~1 %%)",
+                 "(targets: max speed < 1.5 sqrt(2gH), density error ~1 %%)",
                  t_end, s.count(), st.H, verdict.c_str()),
              t);
   ctx.expect(bounded, "stress: sph_dam_break.json long run stays finite, contained, energy not growing");

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CI sanitizer jobs (issue 4):
+# CI sanitizer jobs:
 #   1. ThreadSanitizer build of the tests that exercise threads (the executables whose
 #      huygens_add_test line has the label "tsan": the SPSC queue, the frame ring and the
 #      runner), run with a smaller stress count.
@@ -8,7 +8,7 @@
 # Build dirs: ${HUYGENS_TSAN_DIR:-build-tsan} and ${HUYGENS_ASAN_DIR:-build-asan}. The viewer
 # is not built here (Mesa's llvmpipe is not instrumented; the render tests run in test.sh).
 # HUYGENS_STRESS_ITEMS sets the stress item count under TSan: the SPSC queue runs the full
-# 10 million items per capacity (issue 4; about 50 s on 2 cores), the frame ring and the
+# 10 million items per capacity (about 50 s on 2 cores), the frame ring and the
 # runner (whole frames checked value by value) 200000 unless it is set.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

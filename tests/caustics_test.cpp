@@ -399,7 +399,7 @@ TEST(Caustics, ObliqueSunBeamAreaAgainstPhotonReference) {
   EXPECT_LT(err[1], 0.25);
 }
 
-// Regression (issue 5, defect 2: short dark lines on the ground in huygens-viz). The texture
+// Regression (short dark lines on the ground in huygens-viz). The texture
 // covers the still-water projection of the domain exactly, so a wave that moved the border
 // vertices inwards used to leave the outermost texels unlit (0, and 0.25 after the blur); the
 // oblique sun puts that edge in the middle of the view through the water. Now a skirt continues

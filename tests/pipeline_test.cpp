@@ -1,4 +1,4 @@
-// The scene pipeline on the Huygens solver (issue 4): determinism across thread counts,
+// The scene pipeline on the Huygens solver: determinism across thread counts,
 // proof that absent stages cost nothing, and failure containment (a non-finite value is
 // reported with the stage that produced it; dumps up to the last good step stay valid).
 #include <gtest/gtest.h>

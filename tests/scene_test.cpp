@@ -65,7 +65,7 @@ TEST(JsonIn, SyntaxErrorNamesLineAndColumn) {
 
 TEST(JsonIn, UnknownSolverIsRefused) { EXPECT_EQ(error_path_of(R"({"solver": "navier"})"), "$.solver"); }
 
-// ---- the "huygens" scene (issue 2, validation item 6): one test per kind of error -------------
+// ---- the "huygens" scene: one test per kind of error -------------
 namespace {
 // A valid scene with one field replaced (JSON-merge style) for the error tests.
 std::string huygens_scene(const std::string& grid_json = "", const std::string& extra = "") {
@@ -140,7 +140,7 @@ TEST(HuygensScene, OutOfRangeValues) {
 }
 
 TEST(HuygensScene, Issue3FeatureErrorsNameTheirPath) {
-  // stokes, ships, wind and render are parsed (issue 3); bad values name their JSON path
+  // stokes, ships, wind and render are parsed; bad values name their JSON path
   EXPECT_EQ(error_path_of(R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 8},
       "time": {"dt_s": 0.1}, "stokes": "yes"})"),
             "$.stokes");

@@ -217,7 +217,7 @@ TEST(ShipWaves, StationaryHullMakesNoWaves) {
 
 TEST(ShipWaves, OneStepEqualsTwoHalfSteps) {
   // Steady motion: 8 steps of dt against 16 steps of dt/2 on the same grid, propagated
-  // exactly in between; relative L2 difference under 1 % (issue 3, validation 4).
+  // exactly in between; relative L2 difference under 1 %.
   Water w;
   const int n = 256, P = 128;
   const double L = 32.0, dt = 0.1;

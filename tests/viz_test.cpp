@@ -1,4 +1,4 @@
-// Render tests of the visualizer's water surface (issue 5; paper 004 section 4), headless
+// Render tests of the visualizer's water surface (paper 004 section 4), headless
 // through EGL's surfaceless platform (Mesa llvmpipe). Synthetic heightfields with closed-form
 // optics: a flat surface at index 1 shows the ground unchanged (the paper's Figure 4 check),
 // looking straight down through still water magnifies by the apparent-depth factor, the sky
