@@ -2,24 +2,13 @@
 // Frames from the simulation thread to the render thread (docs/design.md 2), and the lock-free
 // ring of preallocated frame buffers that carries them.
 //
-// A frame is the visible heightfield eta (metres), its time derivative eta_dot (m/s), the
-// simulated time, the step index and a snapshot of the per-stage counters. The producer
-// (simulation thread) fills a free slot with one memcpy per field and publishes it; the
-// consumer (render thread) always gets the NEWEST frame and the one published just before
-// it, so it can interpolate in time between them (cubic Hermite of paper 004, section 3.5 /
-// docs/design.md 3.5) for any display time. A slow consumer misses frames (they are dropped,
-// the producer never waits); with a slow producer the consumer keeps its last two frames
-// and never waits either.
-//
-// Protocol (a generalised triple buffer). One 64-bit atomic word holds the published pair
-// (newest slot, previous slot) and the set of slots the consumer holds (a bit mask). The
-// producer writes a slot that is neither published nor held -- it exists whenever there
-// are >= 5 slots, because the consumer holds at most 2 and the published pair is 2 more --
-// then publishes it with a release CAS that shifts newest -> previous and keeps the mask.
-// The consumer takes the published pair with an acq_rel CAS that replaces its mask by that
-// pair, which also releases the slots it held before. The producer's CAS can only fail
-// when the consumer has just taken a pair, so both sides are lock-free, no side ever
-// waits for the other, and nothing is allocated after construction.
+// A frame is the visible heightfield eta (m), its time derivative eta_dot (m/s), the simulated
+// time, the step index, the ship poses and a snapshot of the per-stage counters. The producer
+// fills a free slot (one memcpy per field) and publishes it; the consumer always gets the newest
+// frame and the one before it, to interpolate between them (cubic Hermite, paper 004 section
+// 3.5). Neither side waits or allocates: one 64-bit atomic word holds the published pair and
+// the slots the consumer holds, so five slots always leave one free to write (the protocol is
+// spelled out in docs/pipeline.md).
 #include <array>
 #include <atomic>
 #include <cstddef>
