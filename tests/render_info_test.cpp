@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <span>
 #include <string>
 #include <thread>
@@ -243,7 +244,9 @@ TEST(RenderInfo, LbmAndSphScenesAsTheirFilesSay) {
   const RenderInfo p = pool->render_info();
   EXPECT_NEAR(p.grid.dx_m, 0.005, 1e-9) << "float parameters";
   EXPECT_NEAR(p.grid.x0_m, 0.0025, 1e-9);
-  EXPECT_GT(p.rest_level_m, 0.0);
+  // mean of the extracted field: 0.075 m of fill over the pool less the cylinder's dry columns
+  // (pi 0.025^2 / 0.2^2 of the area), within half a particle spacing (the iso-surface's reach)
+  EXPECT_NEAR(p.rest_level_m, 0.075 * (1.0 - std::numbers::pi * 0.025 * 0.025 / 0.04), 0.005);
   ASSERT_EQ(p.obstacles.size(), 1u);
   EXPECT_EQ(p.obstacles[0].kind, RenderObstacle::Kind::cylinder);
   EXPECT_NEAR(p.obstacles[0].radius_m, 0.025, 1e-8);
