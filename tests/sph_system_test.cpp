@@ -1,6 +1,6 @@
 // The SPH particle system (huygens/sph/system.hpp): fluid placement, bitwise determinism across
-// thread counts, non-finite values stopped with the stage named, interaction, and the physics of
-// `huygens validate` at test size (hydrostatic column, Martin & Moyce dam break, no leakage).
+// thread counts, non-finite values stopped with the stage named, interaction. The physics of
+// `huygens validate` at test size is in sph_physics_test.cpp.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -88,23 +88,3 @@ TEST(SphSystem, SplashAndGravityInteraction) {
   s.set_gravity({1.f, 0.f, -9.81f});
   EXPECT_FLOAT_EQ(s.gravity()[0], 1.f);
 }
-
-TEST(SphPhysics, HydrostaticColumnShort) {
-  // 6 x 6 x 12 column, settled 0.5 s damped + 5 s free, held 1 s (validate: 6 x 6 x 16, held 10 s):
-  // bottom pressure and pressure gradient within 2 % of the weight per area and rho0 g (mirror-image
-  // walls with the hydrostatic image pressure, gradient correction), density error below 1 %, max
-  // speed below 1 % of sqrt(g H).
-  expect_rows_pass(sph_hydrostatic_rows(6, 12, 0.5, 5.0, 1.0));
-}
-
-TEST(SphPhysics, DamBreakFrontCoarse) {
-  // 10 particles across the column up to T = 3 (validate: 16 across, T <= 5)
-  expect_rows_pass(sph_dam_break_rows(10, 3.0, martin_moyce_1952()));
-}
-
-// The invariants of the boundary over 1 s of the validate set-up (8 particles across a, a 4a box;
-// validate runs 10 s): no particle leaves the container, nothing goes non-finite, and the maximum
-// speed (sampled every step) stays below 1.5 sqrt(2 g H). The speed peaks in the jet up the end wall
-// when the surge hits it (t ~ 0.19 s): 1.09 here with the impact viscosity, 1.49 without it. The bound
-// is not met everywhere (12 and 24 across in an 8a box: 1.51, 1.54; docs/sph.md).
-TEST(SphPhysics, NoLeakageShort) { expect_rows_pass(sph_leakage_rows(8, 1.0, 4.f)); }
