@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "huygens/common/atomic_file.hpp"
 #include "huygens/common/npy.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"

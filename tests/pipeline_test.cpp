@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "huygens/common/atomic_file.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/common/finite.hpp"
 #include "huygens/common/npy.hpp"

@@ -7,15 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace huygens {
+#include "huygens/common/atomic_file.hpp"
 
-namespace {
-void rename_into_place(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + path + ": " + ec.message());
-}
-}  // namespace
+namespace huygens {
 
 void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape) {
   std::size_t count = 1;
@@ -31,20 +25,15 @@ void write_npy(const std::string& path, std::span<const float> data, const std::
   const std::size_t total = 10 + header.size() + 1;
   header.append((64 - total % 64) % 64, ' ');
   header.push_back('\n');
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("cannot write " + tmp);
-    const unsigned char magic[8] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0};
-    f.write(reinterpret_cast<const char*>(magic), 8);
-    const unsigned short len = static_cast<unsigned short>(header.size());
-    const unsigned char le[2] = {static_cast<unsigned char>(len & 0xff), static_cast<unsigned char>(len >> 8)};
-    f.write(reinterpret_cast<const char*>(le), 2);
-    f.write(header.data(), static_cast<std::streamsize>(header.size()));
-    f.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size_bytes()));
-    if (!f) throw std::runtime_error("write failed: " + tmp);
-  }
-  rename_into_place(tmp, path);
+  AtomicFile f(path);
+  const unsigned char magic[8] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0};
+  f.write(std::as_bytes(std::span(magic)));
+  const unsigned short len = static_cast<unsigned short>(header.size());
+  const unsigned char le[2] = {static_cast<unsigned char>(len & 0xff), static_cast<unsigned char>(len >> 8)};
+  f.write(std::as_bytes(std::span(le)));
+  f.write(header);
+  f.write(std::as_bytes(data));
+  f.commit();
 }
 
 NpyArray read_npy(const std::string& path) {
@@ -74,17 +63,6 @@ NpyArray read_npy(const std::string& path) {
   f.read(reinterpret_cast<char*>(a.data.data()), static_cast<std::streamsize>(count * sizeof(float)));
   if (!f) throw std::runtime_error(path + ": truncated data");
   return a;
-}
-
-void write_file_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw std::runtime_error("cannot write " + tmp);
-    f << text;
-    if (!f) throw std::runtime_error("write failed: " + tmp);
-  }
-  rename_into_place(tmp, path);
 }
 
 }  // namespace huygens

@@ -20,7 +20,4 @@ struct NpyArray {
 /// Reads a float32 little-endian C-order .npy. Throws on anything else.
 NpyArray read_npy(const std::string& path);
 
-/// Writes `text` to `path` atomically (temporary file + rename).
-void write_file_atomic(const std::string& path, const std::string& text);
-
 }  // namespace huygens

@@ -1,0 +1,62 @@
+#include "huygens/common/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+namespace huygens {
+
+IoError::IoError(const std::string& path, const std::string& reason)
+    : std::runtime_error("cannot write " + path + ": " + reason), path_(path) {}
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), tmp_(path_ + ".tmp") {
+  fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw IoError(path_, std::strerror(errno));
+}
+
+AtomicFile::~AtomicFile() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!tmp_.empty()) ::unlink(tmp_.c_str());  // not committed: PATH keeps its previous content
+}
+
+void AtomicFile::write(std::span<const std::byte> bytes) {
+  const char* p = reinterpret_cast<const char*>(bytes.data());
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd_, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw IoError(path_, n < 0 ? std::strerror(errno) : "no progress");
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+}
+
+void AtomicFile::commit() {
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) throw IoError(path_, std::strerror(errno));  // delayed write errors (NFS)
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) throw IoError(path_, std::strerror(errno));
+  tmp_.clear();
+}
+
+void write_file_atomic(const std::string& path, std::string_view text) {
+  AtomicFile f(path);
+  f.write(text);
+  f.commit();
+}
+
+void check_output_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path.empty()) throw IoError("\"\"", "an empty file name");
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IoError(path, "it is a folder");
+  // the real test: the temporary the write will use can be created (folder exists, writable,
+  // file system not read-only), then it is removed again
+  AtomicFile probe(path);
+}
+
+}  // namespace huygens
