@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "huygens/pipeline/solver.hpp"
@@ -204,4 +205,102 @@ TEST(HuygensScene, ProgramExitsTwoAndNamesThePath) {
   std::ifstream f(out);
   const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("$.grid.margin"), std::string::npos) << text;
+}
+
+// ---- numbers the parser or a getter cannot hold: a SceneError with the path, never a crash ----
+namespace {
+std::string message_or_none(const std::string& text) {
+  try {
+    auto s = parse_scene_text(text);
+    make_solver(s, RunOptions{false});
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+}  // namespace
+
+TEST(JsonIn, NumberOverflowingADoubleNamesItsPath) {
+  // nlohmann raises out_of_range.406 for these, which used to escape as an abort
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": 1e400, "margin": 8})")), "$.grid.length_m");
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 64, "length_m": -1e400, "margin": 8})")), "$.grid.length_m");
+  const std::string digits(400, '7');
+  EXPECT_EQ(error_path_of(huygens_scene("", R"(, "drops": [{"t_s": 0.1}, {"t_s": )" + digits + "}]")),
+            "$.drops[1].t_s");
+  EXPECT_EQ(error_path_of(R"({"solver": "sph", "sph": {"container_m": [1, 2, 3e999]}})"), "$.sph.container_m[2]");
+  const std::string m = message_or_none(huygens_scene(R"({"n": 64, "length_m": 1e400, "margin": 8})"));
+  EXPECT_NE(m.find("overflow"), std::string::npos) << m;
+  EXPECT_NE(m.find("1e400"), std::string::npos) << m;
+}
+
+TEST(JsonIn, IntegerGetterRefusesWhatAnIntegerCannotHold) {
+  auto s = parse_scene_text(R"({"a": 1e300, "b": -1e300, "c": 18446744073709551615, "d": 9223372036854775808.0,
+                                "e": 2.5, "f": "64", "g": 64.0, "h": true, "i": null, "j": [64]})");
+  const JsonIn r = s.root();
+  for (const char* key : {"a", "b", "c", "d", "e", "f", "h", "i", "j"}) {
+    try {
+      r.integer(key, 1, 1 << 14);
+      ADD_FAILURE() << key << " was accepted";
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.path(), std::string("$.") + key);
+      EXPECT_NE(std::string(e.what()).find("[1, 16384]"), std::string::npos) << e.what();  // names the range
+    }
+  }
+  EXPECT_EQ(r.integer("g", 1, 1 << 14), 64);  // 64.0 is 64
+  // an unsigned above LLONG_MAX is not wrapped to a negative number inside a wide range
+  EXPECT_THROW(r.integer("c", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max()),
+               SceneError);
+}
+
+TEST(JsonIn, NumberGettersRefuseWrongTypesNamingThePath) {
+  auto s = parse_scene_text(R"({"x": "1.0", "v": [1, "2", 3], "w": [1, 2], "b": 1, "t": 3})");
+  const JsonIn r = s.root();
+  EXPECT_THROW(r.number("x", 0.0, 2.0), SceneError);
+  try {
+    r.vec<3>("v", 0.0, 10.0);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "$.v[1]");
+  }
+  try {
+    r.vec<3>("w", 0.0, 10.0);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "$.w");
+  }
+  try {
+    r.vec<2>("w", 0.0, 1.5);
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "$.w[1]");
+    EXPECT_NE(std::string(e.what()).find("[0, 1.5]"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(r.boolean("b", false), SceneError);
+  EXPECT_THROW(r.string("t", ""), SceneError);
+}
+
+TEST(JsonIn, LoadSceneRefusesADirectory) {
+  try {
+    load_scene(::testing::TempDir());
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("directory"), std::string::npos) << e.what();
+  }
+}
+
+// The real program on a number that overflows a double: exit 2 and the path, no abort.
+TEST(HuygensScene, ProgramExitsTwoOnANumberOverflow) {
+  const std::string dir = ::testing::TempDir();
+  const std::string scene = dir + "/overflow.json", out = dir + "/overflow.out";
+  {
+    std::ofstream f(scene);
+    f << huygens_scene(R"({"n": 64, "length_m": 1e400, "margin": 8})");
+  }
+  const std::string cmd = std::string(HUYGENS_CLI) + " run " + scene + " --steps 1 > " + out + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  std::ifstream f(out);
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("$.grid.length_m"), std::string::npos) << text;
 }

@@ -1,9 +1,12 @@
 #include "huygens/common/scene.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 namespace huygens {
 
@@ -58,11 +61,14 @@ std::vector<JsonIn> JsonIn::array(const std::string& key) const {
 }
 
 namespace {
-std::string range_text(double lo, double hi) {
+// A double in messages: up to 10 significant digits ("1e+300", not 300 digits).
+std::string number_text(double x) {
   std::ostringstream s;
-  s << "[" << lo << ", " << hi << "]";
+  s.precision(10);
+  s << x;
   return s.str();
 }
+std::string range_text(double lo, double hi) { return "[" + number_text(lo) + ", " + number_text(hi) + "]"; }
 }  // namespace
 
 std::optional<double> JsonIn::optional_number(const std::string& key, double lo, double hi) const {
@@ -70,11 +76,8 @@ std::optional<double> JsonIn::optional_number(const std::string& key, double lo,
   const json& v = (*j_)[key];
   if (!v.is_number()) fail(key, std::string("expected a number, got ") + v.type_name());
   const double x = v.get<double>();
-  if (!std::isfinite(x) || x < lo || x > hi) {
-    std::ostringstream s;
-    s << "value " << x << " is out of range " << range_text(lo, hi);
-    fail(key, s.str());
-  }
+  if (!std::isfinite(x) || x < lo || x > hi)
+    fail(key, "value " + number_text(x) + " is out of range " + range_text(lo, hi));
   return x;
 }
 
@@ -93,17 +96,22 @@ double JsonIn::number(const std::string& key, double fallback, double lo, double
 long long JsonIn::integer(const std::string& key, long long lo, long long hi) const {
   if (!has(key)) fail(key, "missing required integer");
   const json& v = (*j_)[key];
-  if (!v.is_number_integer()) {
-    if (v.is_number_float() && std::floor(v.get<double>()) == v.get<double>()) {
-      // 512.0 is accepted as 512.
-    } else {
-      fail(key, std::string("expected an integer, got ") + (v.is_number() ? "a fraction" : v.type_name()));
-    }
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (v.is_number_unsigned() || v.is_number_integer()) {
+    // an unsigned above the largest long long is compared as unsigned, never wrapped
+    const bool above = v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi);
+    const long long x = above ? hi : v.get<long long>();
+    if (above || x < lo || x > hi) fail(key, "value " + v.dump() + " is out of range " + range);
+    return x;
   }
-  const long long x = v.is_number_integer() ? v.get<long long>() : static_cast<long long>(v.get<double>());
-  if (x < lo || x > hi)
-    fail(key,
-         "value " + std::to_string(x) + " is out of range [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  if (!v.is_number_float()) fail(key, std::string("expected an integer in ") + range + ", got " + v.type_name());
+  // 512.0 is accepted as 512; the range is checked on the double, before any conversion
+  const double d = v.get<double>();
+  if (std::floor(d) != d) fail(key, "expected an integer in " + range + ", got a fraction " + number_text(d));
+  if (!(d >= static_cast<double>(lo) && d <= static_cast<double>(hi) && std::abs(d) < 0x1p63))
+    fail(key, "value " + number_text(d) + " is out of range " + range);
+  const long long x = static_cast<long long>(d);
+  if (x < lo || x > hi) fail(key, "value " + number_text(d) + " is out of range " + range);
   return x;
 }
 
@@ -144,8 +152,7 @@ void JsonIn::read_numbers(const std::string& key, double* out, std::size_t count
     if (!v[k].is_number()) throw SceneError(p, std::string("expected a number, got ") + v[k].type_name());
     const double x = v[k].get<double>();
     if (!std::isfinite(x) || x < lo || x > hi)
-      throw SceneError(p, "value " + std::to_string(x) + " is out of range [" + std::to_string(lo) + ", " +
-                              std::to_string(hi) + "]");
+      throw SceneError(p, "value " + number_text(x) + " is out of range " + range_text(lo, hi));
     out[k] = x;
   }
 }
@@ -159,26 +166,90 @@ void JsonIn::reject_renamed(std::initializer_list<std::pair<const char*, const c
 
 JsonIn Scene::root() const { return JsonIn(*doc, "$"); }
 
-Scene parse_scene_text(const std::string& text, const std::string& name) {
-  auto doc = std::make_shared<json>();
-  try {
-    *doc = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.byte is the 1-based offset of the error; translate it into line and column.
-    std::size_t line = 1, col = 1;
-    for (std::size_t i = 0; i + 1 < e.byte && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        col = 1;
-      } else {
-        ++col;
-      }
+namespace {
+
+// The JSON path of the value the parser is reading, kept by a parser callback, so that an error
+// the parser raises without a position (a number that overflows a double) names "$.grid.n".
+class PathTracker {
+ public:
+  bool operator()(int, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    if (event == E::object_start || event == E::array_start) {
+      frames_.push_back({event == E::array_start, false, {}, 0});
+    } else if (event == E::key) {
+      frames_.back().key = parsed.get<std::string>();
+      frames_.back().has_key = true;
+    } else {
+      // a value ends: a scalar (value) or a container (object_end, array_end)
+      if (event != E::value) frames_.pop_back();
+      if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
     }
-    std::string what = e.what();
-    const auto p = what.find("error:");
-    throw SceneError("$", "JSON syntax error in " + name + " at line " + std::to_string(line) + ", column " +
-                              std::to_string(col) + ": " + (p == std::string::npos ? what : what.substr(p + 7)));
+    return true;
   }
+  std::string path() const {
+    std::string p = "$";
+    for (const auto& f : frames_) {
+      if (f.array)
+        p += "[" + std::to_string(f.index) + "]";
+      else if (f.has_key)
+        p += "." + f.key;
+    }
+    return p;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    bool has_key;
+    std::string key;
+    std::size_t index;
+  };
+  std::vector<Frame> frames_;
+};
+
+// Line and column (1-based) of the 1-based byte offset `byte` of `text`.
+std::string line_column(const std::string& text, std::size_t byte) {
+  std::size_t line = 1, col = 1;
+  for (std::size_t i = 0; i + 1 < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(col);
+}
+
+// The part of a nlohmann message after "[json.exception.x.n] ... error: " or "] ".
+std::string json_reason(const json::exception& e) {
+  std::string what = e.what();
+  auto p = what.find("error: ");
+  if (p != std::string::npos) return what.substr(p + 7);
+  p = what.find("] ");
+  return p == std::string::npos ? what : what.substr(p + 2);
+}
+
+json parse_json(const std::string& text, const std::string& name) {
+  // the callback is copied into the parser: the tracker lives here, the parser holds a reference
+  PathTracker tracker;
+  try {
+    return json::parse(text, [&tracker](int d, json::parse_event_t e, json& v) { return tracker(d, e, v); });
+  } catch (const json::parse_error& e) {
+    throw SceneError("$", "JSON syntax error in " + name + " at " + line_column(text, e.byte) + ": " + json_reason(e));
+  } catch (const json::out_of_range& e) {
+    // 406: a number literal beyond the range of a double (1e400)
+    throw SceneError(tracker.path(),
+                     "in " + name + ": " + json_reason(e) + " (numbers must be finite doubles, at most about 1.8e308)");
+  } catch (const json::exception& e) {
+    throw SceneError(tracker.path(), "cannot parse " + name + ": " + json_reason(e));
+  }
+}
+
+}  // namespace
+
+Scene parse_scene_text(const std::string& text, const std::string& name) {
+  auto doc = std::make_shared<json>(parse_json(text, name));
   if (!doc->is_object()) throw SceneError("$", "a scene must be a JSON object");
   Scene s;
   s.file = name;
@@ -188,10 +259,18 @@ Scene parse_scene_text(const std::string& text, const std::string& name) {
 }
 
 Scene load_scene(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw SceneError("$", "cannot read scene file " + file + ": a directory");
+  // scenes are a few KB; a regular file above this is not one (and is not read into memory)
+  constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{64} << 20;
+  if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) > kMaxSceneBytes)
+    throw SceneError("$", "scene file " + file + " is larger than 64 MiB");
   std::ifstream f(file, std::ios::binary);
   if (!f) throw SceneError("$", "cannot open scene file " + file);
   std::stringstream ss;
   ss << f.rdbuf();
+  if (f.bad()) throw SceneError("$", "read error in scene file " + file);
   return parse_scene_text(ss.str(), file);
 }
 
