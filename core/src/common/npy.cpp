@@ -36,33 +36,6 @@ void write_npy(const std::string& path, std::span<const float> data, const std::
   f.commit();
 }
 
-NpyArray read_npy(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw std::runtime_error("cannot read " + path);
-  char magic[10];
-  f.read(magic, 10);
-  if (!f || std::memcmp(magic, "\x93NUMPY", 6) != 0 || magic[6] != 1)
-    throw std::runtime_error(path + ": not a version 1 .npy file");
-  const std::size_t len = static_cast<unsigned char>(magic[8]) | (static_cast<unsigned char>(magic[9]) << 8);
-  std::string header(len, '\0');
-  f.read(header.data(), static_cast<std::streamsize>(len));
-  if (header.find("'<f4'") == std::string::npos || header.find("False") == std::string::npos)
-    throw std::runtime_error(path + ": only little-endian float32 C-order arrays are read");
-  NpyArray a;
-  const auto open = header.find("'shape': (");
-  const auto close = header.find(')', open);
-  std::istringstream dims(header.substr(open + 10, close - open - 10));
-  std::string tok;
-  std::size_t count = 1;
-  while (std::getline(dims, tok, ',')) {
-    if (tok.find_first_not_of(' ') == std::string::npos) continue;
-    a.shape.push_back(std::stoul(tok));
-    count *= a.shape.back();
-  }
-  a.data.resize(count);
-  f.read(reinterpret_cast<char*>(a.data.data()), static_cast<std::streamsize>(count * sizeof(float)));
-  if (!f) throw std::runtime_error(path + ": truncated data");
-  return a;
-}
+// read_npy, parse_npy: npy_read.cpp
 
 }  // namespace huygens

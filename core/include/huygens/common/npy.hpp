@@ -1,7 +1,8 @@
 #pragma once
 // NumPy .npy writer (format version 1.0, little-endian float32, C order) and
-// a reader for the same, used by tests. Writes go to FILE.tmp then rename, so a
-// file that exists is always complete.
+// a reader for the same (versions 1.0 to 3.0; its checks in npy_read.hpp), used by tests and by
+// scenes that name an array (an LBM bed). Writes go to FILE.tmp then rename, so a file that
+// exists is always complete.
 #include <cstddef>
 #include <span>
 #include <string>
@@ -17,7 +18,8 @@ struct NpyArray {
   std::vector<std::size_t> shape;
   std::vector<float> data;
 };
-/// Reads a float32 little-endian C-order .npy. Throws on anything else.
+/// Reads a float32 little-endian C-order .npy, a regular file. Throws NpyError (npy_read.hpp)
+/// naming the file for anything else, before allocating more than the file holds.
 NpyArray read_npy(const std::string& path);
 
 }  // namespace huygens
