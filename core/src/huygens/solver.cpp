@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "huygens/common/finite.hpp"
+#include "huygens/common/report.hpp"
 #include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens {
@@ -34,6 +35,17 @@ void parse_grid(const JsonIn& root, HuygensParams& p) {
   if (p.absorber == Absorber::paper_quadratic && m < 1) grid.fail("margin", "the cutoff needs margin >= 1");
 }
 
+// Smallest non-zero gravity, surface tension and depth: below them the dispersion relation is
+// degenerate in float arithmetic (docs/robustness.md).
+constexpr double kMinGravity = 1e-3, kMinTension = 1e-6, kMinDepth = 1e-6;
+
+// A value that is 0 or in [lo, hi], with both alternatives named in the error.
+double zero_or_at_least(const JsonIn& j, const char* key, double def, double lo, double hi) {
+  const double v = j.number(key, def, 0.0, hi);
+  if (v != 0.0 && v < lo) j.fail(key, fmt("must be 0 or in [%g, %g], got %g", lo, hi, v));
+  return v;
+}
+
 // water (all optional): depth_m null or absent = deep water
 void parse_water(const JsonIn& root, Water& w) {
   const auto water = root.optional_object("water");
@@ -41,15 +53,25 @@ void parse_water(const JsonIn& root, Water& w) {
   water->reject_renamed(
       {{"gravity", "gravity_mps2"}, {"surface_tension", "surface_tension_npm"}, {"density", "density_kgpm3"}});
   water->allow_only({"gravity_mps2", "surface_tension_npm", "density_kgpm3", "depth_m"});
-  w.gravity_mps2 = water->number("gravity_mps2", 9.81, 0.0, 1e3);
-  w.surface_tension_npm = water->number("surface_tension_npm", 0.072, 0.0, 10.0);
+  w.gravity_mps2 = zero_or_at_least(*water, "gravity_mps2", 9.81, kMinGravity, 1e3);
+  w.surface_tension_npm = zero_or_at_least(*water, "surface_tension_npm", 0.072, kMinTension, 10.0);
   w.density_kgpm3 = water->number("density_kgpm3", 1000.0, 1e-3, 1e5);
   if (auto d = water->optional_number("depth_m", 0.0, kBig)) {
-    if (*d <= 0) water->fail("depth_m", "depth must be > 0 (null for deep water)");
+    if (*d < kMinDepth) water->fail("depth_m", "depth must be >= 1e-6 m (null for deep water)");
     w.depth_m = *d;
   }
   if (w.gravity_mps2 == 0 && w.surface_tension_npm == 0)
     water->fail("gravity_mps2", "gravity and surface tension are both 0: no waves");
+}
+
+// The slowest wave of the grid (k1 = 2 pi / L) must move: with c = omega(k1) / k1 below 1e-6 m/s
+// the dispersion is degenerate (k / omega overflows a float in the Stokes and source tables).
+void check_dispersion(const JsonIn& root, const HuygensParams& p) {
+  const double k1 = 2.0 * std::numbers::pi / p.length_m, c = omega(p.water, k1) / k1;
+  if (!(c >= 1e-6) || !std::isfinite(c))
+    root.fail("water", fmt("the longest wave of the grid (%g m) moves at %g m/s, below 1e-6 m/s: raise gravity_mps2, "
+                           "surface_tension_npm or depth_m",
+                           p.length_m, c));
 }
 
 // time: dt_s > 0 (any value is stable), display_per_step
@@ -170,6 +192,7 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
   p.effort = options.measure_plans ? PlanEffort::measure : PlanEffort::estimate;
   parse_grid(root, p);
   parse_water(root, p.water);
+  check_dispersion(root, p);
   parse_time(root, out);
   parse_features(root, out);
   parse_initial(root, out);
@@ -183,8 +206,32 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
   p.spatial = !out.ships.empty();
   if (!out.ships.empty()) size_ship_patch(root, out);
   if (auto e = huygens_params_error(p); !e.empty()) root.fail_here(e);
+  require_memory(huygens_memory(out));  // before the ship probe, the first allocation
   if (!out.ships.empty()) check_ship_steps(root, out);
   return out;
+}
+
+MemoryEstimate huygens_memory(const HuygensScene& s) {
+  const HuygensParams& p = s.params;
+  const std::uint64_t n2 = static_cast<std::uint64_t>(p.n) * p.n, q2 = (p.n / 2 + 1) * std::uint64_t(p.n / 2 + 1);
+  const std::uint64_t v2 = static_cast<std::uint64_t>(p.n - 2 * p.margin) * (p.n - 2 * p.margin);
+  const std::uint64_t c = sizeof(cfloat), f = sizeof(float);
+  MemoryEstimate m;
+  m.size_key = "$.grid.n";
+  // Z^, S and (without Stokes or wind) the packed height H; the quadrant rotation tables
+  std::uint64_t prop = 2 * c * n2 + (p.rotation == Rotation::lifting ? 3 : 2) * f * q2;
+  if (!p.external_height) prop += c * n2 + 2 * f * q2 + 2 * f * v2;  // H, alpha, beta, eta, etadot
+  m.add("propagator", prop);
+  if (p.runtime_sources) m.add("drop tables", 2 * f * n2);
+  if (s.stokes || s.has_wind)  // StokesHeight (stokes.hpp) and the solver's eta, etadot
+    m.add("stokes height", (s.stokes ? 3 : 2) * f * q2 + (s.stokes ? 3 : 1) * c * n2 + 2 * f * v2);
+  if (s.has_wind) m.add("wind sea", sizeof(double) * n2 + 2 * c * n2 + 2 * c * q2);  // omega, W^(0), W^(t), P
+  if (s.display_per_step > 1) m.add("interpolation", 3 * f * v2);
+  if (!s.ships.empty()) {  // the patch buffer, omega, and two cached kernels per ship (ship_waves.hpp)
+    const std::uint64_t p2 = static_cast<std::uint64_t>(s.ship_patch) * s.ship_patch;
+    m.add("ship patches", c * p2 * (1 + 2 * s.ships.size()) + sizeof(double) * p2);
+  }
+  return m;
 }
 
 HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(scene_.params) {

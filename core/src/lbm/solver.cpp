@@ -39,6 +39,8 @@ class LbmSolver final : public Solver {
     sim_.bed(bed_);
   }
   void step() override { sim_.step(); }
+  MemoryEstimate memory() const override { return lbm_memory(sim_.params()); }
+
   double time() const override { return sim_.time_s(); }
   std::int64_t steps() const override { return sim_.steps(); }
   std::vector<OutputField> outputs() override {
@@ -397,6 +399,19 @@ LbmScene parse_lbm_scene(const Scene& scene) {
   const JsonIn lb = root.object("lbm");
   LbmScene s;
   s.render = parse_render_request(root);
+MemoryEstimate lbm_memory(const LbmParams& p) {
+  const std::uint64_t cells = static_cast<std::uint64_t>(p.rows) * p.cols;
+  const std::uint64_t lattice = static_cast<std::uint64_t>(p.rows + 2) * (p.cols + 2);  // with the ghost ring
+  MemoryEstimate m;
+  m.size_key = "$.lbm.grid.rows, $.lbm.grid.cols";
+  // two sets of 9 populations, depth now and next, bed (floats), the solid flags (bytes)
+  m.add("lattice", lattice * (18 * 4 + 3 * 4 + 1));
+  // the scene's fields (bed, depth, ux, uy, solid) and the solver's outputs (h, eta, u, v, bed)
+  m.add("scene fields", cells * (4 * 4 + 1));
+  m.add("output fields", cells * 5 * 4);
+  return m;
+}
+
   lb.allow_only({"grid", "time", "water", "bed", "bed_force", "initial", "boundaries", "inflow", "outflow", "obstacles",
                  "force"});
   LbmParams& p = s.params;
@@ -407,6 +422,7 @@ LbmScene parse_lbm_scene(const Scene& scene) {
   parse_obstacles(lb, p, s.fields, s.obstacles);
   parse_boundaries(lb, p);
   ParseNotes notes;
+  require_memory(lbm_memory(p));  // before the bed and initial fields, the first allocations
   notes.dt_given = parse_time(lb, s.fields, dam.signal_speed_mps, p);
   notes.tau_given = tau.has_value();
   notes.dam_ratio_max = dam.ratio_max;

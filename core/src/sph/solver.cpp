@@ -33,6 +33,7 @@ class SphSolver final : public Solver {
     sys_.stats()[surface_stage_].bytes = (hf_.height.size() + hf_.normal.size()) * sizeof(float);
     pos_.assign(sys_.count() * 3, 0.f);
   }
+  MemoryEstimate memory() const override { return sph_memory(scene_); }
 
   void step() override {
     sys_.step();
@@ -288,7 +289,28 @@ SphScene parse_sph_scene(const Scene& scene) {
   for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o));
   parse_time(s, p);
   out.surface = parse_surface(s, p);
+  require_memory(sph_memory(out));
   return out;
+}
+
+MemoryEstimate sph_memory(const SphScene& scene) {
+  const SphParams& p = scene.params;
+  double particles = 0;  // the lattice fill of every fluid block, as parse_fluid_blocks counts it
+  for (const auto& b : p.fluid)
+    particles += double(b.max_m[0] - b.min_m[0]) * (b.max_m[1] - b.min_m[1]) * (b.max_m[2] - b.min_m[2]) /
+                 (double(p.spacing_m) * p.spacing_m * p.spacing_m);
+  const double h = p.support(), cells = std::ceil(p.container_m[0] / h) * std::ceil(p.container_m[1] / h) *
+                                        std::ceil(p.container_m[2] / h);
+  const double columns =
+      std::ceil(p.container_m[0] / scene.surface.cell_m + 1) * std::ceil(p.container_m[1] / scene.surface.cell_m + 1);
+  MemoryEstimate m;
+  m.size_key = "$.sph.spacing_m";
+  // 22 float arrays per particle (system.hpp), the grid's cell and order per particle, a dump's
+  // (n, 3) positions; the grid's two cell arrays; the heightfield's columns (height, normals)
+  m.add("particles", static_cast<std::uint64_t>(particles * (22 * 4 + 2 * 4 + 3 * 4)));
+  m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4));
+  m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4));
+  return m;
 }
 
 std::unique_ptr<Solver> make_sph_solver(const SphScene& scene) { return std::make_unique<SphSolver>(scene); }

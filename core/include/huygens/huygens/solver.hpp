@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "huygens/common/memory.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/huygens/propagator.hpp"
 #include "huygens/huygens/ship_waves.hpp"
@@ -77,6 +78,9 @@ struct HuygensScene {
 
 /// Parses and checks a "huygens" scene; every error is a SceneError naming the JSON path.
 HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options = {});
+/// The bytes the solver of `scene` allocates (grids, tables, patches), before any is allocated;
+/// parse_huygens_scene() refuses a scene that needs more than available_memory().
+MemoryEstimate huygens_memory(const HuygensScene& scene);
 /// The "huygens" solver of a scene (make_solver's factory for this solver).
 std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
 
@@ -100,6 +104,7 @@ class HuygensSolver : public Solver {
     return etadot_view();
   }
   int display_per_step() const override { return scene_.display_per_step; }
+  MemoryEstimate memory() const override { return huygens_memory(scene_); }
   /// Frame j (1 <= j < D) of the last step: the cubic Hermite interpolant at s = j / D between
   /// the previous full step and the current one (needs steps() >= 1); j = 0 gives outputs().
   std::vector<OutputField> display_outputs(int j) override;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "huygens/common/memory.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/render_info.hpp"
@@ -33,6 +34,9 @@ struct LbmScene {
 /// Parses the scene's "lbm" block and checks it with lbm_check(); throws SceneError naming the
 /// JSON path.
 LbmScene parse_lbm_scene(const Scene& scene);
+/// The bytes the solver of a grid allocates (lattice, scene and output fields), before any is
+/// allocated; parse_lbm_scene() refuses a scene that needs more than available_memory().
+MemoryEstimate lbm_memory(const LbmParams& params);
 /// The Solver of a parsed scene.
 std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene);
 /// parse_lbm_scene() then make_lbm_solver() (this solver uses no RunOptions).

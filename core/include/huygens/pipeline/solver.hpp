@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "huygens/common/finite.hpp"
+#include "huygens/common/memory.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/common/stats.hpp"
 #include "huygens/pipeline/command.hpp"
@@ -65,6 +66,9 @@ class Solver {
     (void)out;
     return 0;
   }
+  /// The bytes the solver allocated, by part, as estimated from the scene before allocating (the
+  /// estimate the scene was checked against; memory.hpp).
+  virtual MemoryEstimate memory() const { return {}; }
   /// Displayed frames per full step D (unit: 1); 1 when the solver does not interpolate.
   virtual int display_per_step() const { return 1; }
   /// What a viewer needs besides the frames (render_info.hpp), from the parsed scene. May make the

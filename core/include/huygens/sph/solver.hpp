@@ -14,6 +14,7 @@
 //              "surface": { "cell_m": 0.01, "radius_factor": 2.0, "iso": null } } }
 #include <memory>
 
+#include "huygens/common/memory.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/sph/params.hpp"
 #include "huygens/sph/surface.hpp"
@@ -34,6 +35,9 @@ struct SphScene {
 /// Parses and checks the scene's "sph" block (throws SceneError naming the JSON path).
 SphScene parse_sph_scene(const Scene& scene);
 /// The Solver of a parsed scene (throws std::invalid_argument for an unusable set-up).
+/// The bytes the solver of `scene` allocates (particles, neighbour grid, heightfield), before any
+/// is allocated; parse_sph_scene() refuses a scene that needs more than available_memory().
+MemoryEstimate sph_memory(const SphScene& scene);
 std::unique_ptr<Solver> make_sph_solver(const SphScene& scene);
 /// parse_sph_scene() then make_sph_solver() (this solver uses no RunOptions); an unusable set-up
 /// is a SceneError at "$.sph".

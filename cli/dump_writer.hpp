@@ -1,0 +1,39 @@
+#pragma once
+// The dump folder of `huygens run`: DIR/<field>_NNNNNN[_J].npy per dumped step and DIR/meta.json,
+// rewritten after every dump so it always lists exactly the complete dumps (docs/robustness.md).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "huygens/pipeline/solver.hpp"
+
+namespace huygens {
+
+class DumpWriter {
+ public:
+  /// Makes DIR (or checks it) before the run: a folder that holds another run's files (meta.json,
+  /// *.npy) is refused with UsageError unless `overwrite`, which removes those files only; DIR
+  /// must take a new file (IoError otherwise).
+  static void prepare(const std::string& dir, bool overwrite);
+
+  DumpWriter(std::string dir, const std::string& scene_file, Solver& solver);
+  /// Writes the current step's fields (and the displayed frames interpolated inside the last
+  /// step), then meta.json. Throws IoError naming the file; the earlier dumps stay listed.
+  void dump();
+  /// Records how the run ended ("stopped": stage, step, reason or signal) and writes meta.json.
+  void stopped(const nlohmann::json& entry);
+  /// Marks the run complete and writes meta.json.
+  void complete();
+
+ private:
+  void write_entry(nlohmann::json entry, const std::vector<OutputField>& fields, const std::string& suffix);
+  void write_step();
+  void save_meta();
+
+  std::string dir_;
+  Solver& solver_;
+  nlohmann::json meta_;
+  std::vector<std::string> written_;  // the files of the dump being written
+};
+
+}  // namespace huygens

@@ -1,0 +1,112 @@
+#include "huygens/common/memory.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "huygens/common/program.hpp"
+
+namespace huygens {
+
+namespace {
+
+constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
+
+// The first number in a file ("max" or a missing file: unlimited).
+std::uint64_t read_number(const std::string& path) {
+  std::ifstream f(path);
+  std::string word;
+  if (!(f >> word) || word == "max") return kUnlimited;
+  char* end = nullptr;
+  const unsigned long long v = std::strtoull(word.c_str(), &end, 10);
+  return *end ? kUnlimited : v;
+}
+
+std::uint64_t mem_available() {
+  std::ifstream f("/proc/meminfo");
+  std::string key;
+  std::uint64_t kib = 0;
+  std::string unit;
+  while (f >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return kUnlimited;
+}
+
+// The memory cgroup's room: limit - usage (v2 first, then v1), from /proc/self/cgroup's path.
+std::uint64_t cgroup_room() {
+  std::ifstream f("/proc/self/cgroup");
+  std::string line;
+  std::uint64_t room = kUnlimited;
+  while (std::getline(f, line)) {
+    const auto c1 = line.find(':'), c2 = line.find(':', c1 + 1);
+    if (c1 == std::string::npos || c2 == std::string::npos) continue;
+    const std::string controllers = line.substr(c1 + 1, c2 - c1 - 1), path = line.substr(c2 + 1);
+    std::uint64_t limit = kUnlimited, usage = 0;
+    if (controllers.empty()) {  // v2
+      limit = read_number("/sys/fs/cgroup" + path + "/memory.max");
+      usage = read_number("/sys/fs/cgroup" + path + "/memory.current");
+    } else if (controllers.find("memory") != std::string::npos) {
+      limit = read_number("/sys/fs/cgroup/memory" + path + "/memory.limit_in_bytes");
+      if (limit == kUnlimited) limit = read_number("/sys/fs/cgroup/memory/memory.limit_in_bytes");
+      usage = read_number("/sys/fs/cgroup/memory" + path + "/memory.usage_in_bytes");
+    }
+    if (limit != kUnlimited && usage != kUnlimited) room = std::min(room, limit > usage ? limit - usage : 0);
+  }
+  return room;
+}
+
+}  // namespace
+
+std::uint64_t MemoryEstimate::total() const {
+  std::uint64_t t = 0;
+  for (const auto& [name, b] : parts) t += b;
+  return t;
+}
+
+std::string format_bytes(std::uint64_t bytes) {
+  char buf[48];
+  const double mib = static_cast<double>(bytes) / (1024.0 * 1024.0);
+  if (mib < 1024.0)
+    std::snprintf(buf, sizeof buf, "%.0f MiB", std::ceil(mib));
+  else
+    std::snprintf(buf, sizeof buf, "%.2f GiB", mib / 1024.0);
+  return buf;
+}
+
+std::string MemoryEstimate::summary() const {
+  std::ostringstream s;
+  s << format_bytes(total()) << " (";
+  bool first = true;
+  for (const auto& [name, b] : parts) {
+    if (b == 0) continue;
+    s << (first ? "" : ", ") << name << " " << format_bytes(b);
+    first = false;
+  }
+  s << ")";
+  return s.str();
+}
+
+std::uint64_t available_memory() {
+  std::uint64_t avail = std::min(mem_available(), cgroup_room());
+  if (const char* cap = std::getenv("HUYGENS_MAX_MEMORY_GIB"); cap && *cap) {
+    char* end = nullptr;
+    const double gib = std::strtod(cap, &end);
+    if (*end || !(gib >= 0) || !std::isfinite(gib))
+      throw ResourceError(std::string("HUYGENS_MAX_MEMORY_GIB must be a number of GiB >= 0, got '") + cap + "'");
+    avail = std::min(avail, static_cast<std::uint64_t>(gib * 1024.0 * 1024.0 * 1024.0));
+  }
+  return avail;
+}
+
+void require_memory(const MemoryEstimate& need) {
+  const std::uint64_t avail = available_memory();
+  if (need.total() <= avail) return;
+  throw ResourceError("the scene needs " + need.summary() + ", " + format_bytes(avail) + " available; " +
+                      need.size_key + " sets the size");
+}
+
+}  // namespace huygens

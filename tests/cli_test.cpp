@@ -1,0 +1,192 @@
+// `huygens run` as a user meets it when things go wrong (docs/robustness.md): every end is a
+// message and a documented exit code, output targets are checked before the run, a failed write
+// or a signal leaves meta.json listing exactly the complete dumps, and a scene too large for the
+// memory is refused before anything is allocated. The program runs as a separate process.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code = -1;  // exit code, or 128 + signal when killed by one
+  std::string output;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+fs::path work_dir(const std::string& name) {
+  const fs::path d = fs::path(::testing::TempDir()) / ("cli_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Runs `sh -c "PREFIX huygens ARGS"` in `dir`, stdout and stderr into one text.
+Result run(const fs::path& dir, const std::string& args, const std::string& prefix = "") {
+  const std::string out = (dir / "output.txt").string();
+  const std::string cmd =
+      "cd '" + dir.string() + "' && " + prefix + " '" + HUYGENS_CLI + "' " + args + " > '" + out + "' 2>&1";
+  const int status = std::system(("sh -c \"" + cmd + "\"").c_str());
+  Result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.output = slurp(out);
+  return r;
+}
+
+// A small Huygens scene (64^2, one Gaussian) with `water` as its water block.
+fs::path scene(const fs::path& dir, const std::string& water = "{}", int n = 64) {
+  const fs::path p = dir / "scene.json";
+  std::ofstream(p) << R"({"solver": "huygens", "grid": {"n": )" << n << R"(, "length_m": 2.0, "margin": 8},
+    "water": )" << water
+                   << R"(, "time": {"dt_s": 0.01},
+    "initial": [{"type": "gaussian", "x_m": 1.0, "y_m": 1.0, "sigma_m": 0.1, "amplitude_m": 0.01}]})";
+  return p;
+}
+
+// The dumps meta.json lists, and the files in the folder besides meta.json.
+void expect_listed_equals_present(const fs::path& dumps) {
+  const auto meta = nlohmann::json::parse(slurp(dumps / "meta.json"));
+  std::set<std::string> listed, present;
+  for (const auto& d : meta["dumps"])
+    for (const auto& f : d["files"]) listed.insert(f.get<std::string>());
+  for (const auto& e : fs::directory_iterator(dumps))
+    if (e.path().filename() != "meta.json") present.insert(e.path().filename().string());
+  EXPECT_EQ(listed, present);
+}
+
+}  // namespace
+
+TEST(Cli, NumbersOnTheCommandLineAreCheckedWithTheirRange) {
+  const fs::path d = work_dir("numbers");
+  scene(d);
+  for (const char* bad : {"--steps 99999999999999999999", "--steps 9223372036854775808", "--steps -1", "--steps 1e3",
+                          "--steps ''", "--dump-every 0", "--dump ''", "--stats-json ''", "--nosuch"}) {
+    const Result r = run(d, std::string("run scene.json ") + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    EXPECT_EQ(r.output.rfind("huygens: ", 0), 0u) << bad << ": " << r.output;
+  }
+}
+
+TEST(Cli, OutputTargetsAreCheckedBeforeTheRun) {
+  const fs::path d = work_dir("targets");
+  scene(d);
+  for (const char* bad : {"--stats-json missing/stats.json", "--stats-json .", "--dump scene.json"}) {
+    const Result r = run(d, std::string("run scene.json --steps 5 ") + bad);
+    EXPECT_EQ(r.code, 1) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("cannot write"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("steps to t"), std::string::npos) << "the run must not start: " << r.output;
+  }
+  EXPECT_FALSE(fs::exists(d / "missing"));
+}
+
+TEST(Cli, ADumpFolderOfAnotherRunIsRefusedUnlessOverwrite) {
+  const fs::path d = work_dir("reuse");
+  scene(d);
+  ASSERT_EQ(run(d, "run scene.json --steps 4 --dump out --fast-plans").code, 0);
+  const Result again = run(d, "run scene.json --steps 2 --dump out --fast-plans");
+  EXPECT_EQ(again.code, 2) << again.output;
+  EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
+  std::ofstream(d / "out" / "notes.txt") << "mine";
+  const Result over = run(d, "run scene.json --steps 2 --dump out --overwrite --fast-plans");
+  EXPECT_EQ(over.code, 0) << over.output;
+  EXPECT_TRUE(fs::exists(d / "out" / "notes.txt"));  // only the run's own files are removed
+  fs::remove(d / "out" / "notes.txt");
+  expect_listed_equals_present(d / "out");
+  EXPECT_EQ(nlohmann::json::parse(slurp(d / "out" / "meta.json"))["dumps"].size(), 3u);
+}
+
+// A full disk, made real by the file-size limit (ulimit -f, 1 KiB blocks): each dump (48^2
+// visible floats) is 9 KiB, meta.json grows by ~200 bytes a dump and passes 64 KiB after a few
+// hundred dumps: that write fails, and the meta.json before it must stay.
+TEST(Cli, AFailedWriteStopsTheRunAndKeepsTheLastGoodMeta) {
+  const fs::path d = work_dir("full");
+  scene(d);
+  const Result r = run(d, "run scene.json --steps 3000 --dump out --fast-plans", "ulimit -f 64;");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write out/meta.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("too large"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stage"), std::string::npos) << "the stage table is printed: " << r.output;
+  expect_listed_equals_present(d / "out");  // no temporary, no unlisted step
+  EXPECT_GT(nlohmann::json::parse(slurp(d / "out" / "meta.json"))["dumps"].size(), 100u);
+}
+
+TEST(Cli, SigintStopsTheRunCleanly) {
+  const fs::path d = work_dir("sigint");
+  scene(d, "{}", 256);
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ASSERT_EQ(chdir(d.c_str()), 0);
+    const int fd = ::open("output.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execl(HUYGENS_CLI, HUYGENS_CLI, "run", "scene.json", "--steps", "100000000", "--dump", "out", "--dump-every", "3",
+          "--fast-plans", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  // wait for a few dumps, then interrupt
+  for (int i = 0; i < 600; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (fs::exists(d / "out" / "eta_000006.npy")) break;
+  }
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  const std::string out = slurp(d / "output.txt");
+  EXPECT_NE(out.find("by SIGINT"), std::string::npos) << out;
+  EXPECT_NE(out.find("stage"), std::string::npos) << out;
+  const auto meta = nlohmann::json::parse(slurp(d / "out" / "meta.json"));
+  EXPECT_EQ(meta["stopped"]["signal"], "SIGINT");
+  EXPECT_GE(meta["stopped"]["step"].get<long long>(), 6);
+  EXPECT_FALSE(meta["complete"].get<bool>());
+  expect_listed_equals_present(d / "out");
+}
+
+TEST(Cli, AScenePastTheMemoryIsRefusedBeforeTheRun) {
+  const fs::path d = work_dir("memory");
+  scene(d, "{}", 1024);  // about 30 MiB of fields
+  const Result r = run(d, "run scene.json --steps 1 --fast-plans", "HUYGENS_MAX_MEMORY_GIB=0.01");
+  EXPECT_EQ(r.code, 4) << r.output;
+  EXPECT_NE(r.output.find("needs"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("available"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("$.grid.n"), std::string::npos) << r.output;
+  const Result ok = run(d, "run scene.json --steps 1 --fast-plans", "HUYGENS_MAX_MEMORY_GIB=1");
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("estimated"), std::string::npos) << ok.output;
+}
+
+TEST(Cli, DegenerateWaterIsRefusedWithItsPath) {
+  const fs::path d = work_dir("degenerate");
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"depth_m": 1e-100})", "$.water.depth_m"},
+      {R"({"gravity_mps2": 1e-300, "surface_tension_npm": 0})", "$.water.gravity_mps2"},
+      {R"({"gravity_mps2": 0, "surface_tension_npm": 1e-300})", "$.water.surface_tension_npm"},
+  };
+  for (const auto& [water, path] : cases) {
+    scene(d, water);
+    const Result r = run(d, "run scene.json --steps 2 --fast-plans");
+    EXPECT_EQ(r.code, 2) << water << ": " << r.output;
+    EXPECT_NE(r.output.find(path), std::string::npos) << water << ": " << r.output;
+  }
+}
