@@ -190,3 +190,17 @@ TEST(Cli, DegenerateWaterIsRefusedWithItsPath) {
     EXPECT_NE(r.output.find(path), std::string::npos) << water << ": " << r.output;
   }
 }
+
+#ifdef HUYGENS_VIZ
+TEST(Cli, TheViewersCommandLineIsCheckedToo) {
+  const fs::path d = work_dir("viz");
+  for (const char* bad : {"--frames abc", "--frames 0", "--time nan", "--time -1", "--size 10x10x", "--subsample 99",
+                          "--screenshot ''", "a.json b.json", "."}) {
+    const std::string out = (d / "output.txt").string();
+    const int status = std::system(("'" + std::string(HUYGENS_VIZ) + "' " + bad + " > '" + out + "' 2>&1").c_str());
+    ASSERT_TRUE(WIFEXITED(status)) << bad;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << bad << ": " << slurp(out);
+    EXPECT_EQ(slurp(out).rfind("huygens-viz: ", 0), 0u) << bad << ": " << slurp(out);
+  }
+}
+#endif

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "gl.hpp"
+#include "huygens/common/atomic_file.hpp"
 
 namespace huygens::gl {
 
@@ -173,8 +174,15 @@ void write_png(const std::string& path, const Image8& img) {
   if (img.channels < 1 || img.channels > 4 ||
       img.pixels.size() != static_cast<std::size_t>(img.width) * img.height * img.channels)
     throw GlError("write_png: inconsistent image for '" + path + "'");
-  if (!stbi_write_png(path.c_str(), img.width, img.height, img.channels, img.pixels.data(), img.width * img.channels))
-    throw GlError("write_png: cannot write '" + path + "'");
+  // encoded in memory, then written atomically (checked writes, no half-written PNG)
+  std::string bytes;
+  auto append = [](void* out, void* data, int size) {
+    static_cast<std::string*>(out)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+  };
+  if (!stbi_write_png_to_func(append, &bytes, img.width, img.height, img.channels, img.pixels.data(),
+                              img.width * img.channels))
+    throw GlError("write_png: cannot encode '" + path + "'");
+  huygens::write_file_atomic(path, bytes);
 }
 
 Image8 read_png(const std::string& path, int channels) {

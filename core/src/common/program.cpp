@@ -54,7 +54,9 @@ long long parse_int_arg(std::string_view flag, const char* text, long long lo, l
 }
 
 double parse_real_arg(std::string_view flag, const char* text, double lo, double hi) {
-  const std::string want = "a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  char range[64];
+  std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+  const std::string want = std::string("a number in ") + range;
   if (!text || !*text) bad_value(flag, text, want);
   char* end = nullptr;
   errno = 0;
