@@ -13,7 +13,9 @@
 
 #include "bench.hpp"
 #include "bench_scenes.hpp"
+#include "huygens/common/atomic_file.hpp"
 #include "huygens/common/fft.hpp"
+#include "huygens/common/program.hpp"
 
 namespace huygens::bench {
 
@@ -65,47 +67,76 @@ const char* kUsage =
     "usage: huygens-bench [SECTION[:PART]...] [--quick] [--csv FILE] [--threads LIST]\n"
     "sections: all (default)";
 
+// The parts a section offers (SECTION:PART); other sections have none.
+const std::map<std::string, std::vector<std::string>> kParts = {{"stress", {"huygens", "sph", "lbm"}}};
+
+void print_help(const std::map<std::string, huygens::bench::Section>& sections) {
+  std::printf("%s", kUsage);
+  for (const auto& [name, fn] : sections) std::printf(", %s", name.c_str());
+  std::printf(
+      "\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm)\n"
+      "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
+      "  --csv FILE also write every table's rows as CSV (checked before the run, written atomically)\n"
+      "  --threads  comma-separated thread counts to sweep, each in [1, 1024] (default 1,<cores>)\n"
+      "exit codes: 0 ok; 1 an accuracy check failed or a write failed; 2 bad usage\n");
+}
+
+// Reads the command line; false for --help. Throws UsageError for bad usage.
+bool parse_bench_args(int argc, char** argv, const std::map<std::string, huygens::bench::Section>& sections,
+                      huygens::bench::Context& ctx, std::string& csv, std::vector<std::string>& chosen) {
+  using huygens::UsageError;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) throw UsageError(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--quick") {
+      ctx.quick = true;
+    } else if (a == "--csv") {
+      csv = huygens::nonempty_arg(a, value());
+    } else if (a == "--threads") {
+      ctx.threads.clear();
+      const std::string list = huygens::nonempty_arg(a, value());
+      for (std::size_t b = 0; b <= list.size();) {
+        const std::size_t e = std::min(list.find(',', b), list.size());
+        ctx.threads.push_back(static_cast<int>(huygens::parse_int_arg(a, list.substr(b, e - b).c_str(), 1, 1024)));
+        b = e + 1;
+      }
+    } else if (a == "--help" || a == "-h") {
+      print_help(sections);
+      return false;
+    } else if (a == "all") {
+    } else if (sections.count(a)) {
+      chosen.push_back(a);
+    } else if (const auto colon = a.find(':'); colon != std::string::npos) {
+      const std::string section = a.substr(0, colon), part = a.substr(colon + 1);
+      const auto parts = kParts.find(section);
+      if (parts == kParts.end() || std::find(parts->second.begin(), parts->second.end(), part) == parts->second.end())
+        throw UsageError("unknown section part '" + a + "' (parts: stress:huygens, stress:sph, stress:lbm)");
+      chosen.push_back(section);  // SECTION:PART runs one part (e.g. stress:sph)
+      ctx.parts.push_back(part);
+    } else {
+      throw UsageError("unknown argument '" + a + "'");
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
-int main(int argc, char** argv) {
+int bench_main(int argc, char** argv) {
   using namespace huygens::bench;
   const std::map<std::string, Section> sections = {
       {"huygens", bench_huygens}, {"pipeline", bench_pipeline}, {"ships", bench_ships}, {"lbm", bench_lbm},
       {"sph", bench_sph},         {"accuracy", bench_accuracy}, {"skip", bench_skip},   {"stress", bench_stress},
-      {"interp", bench_interp},   {"render", bench_render},
+      {"interp", bench_interp},   {"render", bench_render},     {"load", bench_load},
   };
   Context ctx;
   std::string csv;
   std::vector<std::string> chosen;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--quick")
-      ctx.quick = true;
-    else if (a == "--csv" && i + 1 < argc)
-      csv = argv[++i];
-    else if (a == "--threads" && i + 1 < argc) {
-      ctx.threads.clear();
-      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) ctx.threads.push_back(std::atoi(t));
-    } else if (a == "--help" || a == "-h") {
-      std::printf("%s", kUsage);
-      for (const auto& [name, fn] : sections) std::printf(", %s", name.c_str());
-      std::printf(
-          "\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm)\n"
-          "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
-          "  --csv FILE also write every table's rows as CSV\n"
-          "  --threads  comma-separated thread counts to sweep (default 1,<cores>)\n");
-      return 0;
-    } else if (a == "all") {
-    } else if (sections.count(a))
-      chosen.push_back(a);
-    else if (const auto colon = a.find(':'); colon != std::string::npos && sections.count(a.substr(0, colon))) {
-      chosen.push_back(a.substr(0, colon));  // SECTION:PART runs one part (e.g. stress:sph)
-      ctx.parts.push_back(a.substr(colon + 1));
-    } else {
-      std::fprintf(stderr, "huygens-bench: unknown argument '%s' (see --help)\n", a.c_str());
-      return 2;
-    }
-  }
+  if (!parse_bench_args(argc, argv, sections, ctx, csv, chosen)) return 0;
+  if (!csv.empty()) huygens::check_output_file(csv);  // before the run, not after it
   if (ctx.threads.empty()) {
     ctx.threads.push_back(1);
     const int hw = static_cast<int>(std::thread::hardware_concurrency());
@@ -125,9 +156,14 @@ int main(int argc, char** argv) {
   took.add({"total", huygens::fmt("%.1f", seconds_since(start))});
   std::printf("\n== run time per section ==\n%s", took.text().c_str());
   if (!csv.empty()) {
-    std::ofstream f(csv);
-    for (const auto& [title, table] : ctx.tables) f << "# " << title << "\n" << table.csv() << "\n";
+    std::string text;
+    for (const auto& [title, table] : ctx.tables) text += "# " + title + "\n" + table.csv() + "\n";
+    huygens::write_file_atomic(csv, text);
   }
   std::printf("\nhuygens-bench: %d accuracy check(s) failed\n", ctx.failures);
   return ctx.failures ? 1 : 0;
+}
+
+int main(int argc, char** argv) {
+  return huygens::run_program("huygens-bench", [&]() { return bench_main(argc, argv); });
 }

@@ -204,3 +204,14 @@ TEST(Cli, TheViewersCommandLineIsCheckedToo) {
   }
 }
 #endif
+
+// OpenMP threads sleep at barriers unless the user sets OMP_WAIT_POLICY (program.cpp): libgomp
+// prints the policy it took with OMP_DISPLAY_ENV.
+TEST(Cli, OpenMpWaitsArePassiveUnlessTheUserChooses) {
+  const fs::path d = work_dir("omp");
+  scene(d);
+  const Result unset = run(d, "run scene.json --steps 1 --fast-plans", "env -u OMP_WAIT_POLICY OMP_DISPLAY_ENV=true");
+  EXPECT_NE(unset.output.find("OMP_WAIT_POLICY = 'PASSIVE'"), std::string::npos) << unset.output;
+  const Result active = run(d, "run scene.json --steps 1 --fast-plans", "OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=true");
+  EXPECT_NE(active.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << active.output;
+}

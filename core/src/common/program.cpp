@@ -70,6 +70,16 @@ std::string nonempty_arg(std::string_view flag, const char* text) {
   return text;
 }
 
+// OpenMP threads that sleep at barriers unless the user chose otherwise: with spinning waits, a
+// region's barrier waits for a thread the kernel descheduled for another process, and 2 threads
+// run slower than 1 on a loaded machine (docs/robustness.md, the "load" bench). libgomp reads
+// OMP_WAIT_POLICY once, in its initialiser, before main(); an executable's .preinit_array runs
+// before any library's initialiser, so the default is set there. OMP_WAIT_POLICY=active restores
+// spinning.
+void default_passive_waits(int, char**, char**) { setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0); }
+__attribute__((section(".preinit_array"), used)) void (*const huygens_preinit_omp)(int, char**,
+                                                                                  char**) = default_passive_waits;
+
 int run_program(const char* name, const std::function<int()>& body) {
   g_program = name;
   std::set_terminate(on_terminate);
