@@ -17,6 +17,8 @@
 #include "accum_blur.hpp"
 #include "caustics.hpp"
 #include "gl/gl.hpp"
+#include "huygens/common/atomic_file.hpp"
+#include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/stats.hpp"  // median_seconds
 
@@ -49,28 +51,35 @@ CausticsParams make_params(int mesh, int tex, const Mode& m, CausticsProjection 
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int bench_main(int argc, char** argv) {
   bool quick = false;
   std::string csv, png, only;
   for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--quick"))
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) throw UsageError(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--quick")
       quick = true;
-    else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc)
-      csv = argv[++i];
-    else if (!std::strcmp(argv[i], "--png") && i + 1 < argc)
-      png = argv[++i];
-    else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
-      only = argv[++i];
-    else {
-      std::fprintf(stderr, "usage: huygens-caustics-bench [--quick] [--only speed|error] [--csv FILE] [--png FILE]\n");
-      return 2;
-    }
+    else if (a == "--csv")
+      csv = nonempty_arg(a, value());
+    else if (a == "--png")
+      png = nonempty_arg(a, value());
+    else if (a == "--only")
+      only = nonempty_arg(a, value());
+    else if (a == "--help" || a == "-h") {
+      std::printf(
+          "usage: huygens-caustics-bench [--quick] [--only speed|error] [--csv FILE] [--png FILE]\n"
+          "exit codes: 0 ok; 1 a GL or write failure; 2 bad usage\n");
+      return 0;
+    } else
+      throw UsageError("unknown argument '" + a + "'");
   }
-  if (!only.empty() && only != "speed" && only != "error") {
-    std::fprintf(stderr, "huygens-caustics-bench: --only takes 'speed' or 'error'\n");
-    return 2;
-  }
-  try {
+  if (!only.empty() && only != "speed" && only != "error") throw UsageError("--only takes 'speed' or 'error'");
+  for (const std::string& target : {csv, png})  // checked before the run, not after it
+    if (!target.empty()) check_output_file(target);
+  {
     gl::HeadlessContext ctx;
     const char* lp = std::getenv("LP_NUM_THREADS");
     std::printf("GL: %s, %s (LP_NUM_THREADS=%s)\n", ctx.renderer().c_str(), ctx.version().c_str(), lp ? lp : "unset");
@@ -237,12 +246,14 @@ void main() { o_color = vec4(texelFetch(u_src, ivec2(gl_FragCoord.xy), 0).r); }
       tables.emplace_back("caustics error", t);
     }
     if (!csv.empty()) {
-      std::ofstream out(csv);
-      for (const auto& [title, table] : tables) out << "# " << title << "\n" << table.csv() << "\n";
+      std::string text;
+      for (const auto& [title, table] : tables) text += "# " + title + "\n" + table.csv() + "\n";
+      write_file_atomic(csv, text);
     }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "huygens-caustics-bench: %s\n", e.what());
-    return 1;
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return run_program("huygens-caustics-bench", [&]() { return bench_main(argc, argv); });
 }
