@@ -5,12 +5,14 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "huygens/common/npy.hpp"
+#include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/lbm/solver.hpp"
 #include "huygens/lbm/stoker.hpp"
@@ -311,4 +313,45 @@ TEST(LbmScene, NullVectorsAreZero) {
   EXPECT_EQ(s.params.accel_mps2[1], 0.0);
   j["lbm"]["initial"]["velocity_mps"] = nullptr;
   EXPECT_FLOAT_EQ(parse_lbm_scene(parse_scene_text(j.dump())).fields.ux_mps[0], 0.0f);
+}
+
+// A bed file with a NaN, an infinity or a height beyond 1e4 m is refused at the key that named
+// it, with the row, column, flat index and value (a NaN bed used to run to the end, exit 0).
+TEST(LbmScene, NonFiniteOrOutOfRangeBedIsRefusedNamingTheCell) {
+  const auto dir = std::filesystem::temp_directory_path() / "huygens_lbm_bad_bed_test";
+  std::filesystem::create_directories(dir);
+  const int rows = 4, cols = 10;
+  json j = json::parse(kBase);
+  j["lbm"]["grid"] = {{"cols", cols}, {"rows", rows}, {"cell_m", 0.5}};
+  j["lbm"]["bed"] = {{"type", "npy"}, {"file", (dir / "bed.npy").string()}};
+  j["lbm"]["initial"] = {{"surface_m", 1.0}};
+  j["lbm"]["obstacles"] = json::array();
+  for (const float bad : {std::nanf(""), INFINITY, 2e4f}) {
+    std::vector<float> bed(rows * cols, 0.1f);
+    bed[2 * cols + 7] = bad;
+    write_npy((dir / "bed.npy").string(), bed, {static_cast<std::size_t>(rows), static_cast<std::size_t>(cols)});
+    try {
+      make_solver(parse_scene_text(j.dump()), RunOptions{false});
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const SceneError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(e.path(), "$.lbm.bed.file");
+      EXPECT_NE(m.find("row 2, column 7 (flat index 27)"), std::string::npos) << m;
+      EXPECT_NE(m.find("bed value " + fmt("%g", bad)), std::string::npos) << m;
+    }
+  }
+  // a malformed file: the reader's message (the file and the fault) under the same key
+  {
+    std::ofstream f(dir / "bed.npy", std::ios::binary);
+    const char bytes[] = "\x93NUMPY\x01\x00\x10\x00{'shape': (x,)} ";  // a 16-byte header dict
+    f.write(bytes, sizeof bytes - 1);
+  }
+  try {
+    make_solver(parse_scene_text(j.dump()), RunOptions{false});
+    ADD_FAILURE() << "malformed bed accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.path(), "$.lbm.bed.file");
+    EXPECT_NE(std::string(e.what()).find("bed.npy: bad header"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
 }

@@ -221,13 +221,14 @@ std::string line_column(const std::string& text, std::size_t byte) {
   return "line " + std::to_string(line) + ", column " + std::to_string(col);
 }
 
-// The part of a nlohmann message after "[json.exception.x.n] ... error: " or "] ".
+// The reason of a nlohmann message: after "[json.exception.<kind>.<id>] " and, for a parse error,
+// after its own "parse error at line L, column C: " (the caller gives the position).
 std::string json_reason(const json::exception& e) {
   std::string what = e.what();
-  auto p = what.find("error: ");
-  if (p != std::string::npos) return what.substr(p + 7);
-  p = what.find("] ");
-  return p == std::string::npos ? what : what.substr(p + 2);
+  auto p = what.find("] ");
+  if (p != std::string::npos) what = what.substr(p + 2);
+  if (what.rfind("parse error", 0) == 0 && (p = what.find(": ")) != std::string::npos) what = what.substr(p + 2);
+  return what;
 }
 
 json parse_json(const std::string& text, const std::string& name) {

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "huygens/common/npy.hpp"
+#include "huygens/common/npy_read.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/lbm/shallow.hpp"
 #include "huygens/lbm/stoker.hpp"
@@ -38,9 +39,9 @@ class LbmSolver final : public Solver {
     bed_.resize(n);
     sim_.bed(bed_);
   }
-  void step() override { sim_.step(); }
   MemoryEstimate memory() const override { return lbm_memory(sim_.params()); }
 
+  void step() override { sim_.step(); }
   double time() const override { return sim_.time_s(); }
   std::int64_t steps() const override { return sim_.steps(); }
   std::vector<OutputField> outputs() override {
@@ -179,6 +180,11 @@ std::vector<float> npy_bed(const JsonIn& bed, const Scene& scene, const LbmParam
       a.shape[1] != static_cast<std::size_t>(p.cols))
     bed.fail("file", "bed array must have shape (rows, cols) = (" + std::to_string(p.rows) + ", " +
                          std::to_string(p.cols) + ")");
+  // the same range as a flat or bump bed's heights
+  if (const auto i = first_invalid(a.data, -1e4, 1e4))
+    bed.fail("file", "bed value " + fmt("%g", a.data[*i]) + " at row " + std::to_string(*i / p.cols) + ", column " +
+                         std::to_string(*i % p.cols) + " (flat index " + std::to_string(*i) + ") of " + file.string() +
+                         " is not a finite height in [-1e4, 1e4] m");
   return std::move(a.data);
 }
 
@@ -393,12 +399,6 @@ void check_scene(const LbmScene& s, const ParseNotes& notes) {
 
 }  // namespace
 
-LbmScene parse_lbm_scene(const Scene& scene) {
-  const JsonIn root = scene.root();
-  root.allow_only({"solver", "lbm", "description", "render"});
-  const JsonIn lb = root.object("lbm");
-  LbmScene s;
-  s.render = parse_render_request(root);
 MemoryEstimate lbm_memory(const LbmParams& p) {
   const std::uint64_t cells = static_cast<std::uint64_t>(p.rows) * p.cols;
   const std::uint64_t lattice = static_cast<std::uint64_t>(p.rows + 2) * (p.cols + 2);  // with the ghost ring
@@ -412,17 +412,23 @@ MemoryEstimate lbm_memory(const LbmParams& p) {
   return m;
 }
 
+LbmScene parse_lbm_scene(const Scene& scene) {
+  const JsonIn root = scene.root();
+  root.allow_only({"solver", "lbm", "description", "render"});
+  const JsonIn lb = root.object("lbm");
+  LbmScene s;
+  s.render = parse_render_request(root);
   lb.allow_only({"grid", "time", "water", "bed", "bed_force", "initial", "boundaries", "inflow", "outflow", "obstacles",
                  "force"});
   LbmParams& p = s.params;
   parse_grid(lb, p);
+  require_memory(lbm_memory(p));  // before the bed and initial fields, the first allocations
   const std::optional<double> tau = parse_water(lb, p);
   parse_bed(lb, scene, p, s.fields);
   const DamFlow dam = parse_initial(lb, p, s.fields);
   parse_obstacles(lb, p, s.fields, s.obstacles);
   parse_boundaries(lb, p);
   ParseNotes notes;
-  require_memory(lbm_memory(p));  // before the bed and initial fields, the first allocations
   notes.dt_given = parse_time(lb, s.fields, dam.signal_speed_mps, p);
   notes.tau_given = tau.has_value();
   notes.dam_ratio_max = dam.ratio_max;
