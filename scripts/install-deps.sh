@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config clang-format
+  clang libclang-rt-14-dev libomp-dev  # the libFuzzer targets (scripts/test-fuzz.sh)
   libfftw3-dev libglm-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libepoxy-dev libimgui-dev

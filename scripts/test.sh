@@ -5,6 +5,7 @@
 # Between the two, `huygens-bench --quick` (every section at CI size, about 2-3 minutes): it
 # asserts no timing, but it must finish and its accuracy checks must pass (exit 0).
 # HUYGENS_SKIP_SANITIZERS=1 runs the Release suite only; HUYGENS_SKIP_BENCH=1 skips the bench;
+# HUYGENS_SKIP_FUZZ=1 skips scripts/test-fuzz.sh (the libFuzzer targets, after the bench);
 # HUYGENS_SKIP_INSTALL_TEST=1 skips scripts/test-install.sh (the installed CMake package used by
 # an outside project, right after ctest).
 set -euo pipefail
@@ -23,6 +24,8 @@ if [ "${HUYGENS_SKIP_BENCH:-0}" != 1 ]; then
   echo "== huygens-bench --quick"
   "${HUYGENS_BUILD_DIR:-$root/build}/benchmarks/huygens-bench" --quick --csv "${HUYGENS_BUILD_DIR:-$root/build}/bench-quick.csv"
 fi
+# the libFuzzer targets (scene parser, .npy reader), HUYGENS_FUZZ_SECONDS each (default 60)
+[ "${HUYGENS_SKIP_FUZZ:-0}" = 1 ] || bash "$root/scripts/test-fuzz.sh"
 if [ "${HUYGENS_SKIP_SANITIZERS:-0}" != 1 ]; then
   bash "$root/scripts/test-sanitizers.sh"
 fi

@@ -1,0 +1,46 @@
+// libFuzzer target: scene text through every parser `huygens run` applies before it allocates a
+// solver (parse_scene_text, then parse_huygens_scene, parse_sph_scene or parse_lbm_scene). A
+// SceneError is the expected refusal; any other exception, a crash or a sanitizer report is a
+// finding (docs/robustness.md, "Fuzzing").
+#include <cstddef>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "huygens/common/scene.hpp"
+#include "huygens/huygens/solver.hpp"
+#include "huygens/lbm/solver.hpp"
+#include "huygens/pipeline/solver.hpp"
+#include "huygens/sph/solver.hpp"
+
+namespace {
+
+// parse_lbm_scene allocates its initial fields (rows x cols cells) and loops over them per
+// region; the target keeps to grids of at most 2^16 cells (the memory check of a real run refuses
+// what does not fit). A value that is not a number is left to the parser to refuse.
+bool lbm_grid_is_small(const nlohmann::json& doc) {
+  if (!doc.contains("lbm") || !doc["lbm"].is_object() || !doc["lbm"].contains("grid")) return true;
+  const nlohmann::json& grid = doc["lbm"]["grid"];
+  if (!grid.is_object()) return true;
+  double cells = 1;
+  for (const char* key : {"rows", "cols"})
+    if (grid.contains(key) && grid[key].is_number()) cells *= grid[key].get<double>();
+  return cells <= 65536;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const huygens::Scene scene = huygens::parse_scene_text(text, "fuzz.json");
+    if (scene.solver == "huygens")
+      huygens::parse_huygens_scene(scene, huygens::RunOptions{false});
+    else if (scene.solver == "sph")
+      huygens::parse_sph_scene(scene);
+    else if (lbm_grid_is_small(*scene.doc))
+      huygens::parse_lbm_scene(scene);
+  } catch (const huygens::SceneError&) {
+  }
+  return 0;
+}
