@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,6 +17,8 @@
 #include <sstream>
 #include <string>
 #include <thread>
+
+#include "scenes_dir.hpp"
 
 namespace fs = std::filesystem;
 
@@ -214,4 +217,64 @@ TEST(Cli, OpenMpWaitsArePassiveUnlessTheUserChooses) {
   EXPECT_NE(unset.output.find("OMP_WAIT_POLICY = 'PASSIVE'"), std::string::npos) << unset.output;
   const Result active = run(d, "run scene.json --steps 1 --fast-plans", "OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=true");
   EXPECT_NE(active.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << active.output;
+}
+
+// ---- the memory estimate against the run's peak resident memory ----
+namespace {
+
+// Peak RSS (unit: MiB) of `huygens run SCENE --steps 1 --fast-plans`, and the estimate it printed.
+std::pair<double, double> peak_and_estimate(const fs::path& dir, const fs::path& scene_file) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = ::open((dir / "output.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    execl(HUYGENS_CLI, HUYGENS_CLI, "run", scene_file.c_str(), "--steps", "1", "--fast-plans",
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  rusage use{};
+  EXPECT_EQ(wait4(pid, &status, 0, &use), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(dir / "output.txt");
+  const std::string out = slurp(dir / "output.txt");
+  const auto at = out.find("memory ");
+  double estimate = -1;
+  if (at != std::string::npos) {
+    estimate = std::stod(out.substr(at + 7));
+    if (out.compare(out.find(' ', at + 7) + 1, 3, "GiB") == 0) estimate *= 1024;
+  }
+  return {use.ru_maxrss / 1024.0, estimate};
+}
+
+nlohmann::json shipped(const std::string& name) {
+  return nlohmann::json::parse(slurp(fs::path(huygens::test::scenes_dir()) / name));
+}
+
+}  // namespace
+
+// Sizes where the fields dominate: the estimate (made from the parsed sizes before allocating)
+// must be within -15 % / +25 % of the peak RSS growth over a 64^2 run (the program, libraries and
+// thread stacks). It may err high (a refusal a little early), not much low (an OOM kill).
+TEST(Cli, TheMemoryEstimateMatchesThePeakOfTheRun) {
+  const fs::path d = work_dir("estimate");
+  const double base = peak_and_estimate(d, scene(d)).first;
+  auto big_default = shipped("default.json");
+  big_default["grid"]["n"] = 2048;
+  auto big_ocean = shipped("ocean.json");
+  big_ocean["grid"]["n"] = 1024;
+  auto big_channel = shipped("channel.json");
+  big_channel["lbm"]["grid"] = {{"cols", 3200}, {"rows", 1600}, {"cell_m", 0.001}};
+  big_channel["lbm"]["time"] = {{"dt_s", 0.0003}};
+  auto big_pool = shipped("pool.json");
+  big_pool["sph"]["spacing_m"] = 0.0025;
+  for (const auto& [name, json] : {std::pair{"default", big_default}, std::pair{"ocean", big_ocean},
+                                   std::pair{"channel", big_channel}, std::pair{"pool", big_pool}}) {
+    const fs::path f = d / (std::string(name) + ".json");
+    std::ofstream(f) << json.dump();
+    const auto [peak, estimate] = peak_and_estimate(d, f);
+    const double growth = peak - base;
+    EXPECT_GT(estimate, 0) << name;
+    EXPECT_GE(estimate, 0.85 * growth) << name << ": estimate " << estimate << " MiB, growth " << growth << " MiB";
+    EXPECT_LE(estimate, 1.25 * growth) << name << ": estimate " << estimate << " MiB, growth " << growth << " MiB";
+  }
 }
