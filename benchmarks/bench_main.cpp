@@ -15,6 +15,7 @@
 #include "bench_scenes.hpp"
 #include "huygens/common/atomic_file.hpp"
 #include "huygens/common/fft.hpp"
+#include "huygens/common/isa.hpp"
 #include "huygens/common/program.hpp"
 
 namespace huygens::bench {
@@ -54,14 +55,6 @@ std::vector<bool> pareto_front(const std::vector<double>& time, const std::vecto
 }  // namespace huygens::bench
 
 namespace {
-
-std::string cpu_model() {
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown CPU";
-}
 
 const char* kUsage =
     "usage: huygens-bench [SECTION[:PART]...] [--quick] [--csv FILE] [--threads LIST]\n"
@@ -142,9 +135,10 @@ int bench_main(int argc, char** argv) {
     const int hw = static_cast<int>(std::thread::hardware_concurrency());
     if (hw > 1) ctx.threads.push_back(hw);
   }
-  std::printf("machine: %s, %u cores, g++ %s, %s, OpenMP threads %d, %s run\n", cpu_model().c_str(),
-              std::thread::hardware_concurrency(), __VERSION__, huygens::fft_version(), omp_get_max_threads(),
-              ctx.quick ? "quick" : "full");
+  // the CPU with the vector extensions it offers, and the instruction set the code was built for
+  std::printf("machine: %s, %u cores, built for %s, g++ %s, %s, OpenMP threads %d, %s run\n",
+              huygens::cpu_isa().c_str(), std::thread::hardware_concurrency(), huygens::build_isa().c_str(),
+              __VERSION__, huygens::fft_version(), omp_get_max_threads(), ctx.quick ? "quick" : "full");
   const auto start = std::chrono::steady_clock::now();
   huygens::Table took({"section", "wall s"});
   for (const auto& [name, fn] : sections)
