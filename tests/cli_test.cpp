@@ -179,6 +179,14 @@ TEST(Cli, AScenePastTheMemoryIsRefusedBeforeTheRun) {
   EXPECT_NE(ok.output.find("estimated"), std::string::npos) << ok.output;
 }
 
+TEST(Cli, TheAddressSpaceLimitCountsAsMemory) {
+  const fs::path d = work_dir("ulimit");
+  scene(d, "{}", 4096);  // about 0.6 GiB of fields
+  const Result r = run(d, "run scene.json --steps 1 --fast-plans", "ulimit -v 400000;");
+  EXPECT_EQ(r.code, 4) << r.output;
+  EXPECT_NE(r.output.find("needs"), std::string::npos) << r.output;
+}
+
 TEST(Cli, DegenerateWaterIsRefusedWithItsPath) {
   const fs::path d = work_dir("degenerate");
   const std::pair<const char*, const char*> cases[] = {

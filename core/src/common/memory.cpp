@@ -1,5 +1,8 @@
 #include "huygens/common/memory.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -59,6 +62,17 @@ std::uint64_t cgroup_room() {
   return room;
 }
 
+// The address-space limit (ulimit -v) less the address space already mapped.
+std::uint64_t address_space_room() {
+  rlimit lim{};
+  if (getrlimit(RLIMIT_AS, &lim) != 0 || lim.rlim_cur == RLIM_INFINITY) return kUnlimited;
+  std::ifstream f("/proc/self/statm");
+  std::uint64_t pages = 0;
+  f >> pages;
+  const std::uint64_t used = pages * static_cast<std::uint64_t>(sysconf(_SC_PAGESIZE));
+  return lim.rlim_cur > used ? lim.rlim_cur - used : 0;
+}
+
 }  // namespace
 
 std::uint64_t MemoryEstimate::total() const {
@@ -91,7 +105,7 @@ std::string MemoryEstimate::summary() const {
 }
 
 std::uint64_t available_memory() {
-  std::uint64_t avail = std::min(mem_available(), cgroup_room());
+  std::uint64_t avail = std::min({mem_available(), cgroup_room(), address_space_room()});
   if (const char* cap = std::getenv("HUYGENS_MAX_MEMORY_GIB"); cap && *cap) {
     char* end = nullptr;
     const double gib = std::strtod(cap, &end);

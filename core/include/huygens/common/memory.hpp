@@ -23,8 +23,9 @@ struct MemoryEstimate {
 };
 
 /// Bytes this process can still take: /proc/meminfo's MemAvailable, capped by the cgroup's
-/// limit less its usage (v2 memory.max, or v1 memory.limit_in_bytes), and by the environment
-/// variable HUYGENS_MAX_MEMORY_GIB when set (a cap a user chooses on a shared machine).
+/// limit less its usage (v2 memory.max, or v1 memory.limit_in_bytes), by the address-space limit
+/// (ulimit -v) less the mapped address space, and by the environment variable
+/// HUYGENS_MAX_MEMORY_GIB when set (a cap a user chooses on a shared machine).
 std::uint64_t available_memory();
 
 /// Throws ResourceError ("needs X GiB, Y GiB available; KEY sets the size") when the estimate
