@@ -78,7 +78,7 @@ std::string nonempty_arg(std::string_view flag, const char* text) {
 // spinning.
 void default_passive_waits(int, char**, char**) { setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0); }
 __attribute__((section(".preinit_array"), used)) void (*const huygens_preinit_omp)(int, char**,
-                                                                                  char**) = default_passive_waits;
+                                                                                   char**) = default_passive_waits;
 
 int run_program(const char* name, const std::function<int()>& body) {
   g_program = name;
