@@ -1,12 +1,15 @@
 // libFuzzer target: scene text through every parser `huygens run` applies before it allocates a
 // solver (parse_scene_text, then parse_huygens_scene, parse_sph_scene or parse_lbm_scene). A
-// SceneError is the expected refusal; any other exception, a crash or a sanitizer report is a
-// finding (docs/robustness.md, "Fuzzing").
+// SceneError, or a ResourceError from the memory check the parsers end with, is the expected
+// refusal; any other exception, a crash or a sanitizer report is a finding (docs/robustness.md,
+// "Fuzzing").
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "huygens/common/program.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/huygens/solver.hpp"
 #include "huygens/lbm/solver.hpp"
@@ -30,6 +33,13 @@ bool lbm_grid_is_small(const nlohmann::json& doc) {
 
 }  // namespace
 
+// The memory check refuses above 1 GiB whatever the machine has, so that a finding does not
+// depend on the memory free when the fuzzer runs.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  setenv("HUYGENS_MAX_MEMORY_GIB", "1", 1);
+  return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
@@ -41,6 +51,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     else if (lbm_grid_is_small(*scene.doc))
       huygens::parse_lbm_scene(scene);
   } catch (const huygens::SceneError&) {
+  } catch (const huygens::ResourceError&) {
   }
   return 0;
 }
