@@ -13,6 +13,46 @@ uniform int u_use_caustics;
 uniform vec2 u_caustics_origin;
 uniform vec2 u_caustics_extent;
 uniform float u_caustics_scale;
+uniform vec4 u_floor_rect;  // the floor under the visible region: x0, y0, x1, y1 (m)
+uniform int u_deck;         // 1: a pool with a deck; beyond the floor rect are its walls
+uniform int u_deep;         // 1: open ocean (no floor; the sea goes on beyond the region, flat)
+uniform vec3 u_eye;
+uniform int u_ortho;
+uniform vec3 u_view_dir;
+uniform float u_index;
+uniform vec3 u_water_colour;
+uniform vec3 u_sky;
+uniform vec3 u_sky_zenith;
+uniform int u_sky_gradient;
+uniform vec3 u_sun_dir;
+
+// The sky in direction r: u_sky at the horizon to u_sky_zenith overhead, or uniform.
+vec3 sky(vec3 r) {
+  if (u_sky_gradient == 0) return u_sky;
+  return mix(u_sky, u_sky_zenith, sqrt(clamp(r.z, 0.0, 1.0)));
+}
+
+// Light leaving deep water below a surface with normal n (open ocean, paper 003): the water's
+// colour W scattered up from the sunlit water body, brighter on the faces turned to the sun,
+// W (0.7 + 0.6 (n.s - s_z)) (a Lambert-like approximation; still water gives 0.7 W).
+vec3 deep_water_colour(vec3 n) {
+  vec3 s = normalize(u_sun_dir);
+  return u_water_colour * max(0.7 + 0.6 * (max(dot(n, s), 0.0) - s.z), 0.2);
+}
+
+// Schlick's Fresnel reflectance for the cosine nv (paper 003).
+float schlick(float nv) {
+  float r0 = (u_index - 1.0) / (u_index + 1.0);
+  return r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - clamp(nv, 0.0, 1.0), 5.0);
+}
+
+// The flat sea at a point P of z = 0 outside the simulated region (open ocean look).
+vec3 flat_sea(vec3 P) {
+  vec3 dir = u_ortho != 0 ? u_view_dir : normalize(P - u_eye);
+  vec3 n = vec3(0.0, 0.0, 1.0);
+  float F = schlick(-dir.z);
+  return mix(deep_water_colour(n), sky(reflect(dir, n)), F);
+}
 
 vec3 lit_ground(vec2 G) {
   vec2 uv = (G - u_ground_origin) / u_ground_extent;
@@ -22,4 +62,23 @@ vec3 lit_ground(vec2 G) {
   if (u_use_caustics != 0 && all(greaterThanEqual(cuv, vec2(0.0))) && all(lessThanEqual(cuv, vec2(1.0))))
     light = u_caustics_scale * textureLod(u_caustics, cuv, 0.0).r;
   return albedo * (u_ambient + u_sun_light * light);
+}
+
+// The pool deck around the water: pale stone tiles (the ground texture, lightened), lit by the
+// sun without caustics.
+vec3 deck_colour(vec2 G) {
+  if (u_deep != 0) return flat_sea(vec3(G, 0.0));
+  vec3 albedo = mix(texture(u_ground, (G - u_ground_origin) / u_ground_extent).rgb, vec3(0.85, 0.84, 0.80), 0.6);
+  return albedo * (u_ambient + u_sun_light);
+}
+
+// What a ray under water meets at its floor point G: the lit floor, or, with a deck, the
+// wall when G lies beyond the floor under the visible region (the wall's colour: the tiles at
+// the clamped point, in the shade: ambient light only).
+vec3 seen_under_water(vec2 G) {
+  if (u_deck != 0 && (any(lessThan(G, u_floor_rect.xy)) || any(greaterThan(G, u_floor_rect.zw)))) {
+    vec2 C = clamp(G, u_floor_rect.xy, u_floor_rect.zw);
+    return texture(u_ground, (C - u_ground_origin) / u_ground_extent).rgb * (u_ambient + 0.3 * u_sun_light);
+  }
+  return lit_ground(G);
 }

@@ -5,30 +5,29 @@
 // the ground point seen through the surface, either linearised
 //   G = (u0, v0) + eta (a, b) + [c d; e f] (eta_u, eta_v)
 // or exact (Snell: t = refract(d, n, 1/index), followed to z = ground_z);
-// then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S + g L, T = exp(-a_rgb d).
+// then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S(r) + g L, T = exp(-a_rgb d)
+// (deep water: W alone); the glint g is the paper's clamp(100 n.h - 98.95) or the sun's disc
+// in the mirror direction r, F E_sun (1 - smoothstep over the disc's edge) (renderer.hpp).
 in vec3 v_pos;
 in vec2 v_base;
 out vec4 o_color;
 
 uniform sampler2D u_diffs;  // RG32F: eta_u, eta_v at the grid points
 uniform sampler2D u_coef;   // RGBA32F: c, d, e, f at the grid points
+// (u_eye, u_ortho, u_view_dir, u_index, u_water_colour, u_sky*, u_sun_dir, u_deep: ground_common.glsl)
 uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
 uniform vec2 u_grid_size;   // cols, rows
 uniform float u_dx;
-uniform vec3 u_eye;
-uniform int u_ortho;
-uniform vec3 u_view_dir;
-uniform float u_index;
 uniform float u_ground_z;
 uniform int u_exact;
 uniform int u_fresnel;      // 0 off, 1 paper, 2 Schlick
 uniform int u_glint;
 uniform int u_absorption;
 uniform vec3 u_absorb;
-uniform vec3 u_water_colour;
-uniform vec3 u_sky;
-uniform vec3 u_sun_dir;
 uniform vec3 u_sun_colour;
+uniform float u_sun_cos;        // cos of the glint disc's angular radius
+uniform float u_sun_intensity;  // the sun's radiance relative to the sky
+
 
 void main() {
   vec2 tc = ((v_pos.xy - u_grid_origin) / u_dx + 0.5) / u_grid_size;
@@ -47,8 +46,8 @@ void main() {
     G = v_base + vec2(c.x * d.x + c.y * d.y, c.z * d.x + c.w * d.y);
   }
 
-  vec3 refr = lit_ground(G);
-  if (u_absorption != 0) {
+  vec3 refr = u_deep != 0 ? deep_water_colour(n) : seen_under_water(G);
+  if (u_absorption != 0 && u_deep == 0) {
     float path = length(vec3(G, u_ground_z) - v_pos);
     vec3 T = exp(-u_absorb * path);
     refr = refr * T + u_water_colour * (1.0 - T);
@@ -63,10 +62,17 @@ void main() {
     float r0 = (u_index - 1.0) / (u_index + 1.0);
     F = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - nv, 5.0);
   }
-  vec3 col = mix(refr, u_sky, F);
-  if (u_glint != 0) {
-    vec3 h = normalize(v + normalize(u_sun_dir));
+  vec3 r = reflect(dir, n);
+  vec3 col = mix(refr, sky(r), F);
+  vec3 sun = normalize(u_sun_dir);
+  if (u_glint == 1) {
+    vec3 h = normalize(v + sun);
     col += clamp(100.0 * dot(n, h) - 98.95, 0.0, 1.0) * u_sun_colour;
+  } else if (u_glint == 2) {
+    float r0 = (u_index - 1.0) / (u_index + 1.0);
+    float Fs = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - nv, 5.0);
+    float c = dot(r, sun), edge = 1.0 - u_sun_cos;  // soft edge: half the disc's radius wide
+    col += Fs * u_sun_intensity * smoothstep(u_sun_cos - 0.5 * edge, u_sun_cos + 0.5 * edge, c) * u_sun_colour;
   }
   o_color = vec4(col, 1.0);
 }

@@ -70,6 +70,7 @@ LinearProjection linear_projection(const CausticsParams& p, double depth_m) {
 }
 
 GroundRect ground_rect(const CausticsParams& p, const HeightfieldView& field) {
+  if (p.cover_domain) return {0.0, 0.0, double(field.cols - 1) * field.dx_m, double(field.rows - 1) * field.dx_m};
   const auto d0 = refract_displacement(p, field.depth_m, 0.0, 0.0, 0.0);
   return {d0[0], d0[1], double(field.cols - 1) * field.dx_m, double(field.rows - 1) * field.dx_m};
 }
@@ -130,12 +131,15 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
   const GroundRect g = ground_rect(p, f);
   const double W = g.width, H = g.height;
   const double hx = W / (m.cols - 1), hy = H / (m.rows - 1);
-  // heights at the mesh vertices, bilinear from the full field
-  const double sx = double(f.cols - 1) / (m.cols - 1), sy = double(f.rows - 1) / (m.rows - 1);
+  const LinearProjection L = linear_projection(p, f.depth_m);
+  // rest positions: the domain's lattice, or (cover_domain) shifted back along the sun by the
+  // still-water displacement so that the flat surface lights exactly [0, W] x [0, H]
+  const double ox = p.cover_domain ? -L.x0 : 0.0, oy = p.cover_domain ? -L.y0 : 0.0;
+  // heights at the mesh vertices, bilinear from the full field (clamped: the edge value outside)
   for (int i = 0; i < m.rows; ++i)
     for (int j = 0; j < m.cols; ++j)
-      m.height[std::size_t(i) * m.cols + j] = bilinear(f.eta.data(), f.rows, f.cols, j * sx, i * sy);
-  const LinearProjection L = linear_projection(p, f.depth_m);
+      m.height[std::size_t(i) * m.cols + j] =
+          bilinear(f.eta.data(), f.rows, f.cols, (j * hx + ox) / f.dx_m, (i * hy + oy) / f.dx_m);
   // ray crossing of z = 0: rest position + eta s_xy / (-s_z)
   const auto sun = unit_sun(p);
   const double bx = p.flux_by_beam_area ? sun[0] / -sun[2] : 0.0, by = p.flux_by_beam_area ? sun[1] / -sun[2] : 0.0;
@@ -148,7 +152,8 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
       // slopes by central differences on the mesh (one-sided at the border)
       const double gx = (h[std::size_t(i) * m.cols + j1] - h[std::size_t(i) * m.cols + j0]) / ((j1 - j0) * hx);
       const double gy = (h[std::size_t(i1) * m.cols + j] - h[std::size_t(i0) * m.cols + j]) / ((i1 - i0) * hy);
-      double X = j * hx, Y = i * hy;
+      const double X0 = j * hx + ox, Y0 = i * hy + oy;
+      double X = X0, Y = Y0;
       if (exact) {
         const auto d = refract_displacement(p, f.depth_m, h[std::size_t(i) * m.cols + j], gx, gy);
         X += d[0];
@@ -158,8 +163,8 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
         Y += L.y0 + L.c * gx + L.d * gy;
       }
       const double e = h[std::size_t(i) * m.cols + j];
-      m.surface_uv[2 * (std::size_t(i) * m.cols + j)] = float((j * hx + e * bx) / W);
-      m.surface_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float((i * hy + e * by) / H);
+      m.surface_uv[2 * (std::size_t(i) * m.cols + j)] = float((X0 + e * bx) / W);
+      m.surface_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float((Y0 + e * by) / H);
       m.ground_uv[2 * (std::size_t(i) * m.cols + j)] = float((X - g.x0) / W);
       m.ground_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float((Y - g.y0) / H);
     }
@@ -207,6 +212,29 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
     }
   }
   m.skirt_reach = r;
+}
+
+int mesh_size_for_field(const HeightfieldView& f, double per_wavelength, int min_n) {
+  check_field(f);
+  // lambda = 2 pi sigma_eta / sigma_grad: for one sine, 2 pi / k; for a spectrum the
+  // k^2-weighted mean wavelength, i.e. the shorter waves that focus the light
+  double s = 0, s2 = 0, g2 = 0;
+  const std::size_t n = f.eta.size();
+  for (float v : f.eta) s += v;
+  const double mean = s / double(n);
+  for (int i = 0; i + 1 < f.rows; ++i)
+    for (int j = 0; j + 1 < f.cols; ++j) {
+      const float* r = f.eta.data() + std::size_t(i) * f.cols + j;
+      const double gx = (r[1] - r[0]) / f.dx_m, gy = (r[f.cols] - r[0]) / f.dx_m;
+      s2 += (r[0] - mean) * (r[0] - mean);
+      g2 += gx * gx + gy * gy;
+    }
+  const int n_max = std::max(f.rows, f.cols);
+  if (!(g2 > 0) || !(s2 > 0)) return std::min(min_n, n_max);
+  const double lambda = 2 * std::numbers::pi * std::sqrt(s2 / g2);
+  const double extent = double(n_max - 1) * f.dx_m;
+  const double want = std::ceil(per_wavelength * extent / lambda) + 1;
+  return int(std::clamp(want, double(std::min(min_n, n_max)), double(n_max)));
 }
 
 ShipShadow make_ellipse_hull(float cx, float cy, float heading, float length, float beam, int segments) {

@@ -79,7 +79,20 @@ struct CausticsParams {
   /// sun onto z = 0; exact flux for an oblique sun) if true, or the same for every triangle (the
   /// paper) if false. Identical for an overhead sun.
   bool flux_by_beam_area = true;
+  /// The texture covers the ground right below the surface domain, [0, W] x [0, H], instead of
+  /// the still-water projection of the domain (shifted by D tan(theta_t) along the sun): the
+  /// mesh's rest positions move back along the sun by that shift, so that every floor point
+  /// under the water gets its light (no seam where the texture would stop). Rays entering
+  /// outside the domain see the border's height continued flat (the field's edge value), i.e.
+  /// the still-water light 1 in a strip D tan(theta_t) wide on the sun's side.
+  bool cover_domain = false;
 };
+
+/// Mesh vertices per side that resolve the field's waves: `per_wavelength` cells per dominant
+/// wavelength lambda = 2 pi rms(eta - mean) / rms(grad eta) (the spectral radius of gyration,
+/// weighted toward the short, sharp waves that make caustics), at least `min_n` and at most
+/// the field's own points along its longer side (unit: vertices).
+int mesh_size_for_field(const HeightfieldView& field, double per_wavelength = 8.0, int min_n = 96);
 
 /// Horizontal displacement (dx, dy) on the ground of the ray entering a surface point with
 /// slopes (gx, gy) = (d eta/dx, d eta/dy) at height eta above rest. Exact Snell refraction.

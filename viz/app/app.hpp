@@ -19,6 +19,8 @@ struct WindowOptions {
   std::string screenshot;
   /// Start with the simulation paused.
   bool paused = false;
+  /// Start in the plan view (P toggles it).
+  bool plan = false;
 };
 
 /// Runs `scene`'s solver in the window until it is closed; returns the process exit code.

@@ -1,6 +1,8 @@
 #include "caustics_stage.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "accum_blur.hpp"
 #include "caustics.hpp"
@@ -9,18 +11,54 @@
 namespace huygens {
 namespace {
 
+// The caustics texture's side: 512 texels, 1024 for fields of more than 256 points a side (the
+// kelvin wake's focal points were 10 cm texels, 15 px squares, at 512).
+int texture_side(const GridPlacement& g) { return std::max(g.rows, g.cols) > 256 ? 1024 : 512; }
+
+// The pass's parameters for a caustics mode (RenderSettings::caustics_mode, docs/viz.md
+// "Caustics"): the light-conserving default (explicit area, float target, float blur) or the
+// paper's MIP trick and 8-bit target. The texture always covers the floor under the water.
+viz::CausticsParams mode_params(CausticsMode mode, int mesh, int texture) {
+  viz::CausticsParams p;
+  p.texture_width = p.texture_height = texture;
+  p.mesh_cols = p.mesh_rows = mesh;
+  p.cover_domain = true;
+  p.area = mode == CausticsMode::conserving || mode == CausticsMode::explicit_u8 ? viz::CausticsArea::Explicit
+                                                                                 : viz::CausticsArea::Mip;
+  p.float_target = mode == CausticsMode::conserving || mode == CausticsMode::mip_float;
+  return p;
+}
+
+// The mesh size in steps of 32 vertices; it follows the field up (one rebuild per step) and
+// down only when the field needs less than half of it (no rebuild every frame).
+int quantised_mesh(int want, int current) {
+  const int q = std::max(32, (want + 31) / 32 * 32);
+  if (current == 0 || q > current || 2 * q < current) return q;
+  return current;
+}
+
 class PaperCaustics final : public CausticsStage {
  public:
   PaperCaustics(const GridPlacement& grid, double ground_z)
-      : grid_(grid), depth_(static_cast<float>(-ground_z)), caustics_(params()), blur_(512, 512) {}
+      : grid_(grid), depth_(static_cast<float>(-ground_z)), blur_(texture_side(grid), texture_side(grid)) {}
 
   bool available() const override { return true; }
 
   void run(std::span<const float> eta, std::span<const ShipPose> ships, const RenderSettings& s) override {
-    const glm::vec3 sun = glm::normalize(s.sun_dir);
-    caustics_.set_sun_dir(-sun.x, -sun.y, -sun.z);  // the pass wants the direction light travels
     viz::HeightfieldView field{eta, static_cast<int>(grid_.rows), static_cast<int>(grid_.cols),
                                static_cast<float>(grid_.dx), depth_};
+    // at least ~8 mesh cells per dominant wavelength, up to the grid's own resolution
+    const int mesh =
+        s.caustics_mesh > 0 ? s.caustics_mesh : quantised_mesh(viz::mesh_size_for_field(field), caustics_ ? mesh_ : 0);
+    if (!caustics_ || mesh != mesh_ || s.caustics_mode != mode_) {
+      caustics_.reset();
+      caustics_.emplace(mode_params(s.caustics_mode, std::min(mesh, static_cast<int>(std::max(grid_.rows, grid_.cols))),
+                                    texture_side(grid_)));
+      mesh_ = mesh;
+      mode_ = s.caustics_mode;
+    }
+    const glm::vec3 sun = glm::normalize(s.sun_dir);
+    caustics_->set_sun_dir(-sun.x, -sun.y, -sun.z);  // the pass wants the direction light travels
     // the first ship casts the shadow (the pass takes one outline)
     viz::ShipShadow shadow;
     const viz::ShipShadow* ship = nullptr;
@@ -32,28 +70,35 @@ class PaperCaustics final : public CausticsStage {
       shadow.height_m = static_cast<float>(std::max(0.6 * p.draft, 0.04 * p.length));
       ship = &shadow;
     }
-    caustics_.render(field, ship);
-    const viz::GroundRect r = viz::ground_rect(caustics_.params(), field);
+    caustics_->render(field, ship);
+    const viz::GroundRect r = viz::ground_rect(caustics_->params(), field);
     origin_ = {grid_.x0 + r.x0, grid_.y0 + r.y0};
     extent_ = {r.width, r.height};
-    tex_ = !s.blur        ? caustics_.texture().id()
-           : s.blur_float ? blur_.blur_float(caustics_.texture()).id()
-                          : blur_.blur_emulated(caustics_.texture()).id();
+    // blur (paper 004 sec. 6): float targets in float; the 8-bit target by the
+    // accumulation-buffer emulation unless the float blur is asked for
+    const bool u8 = !caustics_->params().float_target;
+    tex_ = !s.blur               ? caustics_->texture().id()
+           : u8 && !s.blur_float ? blur_.blur_emulated(caustics_->texture()).id()
+                                 : blur_.blur_float(caustics_->texture()).id();
+    scale_ = u8 ? 255.0f / caustics_->params().unit_level_u8 : 1.0f;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
   }
 
   GLuint texture() const override { return tex_; }
   glm::dvec2 origin() const override { return origin_; }
   glm::dvec2 extent() const override { return extent_; }
-  float scale() const override { return 255.0f / caustics_.params().unit_level_u8; }
+  float scale() const override { return scale_; }
+  const viz::CausticsParams* params() const override { return caustics_ ? &caustics_->params() : nullptr; }
 
  private:
-  static viz::CausticsParams params() { return viz::CausticsParams{}; }
   GridPlacement grid_;
   float depth_;
-  viz::CausticsRenderer caustics_;
+  std::optional<viz::CausticsRenderer> caustics_;
+  int mesh_ = 0;
+  CausticsMode mode_ = CausticsMode::conserving;
   viz::AccumBlur blur_;
   GLuint tex_ = 0;
+  float scale_ = 1.0f;
   glm::dvec2 origin_{0.0}, extent_{1.0};
 };
 

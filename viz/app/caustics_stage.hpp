@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 
+#include "caustics_cpu.hpp"
 #include "gl.hpp"
 #include "refraction.hpp"
 
@@ -28,6 +29,9 @@ class CausticsStage {
   virtual glm::dvec2 extent() const = 0;
   /// Factor from the texture value to light relative to still water.
   virtual float scale() const = 0;
+  /// The parameters of the last run (mesh size, sun, target, area model, cover_domain) in the
+  /// frame of the visible field (x from its first column); null when the pass is not built in.
+  virtual const viz::CausticsParams* params() const = 0;
 };
 
 /// The caustics pass for this grid and ground depth, or nullptr when it is not available.

@@ -11,8 +11,12 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   const SceneView view = scene_view(scene.info);
   WaterRenderer renderer(view.grid, view.ground_z, opt.subsample);
   renderer.set_height_offset(view.height_offset);
+  renderer.set_obstacles(view.obstacles);
   const GridPlacement& g = view.grid;
-  const OrbitCamera cam = opt.custom_camera ? opt.camera : default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
+  const double aspect = static_cast<double>(opt.width) / opt.height;
+  const std::string name = scene.name;
+  OrbitCamera cam = opt.custom_camera ? opt.camera : start_camera(view, aspect, nullptr);
+  bool camera_placed = opt.custom_camera;
   RenderTarget target(opt.width, opt.height);
 
   // the window's path with the manual clock: the runner publishes every step at or before the
@@ -37,8 +41,16 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     renderer.set_heights(field);
     frame_ships(view, frames, runner.display_time(), ships);  // where the solver has them
     renderer.set_ships(ships);
+    if (!opt.custom_camera && !ships.empty() && view.follow_ship) {
+      if (!camera_placed) cam = start_camera(view, aspect, &ships[0]);
+      follow_ship(view, ships[0], cam);
+    }
+    camera_placed = true;
     renderer.times.enabled = (k + 1 == opt.frames);
-    renderer.render(cam, opt.settings, target);
+    if (opt.plan)
+      render_plan_view(renderer, view, field, frames.newest->info.time_s, name, target);
+    else
+      renderer.render(cam, opt.settings, target);
     res.steps = frames.newest->info.step;
     res.field_time = frames.newest->info.time_s;
   }

@@ -27,9 +27,12 @@ struct HeadlessOptions {
   /// Mesh subsampling factor (unit: grid points per vertex spacing).
   int subsample = 4;
   RenderSettings settings;
-  /// Camera; unset = default_camera() of the scene's visible region.
+  /// Camera; unset = the scene's start-up camera (start_camera), following its first ship when
+  /// the scene's view does.
   bool custom_camera = false;
   OrbitCamera camera;
+  /// The plan view (render_plan_view) instead of the perspective picture.
+  bool plan = false;
 };
 
 struct HeadlessResult {

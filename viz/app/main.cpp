@@ -29,28 +29,33 @@ namespace {
 using namespace huygens;
 
 void usage(std::FILE* f) {
-  std::fprintf(f,
-               "usage: huygens-viz [SCENE] [options]\n"
-               "  SCENE                 scene JSON file (default: the built-in default.json); when no such\n"
-               "                        file exists, the name of a built-in scene: %s\n"
-               "  --headless            render offscreen with no display server (EGL surfaceless)\n"
-               "  --frames N            frames to render in --headless mode (default 1)\n"
-               "  --time T              display time of the first headless frame, s (default 0)\n"
-               "  --screenshot FILE.png where the headless image (or the S key's image) goes\n"
-               "  --size WxH            image / window size in pixels (default 1280x720; headless 256x256)\n"
-               "  --subsample F         surface mesh subsampling factor (default 4)\n"
-               "  --exact               exact per-pixel Snell refraction (default: linearised coordinates)\n"
-               "  --schlick             Schlick Fresnel instead of the paper's clamp(1 - 2.5 n.v)\n"
-               "  --no-caustics         do not light the ground with caustics\n"
-               "  --benchmark           print per-pass render times at 1280x720 and 640x360 (headless)\n"
-               "  --auto-frames N       window: after N frames press S, then quit (smoke test)\n"
-               "  --help                this text\n"
-               "Exit codes: 0 ok; 1 a write or the GL context failed; 2 bad scene or usage; 3 non-finite\n"
-               "  value; 4 not enough memory for the scene.\n"
-               "Keys (window): space pause, R reset, F1 hide panel, S screenshot, E exact/linearised,\n"
-               "  F Fresnel model, Esc quit. Mouse: left click drops a stone, left drag on a ship moves it,\n"
-               "  right drag orbits, middle drag (or shift+right) pans, wheel zooms.\n",
-               builtin_scene_names());
+  std::fprintf(
+      f,
+      "usage: huygens-viz [SCENE] [options]\n"
+      "  SCENE                 scene JSON file (default: the built-in default.json); when no such\n"
+      "                        file exists, the name of a built-in scene: %s\n"
+      "  --headless            render offscreen with no display server (EGL surfaceless)\n"
+      "  --frames N            frames to render in --headless mode (default 1)\n"
+      "  --time T              display time of the first headless frame, s (default 0)\n"
+      "  --screenshot FILE.png where the headless image (or the S key's image) goes\n"
+      "  --size WxH            image / window size in pixels (default 1280x720; headless 256x256)\n"
+      "  --subsample F         surface mesh subsampling factor (default 4)\n"
+      "  --exact               exact per-pixel Snell refraction (default: linearised coordinates)\n"
+      "  --schlick             Schlick Fresnel (the default; --paper-fresnel: clamp(1 - 2.5 n.v))\n"
+      "  --paper-fresnel       the paper's Fresnel f = clamp(1 - 2.5 n.v) and glint\n"
+      "  --no-caustics         do not light the ground with caustics\n"
+      "  --caustics-mode M     conserving (default: explicit area, float), mip_paper (the paper's\n"
+      "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8\n"
+      "  --view V              perspective (default) or plan (colour map, colour bar, axes in metres)\n"
+      "  --benchmark           print per-pass render times at 1280x720 and 640x360 (headless)\n"
+      "  --auto-frames N       window: after N frames press S, then quit (smoke test)\n"
+      "  --help                this text\n"
+      "Exit codes: 0 ok; 1 a write or the GL context failed; 2 bad scene or usage; 3 non-finite\n"
+      "  value; 4 not enough memory for the scene.\n"
+      "Keys (window): space pause, R reset, F1 hide panel, S screenshot, E exact/linearised,\n"
+      "  F Fresnel model, P plan view, Esc quit. Mouse: left click drops a stone, left drag on a ship moves it,\n"
+      "  right drag orbits, middle drag (or shift+right) pans, wheel zooms.\n",
+      builtin_scene_names());
 }
 
 struct CliOptions {
@@ -60,7 +65,11 @@ struct CliOptions {
   int frames = 1, w = 1280, h = 720, subsample = 4, auto_frames = 0;
   /// Display time of the first headless frame (unit: s).
   double time = 0.0;
-  bool exact = false, schlick = false, no_caustics = false;
+  bool exact = false, schlick = false, paper_fresnel = false, no_caustics = false;
+  /// "" = the scene's; else perspective / plan.
+  std::string view;
+  /// "" = the scene's; else a CausticsMode name.
+  std::string caustics_mode;
 };
 
 bool parse_size(const char* s, int& w, int& h) {
@@ -95,6 +104,16 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
        : a == "--schlick"     ? o.schlick
        : a == "--no-caustics" ? o.no_caustics
                               : o.benchmark) = true;
+    } else if (a == "--paper-fresnel") {
+      o.paper_fresnel = true;
+    } else if (a == "--view") {
+      o.view = nonempty_arg(a, next());
+      if (o.view != "perspective" && o.view != "plan") throw UsageError("--view takes perspective or plan");
+    } else if (a == "--caustics-mode") {
+      o.caustics_mode = nonempty_arg(a, next());
+      if (o.caustics_mode != "conserving" && o.caustics_mode != "mip_paper" && o.caustics_mode != "mip_float" &&
+          o.caustics_mode != "explicit_u8")
+        throw UsageError("--caustics-mode takes conserving, mip_paper, mip_float or explicit_u8");
     } else if (a == "--auto-frames") {
       o.auto_frames = static_cast<int>(parse_int_arg(a, next(), 1, 1000000));
     } else if (!a.empty() && a[0] == '-') {
@@ -108,7 +127,7 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
   return true;
 }
 
-int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& settings) {
+int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& settings, bool plan) {
   if (o.screenshot.empty()) {
     std::fprintf(stderr, "huygens-viz: --headless needs --screenshot FILE.png\n");
     return 2;
@@ -122,6 +141,7 @@ int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& set
   opt.height = o.size_given ? o.h : 256;
   opt.subsample = o.subsample;
   opt.settings = settings;
+  opt.plan = plan;
   const std::string name = vs.name;
   const HeadlessResult r = render_headless(std::move(vs), opt);
   gl::write_png(o.screenshot, r.image);
@@ -142,15 +162,15 @@ std::vector<std::string> benchmark_row(WaterRenderer& renderer, const OrbitCamer
                                        std::span<const float> heights, int w, int h, double sim_per_frame) {
   RenderTarget target(w, h);
   renderer.times.enabled = true;
-  std::vector<double> pr, up, ca, gr, su, sh, tot;
+  std::vector<double> pr, up, ca, gr, su, sh, tm, tot;
   for (int i = 0; i < 12; ++i) {
     renderer.set_heights(heights);  // every frame uploads new heights, as in the app
     renderer.render(cam, settings, target);
     if (i < 2) continue;  // warm-up
     const RenderTimes& r = renderer.times;
     pr.push_back(r.prepare), up.push_back(r.upload), ca.push_back(r.caustics), gr.push_back(r.ground),
-        su.push_back(r.surface), sh.push_back(r.ship);
-    tot.push_back(r.prepare + r.upload + r.caustics + r.ground + r.surface + r.ship);
+        su.push_back(r.surface), sh.push_back(r.ship), tm.push_back(r.tonemap);
+    tot.push_back(r.prepare + r.upload + r.caustics + r.ground + r.surface + r.ship + r.tonemap);
   }
   const double total = median(tot);
   return {std::to_string(w) + "x" + std::to_string(h),
@@ -160,7 +180,9 @@ std::vector<std::string> benchmark_row(WaterRenderer& renderer, const OrbitCamer
           fmt("%.2f", median(gr)),
           fmt("%.2f", median(su)),
           fmt("%.2f", median(sh)),
+          fmt("%.2f", median(tm)),
           fmt("%.2f", total),
+          fmt("%.2f", median(ca) / std::max(total - median(ca), 1e-9)),
           fmt("%.2f", sim_per_frame),
           fmt("%.1f", 100.0 * sim_per_frame / (sim_per_frame + total)) + " %"};
 }
@@ -168,6 +190,7 @@ std::vector<std::string> benchmark_row(WaterRenderer& renderer, const OrbitCamer
 // Per-pass render times (median of repeated frames, glFinish around each pass) and the
 // simulation's share of a frame: one full step per display_per_step frames.
 int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample) {
+  const ViewSetup setup = view_setup(vs, 1280.0 / 720.0);
   using clock = std::chrono::steady_clock;
   gl::HeadlessContext ctx;
   Solver& solver = *vs.solver;
@@ -186,15 +209,17 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
       view.grid.rows, view.grid.cols, subsample, step_ms, vs.info.display_per_step);
   WaterRenderer renderer(view.grid, view.ground_z, subsample);
   renderer.set_height_offset(view.height_offset);
+  renderer.set_obstacles(view.obstacles);
   std::array<ShipState, kMaxFrameShips> states{};
   std::vector<ShipPose> ships;
   for (std::size_t i = 0; i < solver.ship_poses(states) && i < view.hulls.size(); ++i)
     ships.push_back(view.ship(i, states[i]));  // where the solver has them
   renderer.set_ships(ships);
   const GridPlacement& g = view.grid;
-  const OrbitCamera cam = default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
-  Table t({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship", "render total", "sim/frame",
-           "sim share"});
+  OrbitCamera cam = setup.camera;
+  if (view.follow_ship && !ships.empty()) follow_ship(view, ships[0], cam);
+  Table t({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship+solids", "tone map",
+           "render total", "caustics / rest", "sim/frame", "sim share"});
   for (auto [w, h] : {std::pair{1280, 720}, std::pair{640, 360}})
     t.add(benchmark_row(renderer, cam, settings, solver.height(), w, h, sim_per_frame));
   std::printf("%s\n", t.text().c_str());
@@ -244,13 +269,21 @@ int run(CliOptions o) {
   ro.measure_plans = o.benchmark;                     // FFTW_ESTIMATE: a fast start, and the same image every run
   ViewerSolver vs = open_viewer_solver(o.scene, ro);  // the solver checked its own memory
   require_memory(viewer_memory(vs));
-  RenderSettings settings;
-  apply_render_request(vs.info.request, settings);  // the scene's "render" block, then the options
+  // the scene's look and "render" block, then the options
+  const double aspect = o.headless && !o.size_given ? 1.0 : static_cast<double>(o.w) / o.h;
+  RenderSettings settings = view_setup(vs, aspect).settings;
   settings.exact_refraction = o.exact;
   if (o.schlick) settings.fresnel = FresnelModel::schlick;
+  if (o.paper_fresnel) settings.fresnel = FresnelModel::paper, settings.paper_glint = true;
   if (o.no_caustics) settings.caustics = false;
+  if (!o.caustics_mode.empty())
+    settings.caustics_mode = o.caustics_mode == "mip_paper"     ? CausticsMode::mip_paper
+                             : o.caustics_mode == "mip_float"   ? CausticsMode::mip_float
+                             : o.caustics_mode == "explicit_u8" ? CausticsMode::explicit_u8
+                                                                : CausticsMode::conserving;
+  const bool plan = o.view.empty() ? vs.info.request.plan_view.value_or(false) : o.view == "plan";
   if (o.benchmark) return run_benchmark(std::move(vs), settings, o.subsample);
-  if (o.headless) return run_headless(std::move(vs), o, settings);
+  if (o.headless) return run_headless(std::move(vs), o, settings, plan);
   WindowOptions wo;
   wo.width = o.w;
   wo.height = o.h;
@@ -258,6 +291,7 @@ int run(CliOptions o) {
   wo.settings = settings;
   wo.auto_frames = o.auto_frames;
   wo.screenshot = o.screenshot;
+  wo.plan = plan;
   return run_window(std::move(vs), wo);
 }
 

@@ -1,11 +1,15 @@
 #include "renderer.hpp"
 
+#include <stb_easy_font.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <glm/gtc/type_ptr.hpp>
+#include <numbers>
+#include <string>
 
 #include "caustics_stage.hpp"
 
@@ -14,15 +18,22 @@ namespace huygens {
 // ---------------------------------------------------------------------------------
 // RenderTarget
 
-RenderTarget::RenderTarget(int width, int height) : color_(width, height, GL_RGBA8), w_(width), h_(height) {
+RenderTarget::RenderTarget(int width, int height)
+    : color_(width, height, GL_RGBA8), hdr_(width, height, GL_RGBA16F), w_(width), h_(height) {
   color_.set_filter(GL_LINEAR, GL_LINEAR);
+  hdr_.set_filter(GL_NEAREST, GL_NEAREST);
   glGenRenderbuffers(1, &depth_);
   glBindRenderbuffer(GL_RENDERBUFFER, depth_);
   glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glGenFramebuffers(1, &hdr_fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, hdr_fbo_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, hdr_.id(), 0);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    throw gl::GlError("RenderTarget: incomplete half-float framebuffer");
   glGenFramebuffers(1, &fbo_);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw gl::GlError("RenderTarget: incomplete framebuffer");
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -31,30 +42,40 @@ RenderTarget::RenderTarget(int width, int height) : color_(width, height, GL_RGB
 
 RenderTarget::~RenderTarget() {
   if (fbo_) glDeleteFramebuffers(1, &fbo_);
+  if (hdr_fbo_) glDeleteFramebuffers(1, &hdr_fbo_);
   if (depth_) glDeleteRenderbuffers(1, &depth_);
 }
 
 RenderTarget::RenderTarget(RenderTarget&& o) noexcept
-    : color_(std::move(o.color_)), depth_(o.depth_), fbo_(o.fbo_), w_(o.w_), h_(o.h_) {
-  o.depth_ = o.fbo_ = 0;
+    : color_(std::move(o.color_)),
+      hdr_(std::move(o.hdr_)),
+      depth_(o.depth_),
+      fbo_(o.fbo_),
+      hdr_fbo_(o.hdr_fbo_),
+      w_(o.w_),
+      h_(o.h_) {
+  o.depth_ = o.fbo_ = o.hdr_fbo_ = 0;
 }
 
 RenderTarget& RenderTarget::operator=(RenderTarget&& o) noexcept {
   if (this != &o) {
     if (fbo_) glDeleteFramebuffers(1, &fbo_);
+    if (hdr_fbo_) glDeleteFramebuffers(1, &hdr_fbo_);
     if (depth_) glDeleteRenderbuffers(1, &depth_);
     color_ = std::move(o.color_);
+    hdr_ = std::move(o.hdr_);
     depth_ = o.depth_;
     fbo_ = o.fbo_;
+    hdr_fbo_ = o.hdr_fbo_;
     w_ = o.w_;
     h_ = o.h_;
-    o.depth_ = o.fbo_ = 0;
+    o.depth_ = o.fbo_ = o.hdr_fbo_ = 0;
   }
   return *this;
 }
 
 void RenderTarget::bind() const {
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, hdr_fbo_);
   glViewport(0, 0, w_, h_);
 }
 
@@ -204,18 +225,39 @@ WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int sub
   flat_light_tex_.upload(&one, GL_RED, GL_UNSIGNED_BYTE);
 
   build_surface_mesh();
-  // ground: one large quad, 5 visible extents wide, centred on the visible region
+  // ground: one large floor quad, 5 visible extents wide, centred on the visible region
+  // (vertices 0-5); then the floor under the region and a deck at the rest level around it,
+  // 2 extents wide (vertices 6-35, RenderSettings::pool_deck)
   const double w = grid_.cols * grid_.dx, h = grid_.rows * grid_.dx;
+  const float gz = static_cast<float>(ground_z_);
+  // the floor rect and the deck's inner edge: the surface mesh's outline (first to last point)
+  const float ax = static_cast<float>(grid_.x(0)), bx = static_cast<float>(grid_.x(grid_.cols - 1));
+  const float ay = static_cast<float>(grid_.y(0)), by = static_cast<float>(grid_.y(grid_.rows - 1));
   const float gx0 = static_cast<float>(grid_.x0 - 2.0 * w), gx1 = static_cast<float>(grid_.x0 + 3.0 * w);
   const float gy0 = static_cast<float>(grid_.y0 - 2.0 * h), gy1 = static_cast<float>(grid_.y0 + 3.0 * h);
-  const float quad[] = {gx0, gy0, gx1, gy0, gx1, gy1, gx0, gy0, gx1, gy1, gx0, gy1};
+  std::vector<float> quads;
+  auto quad = [&](float x0, float y0, float x1, float y1, float z) {
+    quads.insert(quads.end(), {x0, y0, z, x1, y0, z, x1, y1, z, x0, y0, z, x1, y1, z, x0, y1, z});
+  };
+  quad(gx0, gy0, gx1, gy1, gz);
+  quad(ax, ay, bx, by, gz);
+  // deck: south, north, west, east, reaching 1.5 cells under the water's outline so that no
+  // gap opens between its edge and a wave trough there
+  const float o = static_cast<float>(1.5 * grid_.dx);
+  quad(gx0, gy0, gx1, ay + o, 0.0f);
+  quad(gx0, by - o, gx1, gy1, 0.0f);
+  quad(gx0, ay + o, ax + o, by - o, 0.0f);
+  quad(bx - o, ay + o, gx1, by - o, 0.0f);
+  ground_vertex_count_ = static_cast<GLsizei>(quads.size() / 3);
   glGenVertexArrays(1, &ground_vao_);
   glBindVertexArray(ground_vao_);
   glGenBuffers(1, &ground_vbo_);
   glBindBuffer(GL_ARRAY_BUFFER, ground_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STATIC_DRAW);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(quads.size() * sizeof(float)), quads.data(), GL_STATIC_DRAW);
   glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glGenVertexArrays(1, &empty_vao_);
+  tone_prog_ = gl::program_from_strings(gl::fullscreen_vertex_shader(), gl::shader_source("tonemap.frag"), "tonemap");
 
   glGenVertexArrays(1, &ship_vao_);
   glBindVertexArray(ship_vao_);
@@ -234,8 +276,8 @@ WaterRenderer::~WaterRenderer() {
   caustics_.reset();
   GLuint bufs[] = {surface_static_vbo_, surface_h_vbo_, surface_lin_vbo_, surface_ibo_, ground_vbo_, ship_vbo_};
   glDeleteBuffers(6, bufs);
-  GLuint vaos[] = {surface_vao_, ground_vao_, ship_vao_};
-  glDeleteVertexArrays(3, vaos);
+  GLuint vaos[] = {surface_vao_, ground_vao_, ship_vao_, empty_vao_};
+  glDeleteVertexArrays(4, vaos);
   if (GLenum e = glGetError(); e != GL_NO_ERROR) std::fprintf(stderr, "~WaterRenderer: GL error 0x%04X\n", e);
 }
 
@@ -245,6 +287,11 @@ void WaterRenderer::set_heights(std::span<const float> eta) {
   const auto t0 = std::chrono::steady_clock::now();
   const float off = offset_;
   std::transform(eta.begin(), eta.end(), eta_.begin(), [off](float v) { return v - off; });
+  // inside an obstacle the solver's height is meaningless (dry cells, an empty column): the
+  // nearest water point's height closes the surface around the solid drawn there
+  if (!fill_from_.empty())
+    for (std::size_t k = 0; k < eta_.size(); ++k)
+      if (fill_from_[k] != k) eta_[k] = eta_[fill_from_[k]];
   subsample_heights(eta_, grid_.rows, grid_.cols, static_cast<std::size_t>(subsample_), layout_, mesh_h_);
   height_differences(eta_, grid_.rows, grid_.cols, diffs_);
   heights_dirty_ = true;
@@ -307,8 +354,133 @@ void WaterRenderer::build_ground_texture(const RenderSettings& s) {
   ground_tex_.set_wrap(GL_REPEAT);
 }
 
-void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettings& s, const OrbitCamera&) const {
+void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
+  solids_.clear();
+  fill_from_.clear();
+  if (obstacles.empty()) return;
+  // solids: from the floor (or the obstacle's bottom) to its top, or for a 2D solver's
+  // obstacle (infinite z) to a quarter of the depth above the water at rest
+  const double floor_z = ground_z_, rise = 0.25 * std::abs(ground_z_);
+  auto zr = [&](double z, double fallback) { return std::isfinite(z) ? z - offset_ : fallback; };
+  auto tri = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+    for (const glm::dvec3& p : {a, b, c})
+      solids_.insert(solids_.end(), {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
+  };
+  auto wall = [&](glm::dvec2 p, glm::dvec2 q, double z0, double z1) {
+    tri({p, z0}, {q, z0}, {q, z1});
+    tri({p, z0}, {q, z1}, {p, z1});
+  };
+  const double gx1 = grid_.x0 + (grid_.cols - 1) * grid_.dx, gy1 = grid_.y0 + (grid_.rows - 1) * grid_.dx;
+  for (const RenderObstacle& o : obstacles) {
+    const double z0 = std::max(zr(o.z0_m, floor_z), floor_z), z1 = zr(o.z1_m, rise);
+    if (o.kind == RenderObstacle::Kind::box) {
+      // clipped to the visible region (a wall along the domain's edge stays inside it)
+      const double x0 = std::max(o.min_m[0], grid_.x0 - 0.5 * grid_.dx),
+                   x1 = std::min(o.max_m[0], gx1 + 0.5 * grid_.dx);
+      const double y0 = std::max(o.min_m[1], grid_.y0 - 0.5 * grid_.dx),
+                   y1 = std::min(o.max_m[1], gy1 + 0.5 * grid_.dx);
+      const double b0 = std::max(zr(o.min_m[2], floor_z), floor_z), b1 = zr(o.max_m[2], rise);
+      if (x1 <= x0 || y1 <= y0) continue;
+      const glm::dvec2 c[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+      for (int k = 0; k < 4; ++k) wall(c[k], c[(k + 1) % 4], b0, b1);
+      tri({c[0], b1}, {c[1], b1}, {c[2], b1});
+      tri({c[0], b1}, {c[2], b1}, {c[3], b1});
+    } else {
+      constexpr int n = 48;
+      const glm::dvec2 ctr(o.centre_m[0], o.centre_m[1]);
+      for (int k = 0; k < n; ++k) {
+        const double a0 = 2.0 * std::numbers::pi * k / n, a1 = 2.0 * std::numbers::pi * (k + 1) / n;
+        const glm::dvec2 p = ctr + o.radius_m * glm::dvec2(std::cos(a0), std::sin(a0));
+        const glm::dvec2 q = ctr + o.radius_m * glm::dvec2(std::cos(a1), std::sin(a1));
+        wall(p, q, z0, z1);
+        tri({ctr, z1}, {p, z1}, {q, z1});
+      }
+    }
+  }
+  // the grid points inside an obstacle's footprint take the height of the nearest point
+  // outside all of them (multi-source breadth-first search over the 4-neighbourhood)
+  const std::size_t R = grid_.rows, C = grid_.cols;
+  std::vector<std::uint8_t> solid(R * C, 0);
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j) {
+      const double x = grid_.x(j), y = grid_.y(i);
+      for (const RenderObstacle& o : obstacles) {
+        const bool in = o.kind == RenderObstacle::Kind::box
+                            ? x >= o.min_m[0] && x <= o.max_m[0] && y >= o.min_m[1] && y <= o.max_m[1]
+                            : std::hypot(x - o.centre_m[0], y - o.centre_m[1]) <= o.radius_m + 0.5 * grid_.dx;
+        if (in) solid[i * C + j] = 1;
+      }
+    }
+  fill_from_.resize(R * C);
+  std::vector<std::size_t> queue;
+  for (std::size_t k = 0; k < R * C; ++k) {
+    fill_from_[k] = static_cast<std::uint32_t>(k);
+    if (!solid[k]) queue.push_back(k);
+  }
+  if (queue.empty()) {  // all solid: nothing to fill from
+    fill_from_.clear();
+    return;
+  }
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::size_t k = queue[head], i = k / C, j = k % C;
+    const std::size_t nb[4] = {i > 0 ? k - C : k, i + 1 < R ? k + C : k, j > 0 ? k - 1 : k, j + 1 < C ? k + 1 : k};
+    for (std::size_t m : nb)
+      if (solid[m]) {
+        solid[m] = 0;
+        fill_from_[m] = fill_from_[k];
+        queue.push_back(m);
+      }
+  }
+}
+
+// Obstacles as solids (flat-shaded, the ship program's solid colour).
+void WaterRenderer::draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
+  if (solids_.empty() || !s.draw_solids) return;
+  glBindVertexArray(ship_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(solids_.size() * sizeof(float)), solids_.data(),
+               GL_STREAM_DRAW);
+  ship_prog_.use();
+  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
+  const glm::vec3 eye(camera.eye());
+  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
+  glUniform1i(ship_prog_.loc("u_solid"), 1);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(solids_.size() / 3));
+  glUniform1i(ship_prog_.loc("u_solid"), 0);
+}
+
+// The half-float scene into the 8-bit image, tone-mapped once (renderer.hpp).
+void WaterRenderer::tone_map(const RenderSettings& s, const RenderTarget& target) {
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
+  glViewport(0, 0, target.width(), target.height());
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  tone_prog_.use();
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, target.hdr().id());
+  glUniform1i(tone_prog_.loc("u_hdr"), 0);
+  glUniform1i(tone_prog_.loc("u_on"), s.tone_map ? 1 : 0);
+  glUniform1f(tone_prog_.loc("u_knee"), s.tone_knee);
+  glBindVertexArray(empty_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettings& s,
+                                        const OrbitCamera& camera) const {
   p.use();
+  const ViewRays v = camera.rays();
+  glUniform3f(p.loc("u_eye"), static_cast<float>(v.eye.x), static_cast<float>(v.eye.y), static_cast<float>(v.eye.z));
+  glUniform1i(p.loc("u_ortho"), v.ortho ? 1 : 0);
+  glUniform3f(p.loc("u_view_dir"), static_cast<float>(v.dir.x), static_cast<float>(v.dir.y),
+              static_cast<float>(v.dir.z));
+  glUniform1f(p.loc("u_index"), s.index);
+  glUniform3fv(p.loc("u_water_colour"), 1, glm::value_ptr(s.water_colour));
+  glUniform3fv(p.loc("u_sky"), 1, glm::value_ptr(s.sky_colour));
+  glUniform1i(p.loc("u_sky_gradient"), s.sky_gradient ? 1 : 0);
+  glUniform3fv(p.loc("u_sky_zenith"), 1, glm::value_ptr(s.sky_zenith));
+  glUniform3fv(p.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
+  glUniform1i(p.loc("u_deep"), s.deep_water ? 1 : 0);
   glUniform1i(p.loc("u_ground"), 0);
   glUniform1i(p.loc("u_caustics"), 1);
   glUniform2f(p.loc("u_ground_origin"), static_cast<float>(grid_.x0), static_cast<float>(grid_.y0));
@@ -325,6 +497,10 @@ void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettin
     glUniform1f(p.loc("u_caustics_scale"), caustics_->scale());
   }
   glUniform1f(p.loc("u_ground_z"), static_cast<float>(ground_z_));
+  // the floor under the visible region (walls beyond it when there is a deck)
+  glUniform4f(p.loc("u_floor_rect"), static_cast<float>(grid_.x(0)), static_cast<float>(grid_.y(0)),
+              static_cast<float>(grid_.x(grid_.cols - 1)), static_cast<float>(grid_.y(grid_.rows - 1)));
+  glUniform1i(p.loc("u_deck"), s.pool_deck ? 1 : 0);
 }
 
 // The water surface: the subsampled mesh with per-pixel normals, refraction, Fresnel, glint.
@@ -339,20 +515,13 @@ void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings
   glUniform2f(p.loc("u_grid_origin"), static_cast<float>(grid_.x0), static_cast<float>(grid_.y0));
   glUniform2f(p.loc("u_grid_size"), static_cast<float>(grid_.cols), static_cast<float>(grid_.rows));
   glUniform1f(p.loc("u_dx"), static_cast<float>(grid_.dx));
-  const ViewRays v = camera.rays();
-  glUniform3f(p.loc("u_eye"), static_cast<float>(v.eye.x), static_cast<float>(v.eye.y), static_cast<float>(v.eye.z));
-  glUniform1i(p.loc("u_ortho"), v.ortho ? 1 : 0);
-  glUniform3f(p.loc("u_view_dir"), static_cast<float>(v.dir.x), static_cast<float>(v.dir.y),
-              static_cast<float>(v.dir.z));
-  glUniform1f(p.loc("u_index"), s.index);
   glUniform1i(p.loc("u_exact"), s.exact_refraction ? 1 : 0);
   glUniform1i(p.loc("u_fresnel"), static_cast<int>(s.fresnel));
-  glUniform1i(p.loc("u_glint"), s.sun_glint ? 1 : 0);
+  glUniform1i(p.loc("u_glint"), !s.sun_glint ? 0 : s.paper_glint ? 1 : 2);
+  glUniform1f(p.loc("u_sun_cos"), std::cos(s.sun_radius_rad));
+  glUniform1f(p.loc("u_sun_intensity"), s.sun_intensity);
   glUniform1i(p.loc("u_absorption"), s.absorption ? 1 : 0);
   glUniform3fv(p.loc("u_absorb"), 1, glm::value_ptr(s.absorb_rgb));
-  glUniform3fv(p.loc("u_water_colour"), 1, glm::value_ptr(s.water_colour));
-  glUniform3fv(p.loc("u_sky"), 1, glm::value_ptr(s.sky_colour));
-  glUniform3fv(p.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
   glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
   glBindVertexArray(surface_vao_);
   glDrawElements(GL_TRIANGLES, surface_index_count_, GL_UNSIGNED_INT, nullptr);
@@ -371,6 +540,7 @@ void WaterRenderer::draw_ships(const OrbitCamera& camera, const RenderSettings& 
   glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
   const glm::vec3 eye(camera.eye());
   glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
+  glUniform1i(ship_prog_.loc("u_solid"), 0);
   glDrawArrays(GL_TRIANGLES, 0, ship_vertex_count_);
 }
 
@@ -422,19 +592,193 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   lap(times.surface);
 
   if (s.draw_ship && !ships_.empty()) draw_ships(camera, s, mvp);
+  draw_solids(camera, s, mvp);
   lap(times.ship);
-  // ground seen directly, drawn last so the depth test skips what the water and ships cover
-  set_common_uniforms(ground_prog_, s, camera);
-  glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-  glBindVertexArray(ground_vao_);
-  glDrawArrays(GL_TRIANGLES, 0, 6);
+  // ground seen directly, drawn last so the depth test skips what the water and ships cover;
+  // deep water has no floor (the background is the clear colour)
+  if (!s.deep_water || s.pool_deck) {
+    set_common_uniforms(ground_prog_, s, camera);
+    glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+    glBindVertexArray(ground_vao_);
+    if (s.pool_deck)
+      glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,
+                   s.deep_water ? ground_vertex_count_ - 12 : ground_vertex_count_ - 6);
+    else
+      glDrawArrays(GL_TRIANGLES, 0, 6);
+  }
   lap(times.ground);
+  tone_map(s, target);
+  lap(times.tonemap);
 
   glBindVertexArray(0);
   glUseProgram(0);
   glActiveTexture(GL_TEXTURE0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl::check("WaterRenderer::render");
+}
+
+}  // namespace huygens
+
+// ---------------------------------------------------------------------------------
+// Plan view: exact values as colours, a colour bar and axes (docs/viz.md "Plan view")
+
+namespace huygens {
+namespace {
+
+// Piecewise-linear colour maps through a few control colours (t in [0, 1]): a diverging
+// blue-white-red for heights about rest (ColorBrewer RdBu), viridis for depths.
+glm::vec3 colour_map(double t, bool diverging) {
+  static const glm::vec3 rdbu[] = {{0.02f, 0.19f, 0.38f},
+                                   {0.26f, 0.58f, 0.76f},
+                                   {0.97f, 0.97f, 0.97f},
+                                   {0.84f, 0.38f, 0.30f},
+                                   {0.40f, 0.00f, 0.12f}};
+  static const glm::vec3 viridis[] = {{0.267f, 0.005f, 0.329f},
+                                      {0.229f, 0.322f, 0.546f},
+                                      {0.128f, 0.567f, 0.551f},
+                                      {0.369f, 0.789f, 0.383f},
+                                      {0.993f, 0.906f, 0.144f}};
+  const glm::vec3* c = diverging ? rdbu : viridis;
+  const double x = std::clamp(t, 0.0, 1.0) * 4.0;
+  const int k = std::min(static_cast<int>(x), 3);
+  return glm::mix(c[k], c[k + 1], static_cast<float>(x - k));
+}
+
+// A "nice" step (1, 2 or 5 times a power of ten) giving about `n` intervals over `range`.
+double nice_step(double range, int n) {
+  if (!(range > 0.0)) return 1.0;
+  const double raw = range / n, p = std::pow(10.0, std::floor(std::log10(raw))), f = raw / p;
+  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
+}
+
+std::string tick_label(double v, double step) {
+  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(v) < 0.5 * step ? 0.0 : v);
+  return buf;
+}
+
+// Filled rectangles (pixels, y down from the top) drawn by scissored clears into the bound
+// framebuffer of height `fb_h`.
+struct Painter {
+  int fb_h = 0;
+  void rect(double x, double y, double w, double h, glm::vec3 c) const {
+    const int x0 = static_cast<int>(std::floor(x)), x1 = static_cast<int>(std::floor(x + w));
+    const int y0 = static_cast<int>(std::floor(y)), y1 = static_cast<int>(std::floor(y + h));
+    if (x1 <= x0 || y1 <= y0) return;
+    glScissor(x0, fb_h - y1, x1 - x0, y1 - y0);
+    glClearColor(c.r, c.g, c.b, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
+  // stb_easy_font's glyph quads scaled by `s`; (x, y) = the text's top-left corner
+  void text(double x, double y, const std::string& str, double s, glm::vec3 c = glm::vec3(0.0f)) const {
+    static char buf[64 * 1024];
+    unsigned char col[4] = {0, 0, 0, 255};
+    const int quads = stb_easy_font_print(0, 0, const_cast<char*>(str.c_str()), col, buf, sizeof buf);
+    for (int q = 0; q < quads; ++q) {
+      const float* v0 = reinterpret_cast<const float*>(buf + 64 * q);
+      const float* v2 = reinterpret_cast<const float*>(buf + 64 * q + 32);
+      rect(x + s * v0[0], y + s * v0[1], s * (v2[0] - v0[0]), s * (v2[1] - v0[1]), c);
+    }
+  }
+  static double text_width(const std::string& str, double s) {
+    return s * stb_easy_font_width(const_cast<char*>(str.c_str()));
+  }
+};
+
+}  // namespace
+
+void WaterRenderer::render_plan(std::span<const float> values, const std::string& quantity, double unit_scale,
+                                const std::string& unit, bool diverging, const std::string& title,
+                                const RenderTarget& target) {
+  const std::size_t R = grid_.rows, C = grid_.cols;
+  // the colour range: symmetric about 0 (heights) or from the minimum (depths), rounded out to
+  // the colour bar's ticks; obstacles (fill_from_) are grey
+  double lo = 1e300, hi = -1e300;
+  for (std::size_t k = 0; k < R * C; ++k) {
+    if (!fill_from_.empty() && fill_from_[k] != k) continue;
+    lo = std::min(lo, unit_scale * values[k]);
+    hi = std::max(hi, unit_scale * values[k]);
+  }
+  if (lo > hi) lo = hi = 0.0;
+  if (diverging) hi = std::max(std::abs(lo), std::abs(hi)), lo = -hi;
+  if (hi - lo < 1e-12) hi = lo + 1.0;
+  const double cstep = nice_step(hi - lo, 6);
+  lo = std::floor(lo / cstep - 1e-9) * cstep;
+  hi = std::ceil(hi / cstep + 1e-9) * cstep;
+  std::vector<std::uint8_t> px(R * C * 4);
+  for (std::size_t k = 0; k < R * C; ++k) {
+    const bool solid = !fill_from_.empty() && fill_from_[k] != k;
+    const glm::vec3 c = solid ? glm::vec3(0.55f) : colour_map((unit_scale * values[k] - lo) / (hi - lo), diverging);
+    for (int ch = 0; ch < 3; ++ch) px[4 * k + ch] = static_cast<std::uint8_t>(std::lround(255.0f * c[ch]));
+    px[4 * k + 3] = 255;
+  }
+  gl::Texture tex(static_cast<int>(C), static_cast<int>(R), GL_RGBA8);
+  tex.upload(px.data(), GL_RGBA, GL_UNSIGNED_BYTE);
+  const gl::Framebuffer src(tex);
+
+  // layout (pixels, y down): title on top, the plot keeping the region's aspect, the colour
+  // bar on the right, axis labels left and below
+  const int W = target.width(), H = target.height();
+  const double s = std::max(1.0, std::round(H / 300.0));  // text scale (glyphs ~7 px high at 1)
+  const double left = 40 * s, right = 70 * s, top = 18 * s, bottom = 26 * s;
+  const double ext_x = C * grid_.dx, ext_y = R * grid_.dx;
+  const double avail_w = std::max(1.0, W - left - right), avail_h = std::max(1.0, H - top - bottom);
+  const double ppm = std::min(avail_w / ext_x, avail_h / ext_y);  // pixels per metre
+  const double pw = ext_x * ppm, ph = ext_y * ppm;
+  const double px0 = left + 0.5 * (avail_w - pw), py0 = top + 0.5 * (avail_h - ph);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
+  glViewport(0, 0, W, H);
+  glDisable(GL_SCISSOR_TEST);
+  glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, src.id());
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.fbo());
+  glBlitFramebuffer(0, 0, static_cast<GLint>(C), static_cast<GLint>(R), static_cast<GLint>(std::lround(px0)),
+                    static_cast<GLint>(std::lround(H - py0 - ph)), static_cast<GLint>(std::lround(px0 + pw)),
+                    static_cast<GLint>(std::lround(H - py0)), GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
+  glEnable(GL_SCISSOR_TEST);
+  const Painter p{H};
+  const glm::vec3 ink(0.0f);
+  // frame and axes in metres (the scene's frame: the corner of cell (0, 0) at x0 - dx/2)
+  const double lw = std::max(1.0, s * 0.5);
+  p.rect(px0 - lw, py0 - lw, pw + 2 * lw, lw, ink);
+  p.rect(px0 - lw, py0 + ph, pw + 2 * lw, lw, ink);
+  p.rect(px0 - lw, py0, lw, ph, ink);
+  p.rect(px0 + pw, py0, lw, ph, ink);
+  const double ax0 = grid_.x0 - 0.5 * grid_.dx, ay0 = grid_.y0 - 0.5 * grid_.dx;
+  const double mstep = nice_step(std::max(ext_x, ext_y), 6);
+  for (double v = std::ceil(ax0 / mstep) * mstep; v <= ax0 + ext_x + 1e-9; v += mstep) {
+    const double x = px0 + (v - ax0) * ppm;
+    p.rect(x - 0.5 * lw, py0 + ph, lw, 4 * s, ink);
+    const std::string l = tick_label(v, mstep);
+    p.text(x - 0.5 * Painter::text_width(l, s), py0 + ph + 6 * s, l, s);
+  }
+  for (double v = std::ceil(ay0 / mstep) * mstep; v <= ay0 + ext_y + 1e-9; v += mstep) {
+    const double y = py0 + ph - (v - ay0) * ppm;
+    p.rect(px0 - 4 * s, y - 0.5 * lw, 4 * s, lw, ink);
+    const std::string l = tick_label(v, mstep);
+    p.text(px0 - 6 * s - Painter::text_width(l, s), y - 3 * s, l, s);
+  }
+  p.text(px0 + 0.5 * pw - Painter::text_width("x (m)", s) / 2, py0 + ph + 16 * s, "x (m)", s);
+  p.text(4 * s, py0 + 0.5 * ph - 3 * s, "y (m)", s);
+  // colour bar: one row per pixel through the map, ticks at the nice steps
+  const double bx = px0 + pw + 12 * s, bw = 12 * s;
+  for (int row = 0; row < static_cast<int>(ph); ++row)
+    p.rect(bx, py0 + ph - row - 1, bw, 1, colour_map((row + 0.5) / ph, diverging));
+  for (double v = lo; v <= hi + 1e-9 * cstep; v += cstep) {
+    const double y = py0 + ph - (v - lo) / (hi - lo) * ph;
+    p.rect(bx + bw, y - 0.5 * lw, 3 * s, lw, ink);
+    p.text(bx + bw + 5 * s, y - 3 * s, tick_label(v, cstep), s);
+  }
+  const std::string qlabel = quantity + " (" + unit + ")";
+  p.text(bx, py0 - 12 * s, qlabel, s);
+  p.text(px0, 5 * s, title, s);
+  glDisable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  gl::check("WaterRenderer::render_plan");
 }
 
 }  // namespace huygens

@@ -9,12 +9,19 @@
 //
 // Colours are display values (no sRGB conversion), so the render tests can compare pixels
 // with closed forms: the water pixel is
-//   C = (1 - F) [ G T + W (1 - T) ] + F S + g L,   T = exp(-a_rgb d),
-// G the lit ground colour at the refracted ground point, d the path length in the water,
-// W the water colour, S the sky colour, L the sun colour, and F either the paper's
-// f = clamp(1 - 2.5 n.v) or Schlick's F0 + (1 - F0)(1 - n.v)^5, F0 = ((index-1)/(index+1))^2,
-// g = clamp(100 n.h - 98.95) with h the half vector between the viewer and the sun.
+//   C = (1 - F) [ G T + W (1 - T) ] + F S(r) + g L,   T = exp(-a_rgb d),
+// G the lit ground colour at the refracted ground point (W alone for deep water with no
+// floor), d the path length in the water, W the water colour, S(r) the sky in the reflected
+// direction r (uniform, or a horizon-to-zenith gradient), L the sun colour, F either the
+// paper's f = clamp(1 - 2.5 n.v) or Schlick's F0 + (1 - F0)(1 - n.v)^5,
+// F0 = ((index-1)/(index+1))^2 (paper 003), and g the glint: the paper's clamp(100 n.h - 98.95)
+// (h the half vector between the viewer and the sun) or the sun's disc seen in the mirror
+// direction, g = F E_sun [angle(r, sun) < sun radius] with a soft edge.
+// Everything is drawn in a half-float target (no clamping: caustics and glints exceed 1) and
+// tone-mapped once at the end into the 8-bit image: identity up to the knee k, then
+// k + (1 - k)(1 - exp(-(x - k)/(1 - k))) (C1, saturates at 1).
 #include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
 #include <span>
@@ -23,11 +30,20 @@
 
 #include "camera.hpp"
 #include "gl.hpp"
+#include "huygens/pipeline/render_info.hpp"
 #include "refraction.hpp"
 
 namespace huygens {
 
 enum class FresnelModel : int { off = 0, paper = 1, schlick = 2 };
+/// How the caustics texture is made (docs/viz.md "Caustics", measured error there):
+/// conserving = explicit area per triangle in a float target, float blur (the default, light
+/// conserved); mip_paper = the paper's MIP trick in the 8-bit target with the accumulation-buffer
+/// blur emulation; mip_float = the MIP trick in a float target; explicit_u8 = explicit area in
+/// the 8-bit target (unit light = 32/255, saturates at 8x).
+enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, explicit_u8 = 3 };
+/// How the scene looks (SceneView::look, chosen from RenderInfo, docs/viz.md "Looks").
+enum class Look : int { pool = 0, ocean = 1, shallow = 2, sph = 3 };
 enum class GroundPattern : int { tiles = 0, checker = 1, uniform = 2 };
 
 /// What the renderer draws and how (all colours are display values in [0, 1]).
@@ -36,9 +52,28 @@ struct RenderSettings {
   float index = 1.333f;
   /// true: exact Snell per pixel; false: the paper's linearised texture coordinates.
   bool exact_refraction = false;
-  FresnelModel fresnel = FresnelModel::paper;
-  /// Sun glint g = clamp(100 n.h - 98.95).
+  FresnelModel fresnel = FresnelModel::schlick;
+  /// Sun glint (the sun's disc in the mirror direction, or the paper's clamp(100 n.h - 98.95)).
   bool sun_glint = true;
+  /// The paper's glint g = clamp(100 n.h - 98.95) instead of the sun's disc.
+  bool paper_glint = false;
+  /// Angular radius of the glint's disc (unit: rad): the sun's 0.0047 rad doubled for the
+  /// slope spread inside a pixel, which the per-pixel normal does not see.
+  float sun_radius_rad = 0.0094f;
+  /// Radiance of the sun's disc relative to the sky (unit: 1; tone-mapped to white).
+  float sun_intensity = 40.0f;
+  /// Sky seen in the reflection: sky_colour at the horizon to sky_zenith overhead
+  /// (S = mix(horizon, zenith, sqrt(r_z))); false = the uniform sky_colour.
+  bool sky_gradient = true;
+  glm::vec3 sky_zenith{0.12f, 0.30f, 0.66f};
+  /// Open ocean: no floor, the refracted light is the deep water's colour W.
+  bool deep_water = false;
+  /// Pool deck at the rest level around the visible region (pool/pond/LBM/SPH looks) and the
+  /// walls seen through the water where the refracted ray leaves the floor under the region.
+  bool pool_deck = false;
+  /// Tone map once at the end (identity up to `tone_knee`, then a soft shoulder to 1); off = clamp.
+  bool tone_map = true;
+  float tone_knee = 0.8f;
   /// Depth colour and absorption exp(-a_rgb d).
   bool absorption = true;
   /// Absorption coefficients of the water per channel (unit: 1/m).
@@ -55,12 +90,19 @@ struct RenderSettings {
   float ambient = 0.35f, sun_light = 0.65f;
   /// Light the ground with the caustics pass (when it is available).
   bool caustics = true;
-  /// Blur the caustics (accumulation-buffer emulation) when caustics are on.
+  CausticsMode caustics_mode = CausticsMode::conserving;
+  /// Caustics mesh vertices per side; 0 = follow the field (~8 cells per dominant wavelength,
+  /// up to the grid's resolution, viz::mesh_size_for_field).
+  int caustics_mesh = 0;
+  /// Blur the caustics ([1 2 1]^2 / 16, paper 004 sec. 6) when caustics are on.
   bool blur = true;
-  /// Blur in a float target instead of the paper's 8-bit accumulation-buffer emulation.
+  /// 8-bit modes: blur in float instead of the paper's accumulation-buffer emulation (float
+  /// targets always blur in float).
   bool blur_float = false;
   bool draw_water = true;
   bool draw_ship = true;
+  /// Obstacles (RenderInfo::obstacles) as solid blocks above the water.
+  bool draw_solids = true;
   GroundPattern ground = GroundPattern::tiles;
   /// Checker/tile squares across the visible region (unit: 1).
   int ground_squares = 8;
@@ -78,7 +120,8 @@ struct ShipPose {
   double length = 1.0, beam = 0.3, draft = 0.05;
 };
 
-/// Colour texture (RGBA8) + depth renderbuffer + framebuffer object.
+/// Where the scene is drawn: a half-float colour texture + depth renderbuffer (bind()), and the
+/// 8-bit display image (fbo(), color(), read()) that resolve() tone-maps it into.
 class RenderTarget {
  public:
   RenderTarget() = default;
@@ -90,24 +133,29 @@ class RenderTarget {
   RenderTarget& operator=(RenderTarget&& o) noexcept;
   int width() const { return w_; }
   int height() const { return h_; }
+  /// The 8-bit display image's framebuffer (blit / read from here).
   GLuint fbo() const { return fbo_; }
   const gl::Texture& color() const { return color_; }
+  /// Binds the half-float scene framebuffer for drawing.
   void bind() const;
+  const gl::Texture& hdr() const { return hdr_; }
+  GLuint hdr_fbo() const { return hdr_fbo_; }
   /// RGBA8 pixels, top row first.
   gl::Image8 read() const;
 
  private:
-  gl::Texture color_;
-  GLuint depth_ = 0, fbo_ = 0;
+  gl::Texture color_, hdr_;
+  GLuint depth_ = 0, fbo_ = 0, hdr_fbo_ = 0;
   int w_ = 0, h_ = 0;
 };
 
 /// Wall time of each render pass of the last frame (unit: ms; measured with glFinish
-/// when `RenderTimes::enabled`). `prepare` is the CPU part of set_heights (weighted-average
+/// when `RenderTimes::enabled`; `ship` includes the obstacles' solids, `tonemap` the final
+/// pass into the 8-bit image). `prepare` is the CPU part of set_heights (weighted-average
 /// mesh heights and the full-resolution height differences), always measured.
 struct RenderTimes {
   bool enabled = false;
-  double prepare = 0, upload = 0, caustics = 0, ground = 0, surface = 0, ship = 0;
+  double prepare = 0, upload = 0, caustics = 0, ground = 0, surface = 0, ship = 0, tonemap = 0;
 };
 
 class CausticsStage;  // wraps the caustics pass (viz/caustics.hpp) when it is built
@@ -129,6 +177,14 @@ class WaterRenderer {
   /// Level subtracted from every height given to set_heights (unit: m; SceneGeometry::height_offset).
   void set_height_offset(double offset) { offset_ = static_cast<float>(offset); }
   void set_ships(std::span<const ShipPose> ships) { ships_.assign(ships.begin(), ships.end()); }
+  /// Obstacles: drawn as solids, and the heights inside them (a solver leaves them dry or
+  /// empty) replaced by the nearest water point's, so the surface closes around them.
+  void set_obstacles(std::span<const RenderObstacle> obstacles);
+  /// Draws `values` (rows x cols, the visible field) as a colour map seen from straight above,
+  /// with a colour bar, axes in metres and a title (plan view, docs/viz.md); `diverging` uses
+  /// a blue-white-red map symmetric about 0, else a sequential one from the minimum.
+  void render_plan(std::span<const float> values, const std::string& quantity, double unit_scale,
+                   const std::string& unit, bool diverging, const std::string& title, const RenderTarget& target);
   /// Draw into `target` as seen by `camera`.
   void render(const OrbitCamera& camera, const RenderSettings& settings, const RenderTarget& target);
 
@@ -140,6 +196,8 @@ class WaterRenderer {
   void draw_ships(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void update_linearisation(const OrbitCamera& camera, float index);
   void build_ground_texture(const RenderSettings& s);
+  void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  void tone_map(const RenderSettings& s, const RenderTarget& target);
   void set_common_uniforms(const gl::Program& p, const RenderSettings& s, const OrbitCamera& cam) const;
 
   GridPlacement grid_;
@@ -156,6 +214,11 @@ class WaterRenderer {
   GLuint ground_vao_ = 0, ground_vbo_ = 0;
   GLuint ship_vao_ = 0, ship_vbo_ = 0;
   GLsizei ship_vertex_count_ = 0;
+  GLsizei ground_vertex_count_ = 0;
+  std::vector<float> solids_;             // obstacle triangles (x, y, z)
+  std::vector<std::uint32_t> fill_from_;  // per grid point: the point whose height it shows
+  gl::Program tone_prog_;
+  GLuint empty_vao_ = 0;
   bool heights_dirty_ = true;
   float offset_ = 0.0f;
 

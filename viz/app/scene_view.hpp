@@ -5,6 +5,7 @@
 // parses the scene's JSON and has no physics of its own. A ship is drawn where the frames put it
 // (FrameInfo::ships, the solver's poses: a ship steered by cmd::ShipTarget too) with its hull.
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,18 @@ struct SceneView {
   /// Simulated time between two displayed frames (unit: s; RenderInfo::frame_dt_s).
   double frame_dt = 1.0 / 60.0;
   std::vector<RenderHull> hulls;
+  std::vector<RenderObstacle> obstacles;
+  /// The kind of picture (RenderInfo's request, else from what the solver is: a height above
+  /// a floor with an adaptive step is SPH, with a fixed step shallow water (LBM); an elevation
+  /// field with a wind sea is the open ocean, without one a pool).
+  Look look = Look::pool;
+  /// Start in the plan view ("view": "plan").
+  bool plan_view = false;
+  /// The plan view's quantity: "height" (elevation about rest, diverging map) or "depth".
+  bool plan_depth = false;
+  /// The camera keeps the first ship in view (render.camera.follow_ship; default with ships).
+  bool follow_ship = false;
+  CameraRequest camera_request;
   /// Depth at which deep-water scenes draw their ground (unit: m).
   static constexpr double kDeepGround = 3.0;
   /// Hull i placed at a pose the frames carry.
@@ -38,8 +51,19 @@ SceneView scene_view(const RenderInfo& info);
 /// The ships of a frame pair at display time t (FramePair::ship), each with its hull.
 void frame_ships(const SceneView& view, const FramePair& frames, double t, std::vector<ShipPose>& out);
 
-/// Applies what the scene's "render" block asked for (caustics, blur) to the settings.
+/// Applies what the scene's "render" block asked for (caustics, blur, mode, sun) to the settings.
 void apply_render_request(const RenderRequest& request, RenderSettings& s);
+
+/// The start-up camera for an image of aspect `aspect`: the scene's camera request, else the
+/// look's framing (the whole region from the south; a quasi-2D slab from low; with a ship to
+/// follow, the ship and its wake from the side at 10-12 hull lengths), then `ship` placed.
+OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* ship);
+/// Moves a following camera's target with the first ship (its yaw and distance stay).
+void follow_ship(const SceneView& view, const ShipPose& ship, OrbitCamera& camera);
+
+/// The settings of the scene's look (docs/viz.md "Looks") for the start-up camera `camera`, then
+/// the scene's "render" block (apply_render_request).
+RenderSettings look_settings(const SceneView& view, const RenderRequest& request, const OrbitCamera& camera);
 
 /// A solver made for the viewer, and what it tells the viewer.
 struct ViewerSolver {
@@ -57,6 +81,21 @@ struct ViewerSolver {
 /// is that scene (both compiled into the program, parsed by parse_scene_text).
 /// Throws SceneError for a bad scene or a file that does not exist.
 ViewerSolver open_viewer_solver(const std::string& arg, const RunOptions& options);
+
+/// What huygens-viz shows of a scene before any option: its view, start-up camera (for an image
+/// of aspect `aspect`, the ships where the solver has them now) and the look's settings.
+struct ViewSetup {
+  SceneView view;
+  OrbitCamera camera;
+  RenderSettings settings;
+};
+ViewSetup view_setup(const ViewerSolver& vs, double aspect);
+
+/// Plan view of the visible field `field` (the solver's height(), rows x cols) at time `t_s`:
+/// the height about rest (diverging map) or the depth (sequential), in mm, cm or m by its
+/// range, titled with the scene's name and the time (WaterRenderer::render_plan).
+void render_plan_view(WaterRenderer& renderer, const SceneView& view, std::span<const float> field, double t_s,
+                      const std::string& name, const RenderTarget& target);
 
 /// Base names of the built-in scenes, space separated.
 const char* builtin_scene_names();

@@ -47,8 +47,15 @@ struct App {
   std::string last_screenshot;
   bool quit = false;
   double time_scale = 1.0;
-  // stones
-  float stone_radius = 0.05f, stone_depth = 0.01f;
+  /// Plan view (P): the colour-mapped field with colour bar and axes instead of the picture.
+  bool plan = false;
+  /// The camera follows the first ship until the user orbits, pans or zooms.
+  bool follow = false;
+  /// Frames drawn (the render rows' call count in the timing table).
+  unsigned long long frames_drawn = 0;
+  // stones: radius and depth of the dent (the default is seen at the default scene's start-up
+  // view: a 5 cm dent of 1 cm made a barely visible dimple)
+  float stone_radius = 0.15f, stone_depth = 0.03f;
   /// Mesh subsampling factor (the renderer is rebuilt when it changes).
   int subsample = 4;
   // mouse state
@@ -166,6 +173,10 @@ void on_key(App& a, int key) {
       break;
     case GLFW_KEY_F:
       a.settings.fresnel = a.settings.fresnel == FresnelModel::paper ? FresnelModel::schlick : FresnelModel::paper;
+      a.settings.paper_glint = a.settings.fresnel == FresnelModel::paper;
+      break;
+    case GLFW_KEY_P:
+      a.plan = !a.plan;
       break;
     case GLFW_KEY_ESCAPE:
       a.quit = true;
@@ -252,6 +263,7 @@ void cursor_callback(GLFWwindow* w, double x, double y) {
                                    static_cast<float>(a.drag_velocity.x), static_cast<float>(a.drag_velocity.y)});
     return;
   }
+  if (a.orbiting || a.panning) a.follow = false;
   if (a.orbiting) {
     a.camera.yaw -= 0.005 * dx;
     a.camera.pitch = std::clamp(a.camera.pitch + 0.005 * dy, 0.05, 1.5706);
@@ -277,7 +289,7 @@ void hold_drag_target(App& a) {
 void scroll_callback(GLFWwindow* w, double, double yoff) {
   App& a = *app_of(w);
   if (ImGui::GetIO().WantCaptureMouse) return;
-  a.camera.distance = std::clamp(a.camera.distance * std::pow(0.9, yoff), 0.2, 500.0);
+  a.camera.distance = std::clamp(a.camera.distance * std::pow(0.9, yoff), 0.01, 5000.0);
 }
 
 // The features: the solver's toggles (only those it has: RenderInfo::toggles; a refused one is
@@ -288,13 +300,17 @@ void panel_features(App& a) {
     if (i > 0) ImGui::SameLine();
     if (ImGui::Checkbox(t.label.c_str(), &t.on)) a.runner->send(cmd::Toggle{CommandName{t.name}, t.on});
   }
-  ImGui::Checkbox("time interpolation", &a.interpolate);
+  ImGui::Checkbox("plan view (P)", &a.plan);
   ImGui::SameLine();
+  ImGui::Checkbox("time interpolation", &a.interpolate);
   ImGui::Checkbox("caustics", &a.settings.caustics);
   ImGui::SameLine();
   ImGui::Checkbox("blur", &a.settings.blur);
   ImGui::SameLine();
-  ImGui::Checkbox("float blur", &a.settings.blur_float);
+  ImGui::Checkbox("float blur (8-bit modes)", &a.settings.blur_float);
+  int mode = static_cast<int>(a.settings.caustics_mode);
+  ImGui::Combo("caustics mode", &mode, "conserving (explicit, float)\0paper MIP, 8-bit\0MIP, float\0explicit, 8-bit\0");
+  a.settings.caustics_mode = static_cast<CausticsMode>(mode);
   ImGui::Checkbox("exact Snell (E)", &a.settings.exact_refraction);
   ImGui::SameLine();
   ImGui::Checkbox("sun glint", &a.settings.sun_glint);
@@ -350,19 +366,27 @@ void panel_timing(App& a, const WaterRenderer& r, const FramePair& fp) {
     }
   }
   const RenderTimes& t = r.times;
-  row("render: mesh+normals (CPU)", t.prepare, 0);
-  row("render: upload", t.upload, 0);
-  row("render: caustics", t.caustics, 0);
-  row("render: ground", t.ground, 0);
-  row("render: surface", t.surface, 0);
-  row("render: ship", t.ship, 0);
+  // render passes: the last frame's time, and the frames drawn so far
+  const unsigned long long n = a.frames_drawn;
+  row("render: mesh+normals (CPU)", t.prepare, n);
+  row("render: upload", t.upload, n);
+  row("render: caustics", t.caustics, n);
+  row("render: ground", t.ground, n);
+  row("render: surface", t.surface, n);
+  row("render: ship+solids", t.ship, n);
+  row("render: tone map", t.tonemap, n);
   ImGui::EndTable();
 }
 
 void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  // on the right-hand side (ships start on the left), wide enough for its labels; the sections
+  // below the switches start collapsed so the panel covers little of the water
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float width = std::min(470.0f, 0.45f * display.x);
+  ImGui::SetNextWindowPos(ImVec2(display.x - width - 10.0f, 10.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(width, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("huygens-viz");
+  ImGui::PushItemWidth(-ImGui::GetFontSize() * 11.0f);  // room for the longest label
   ImGui::Text("%s", a.scene_name.c_str());
   ImGui::Text("t = %.3f s, step %lld, %.1f fps", fp ? fp.newest->info.time_s : 0.0,
               fp ? static_cast<long long>(fp.newest->info.step) : 0LL, fps);
@@ -377,12 +401,13 @@ void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   ImGui::SameLine();
   if (ImGui::Button("screenshot (S)")) on_key(a, GLFW_KEY_S);
   if (ImGui::CollapsingHeader("features", ImGuiTreeNodeFlags_DefaultOpen)) panel_features(a);
-  if (ImGui::CollapsingHeader("parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters(a);
-  if (ImGui::CollapsingHeader("timing (ms)", ImGuiTreeNodeFlags_DefaultOpen)) panel_timing(a, r, fp);
+  if (ImGui::CollapsingHeader("parameters")) panel_parameters(a);
+  if (ImGui::CollapsingHeader("timing (ms)")) panel_timing(a, r, fp);
   if (!a.last_screenshot.empty()) ImGui::Text("last screenshot: %s", a.last_screenshot.c_str());
   ImGui::TextWrapped(
       "left click: stone; left drag on a ship: move it; right drag: orbit; shift+right or "
-      "middle drag: pan; wheel: zoom; F1: hide this panel");
+      "middle drag: pan; wheel: zoom; P: plan view; F1: hide this panel");
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -415,6 +440,7 @@ GLFWwindow* open_window(const WindowOptions& opt, const std::string& scene_name)
 std::unique_ptr<WaterRenderer> make_renderer(const App& a, int subsample) {
   auto r = std::make_unique<WaterRenderer>(a.view.grid, a.view.ground_z, subsample);
   r->set_height_offset(a.view.height_offset);
+  r->set_obstacles(a.view.obstacles);
   r->times.enabled = true;
   r->set_heights(a.field);
   return r;
@@ -438,7 +464,12 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
   glfwGetFramebufferSize(a.window, &fw, &fh);
   if (fw > 0 && fh > 0) {
     if (target.width() != fw || target.height() != fh) target = RenderTarget(fw, fh);
-    renderer.render(a.camera, a.settings, target);
+    if (a.follow && !a.ships_drawn.empty()) follow_ship(a.view, a.ships_drawn[0], a.camera);
+    if (a.plan)
+      render_plan_view(renderer, a.view, a.field, fp ? fp.newest->info.time_s : 0.0, a.scene_name, target);
+    else
+      renderer.render(a.camera, a.settings, target);
+    ++a.frames_drawn;
     glBindFramebuffer(GL_READ_FRAMEBUFFER, target.fbo());
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
     glBlitFramebuffer(0, 0, fw, fh, 0, 0, fw, fh, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -526,10 +557,14 @@ int run_window(ViewerSolver scene, const WindowOptions& opt) {
     a.scene_name = scene.name;
     a.view = scene_view(scene.info);
     a.toggles = a.toggles_at_start = scene.info.toggles;  // as the scene has them
-    const GridPlacement& g = a.view.grid;
     const auto h = scene.solver->height();
     a.field.assign(h.begin(), h.end());
-    a.camera = default_camera(g.x0, g.y0, g.cols * g.dx, g.rows * g.dx);
+    int fbw = opt.width, fbh = opt.height;
+    glfwGetFramebufferSize(window, &fbw, &fbh);
+    const ViewSetup setup = view_setup(scene, fbh > 0 ? static_cast<double>(fbw) / fbh : 16.0 / 9.0);
+    a.camera = setup.camera;
+    a.follow = a.view.follow_ship;
+    a.plan = opt.plan;
     RunnerParams rp;
     rp.realtime = true;
     rp.start_paused = opt.paused;

@@ -56,12 +56,43 @@ struct RenderHull {
 /// How the caustics are blurred (paper 004 section 6).
 enum class BlurMode { accumulation, float_target, none };
 
+/// How the caustics texture is made ("caustics_mode"; docs/viz.md "Caustics").
+enum class CausticsModeRequest { conserving, mip_paper, mip_float, explicit_u8 };
+
+/// The kind of picture ("look"; docs/viz.md "Looks"): open ocean (no floor), pool / pond (floor,
+/// walls, caustics), shallow water (LBM: bed, solid walls) or SPH (solids, closed surface).
+enum class LookRequest { pool, ocean, shallow, sph };
+
+/// The start-up camera ("camera"); unset fields keep the viewer's framing.
+struct CameraRequest {
+  /// "target_m": the point looked at (x, y, z) (unit: m).
+  std::optional<std::array<double, 3>> target_m;
+  /// "distance_m": from the target to the eye (unit: m).
+  std::optional<double> distance_m;
+  /// "yaw_deg": heading of the eye around the target from +x toward +y (unit: deg).
+  std::optional<double> yaw_deg;
+  /// "pitch_deg": elevation of the eye above the horizontal (unit: deg).
+  std::optional<double> pitch_deg;
+  /// "follow_ship": keep the first ship in view (default: true when the scene has ships).
+  std::optional<bool> follow_ship;
+};
+
 /// What a scene's optional "render" block asks the viewer for; unset = the viewer's default.
 struct RenderRequest {
   /// "caustics": light the ground with the caustics pass.
   std::optional<bool> caustics;
   /// "blur": "accumulation" (the paper's 8-bit emulation), "float" or "none".
   std::optional<BlurMode> blur;
+  /// "caustics_mode": "conserving", "mip_paper", "mip_float" or "explicit_u8".
+  std::optional<CausticsModeRequest> caustics_mode;
+  /// "look": "pool", "ocean", "shallow" or "sph".
+  std::optional<LookRequest> look;
+  /// "view": "perspective" or "plan" (the colour-mapped plan view).
+  std::optional<bool> plan_view;
+  CameraRequest camera;
+  /// "sun": {"elevation_deg", "azimuth_deg"}: the sun's elevation above the horizon and its
+  /// azimuth from +x toward +y (unit: deg).
+  std::optional<double> sun_elevation_deg, sun_azimuth_deg;
 };
 
 /// A feature the solver switches at run time on cmd::Toggle (a viewer shows a checkbox for it).
@@ -103,8 +134,10 @@ struct RenderInfo {
 /// level above a floor, taken before the first step; 0 for an empty field.
 double mean_level(std::span<const float> height);
 
-/// Reads the scene's optional "render" block ({"caustics": bool, "blur": "accumulation" |
-/// "float" | "none"}) below `root`; throws SceneError naming the path of a bad value.
+/// Reads the scene's optional "render" block below `root`: {"caustics": bool, "blur":
+/// "accumulation" | "float" | "none", "caustics_mode": ..., "look": ..., "view": "perspective" |
+/// "plan", "camera": {"target_m", "distance_m", "yaw_deg", "pitch_deg", "follow_ship"}, "sun":
+/// {"elevation_deg", "azimuth_deg"}}; throws SceneError naming the path of a bad or unknown key.
 RenderRequest parse_render_request(const JsonIn& root);
 
 }  // namespace huygens
