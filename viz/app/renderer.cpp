@@ -332,14 +332,13 @@ void WaterRenderer::build_ground_texture(const RenderSettings& s) {
       } else if (s.ground == GroundPattern::uniform) {
         c = s.ground_uniform;
       } else {
-        // sandy tiles with darker grout lines and a little deterministic grain
+        // sandy tiles with darker grout lines, a tone per tile (no per-texel grain: it made
+        // every picture incompressible and hid the caustics' fine detail)
         const float fx = static_cast<float>(x * sq % n) / n, fy = static_cast<float>(y * sq % n) / n;
         const bool grout = fx < 0.03f || fy < 0.03f;
         const float tone = 0.9f + 0.1f * hash01(static_cast<std::uint32_t>(cx), static_cast<std::uint32_t>(cy));
-        const float grain = 0.94f + 0.06f * hash01(static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
         c = grout ? glm::vec3(0.35f, 0.32f, 0.28f)
-                  : tone * grain *
-                        (((cx + cy) % 2 == 0) ? glm::vec3(0.86f, 0.78f, 0.60f) : glm::vec3(0.74f, 0.66f, 0.50f));
+                  : tone * (((cx + cy) % 2 == 0) ? glm::vec3(0.86f, 0.78f, 0.60f) : glm::vec3(0.74f, 0.66f, 0.50f));
       }
       std::uint8_t* p = &px[4 * (static_cast<std::size_t>(y) * n + x)];
       for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
@@ -431,6 +430,44 @@ void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
         queue.push_back(m);
       }
   }
+}
+
+// The water's sides: the mesh's outline down to the floor (seen where no deck hides them: a
+// quasi-2D slab from the side shows its profile), flat-shaded in the water's colour.
+void WaterRenderer::draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
+  const std::size_t vr = layout_.vertex_rows(), vc = layout_.vertex_cols();
+  std::vector<float> tri;
+  auto edge = [&](std::size_t a, std::size_t b, double xa, double ya, double xb, double yb) {
+    const float ha = mesh_h_[a], hb = mesh_h_[b], z0 = static_cast<float>(ground_z_);
+    const float p[4][3] = {{static_cast<float>(xa), static_cast<float>(ya), z0},
+                           {static_cast<float>(xb), static_cast<float>(yb), z0},
+                           {static_cast<float>(xb), static_cast<float>(yb), hb},
+                           {static_cast<float>(xa), static_cast<float>(ya), ha}};
+    for (int k : {0, 1, 2, 0, 2, 3}) tri.insert(tri.end(), p[k], p[k] + 3);
+  };
+  for (std::size_t k = 0; k + 1 < vc; ++k) {
+    const double x0 = grid_.x(layout_.col_idx[k]), x1 = grid_.x(layout_.col_idx[k + 1]);
+    edge(k, k + 1, x0, grid_.y(layout_.row_idx[0]), x1, grid_.y(layout_.row_idx[0]));
+    const std::size_t top = (vr - 1) * vc;
+    edge(top + k, top + k + 1, x0, grid_.y(layout_.row_idx[vr - 1]), x1, grid_.y(layout_.row_idx[vr - 1]));
+  }
+  for (std::size_t l = 0; l + 1 < vr; ++l) {
+    const double y0 = grid_.y(layout_.row_idx[l]), y1 = grid_.y(layout_.row_idx[l + 1]);
+    edge(l * vc, (l + 1) * vc, grid_.x(layout_.col_idx[0]), y0, grid_.x(layout_.col_idx[0]), y1);
+    edge(l * vc + vc - 1, (l + 1) * vc + vc - 1, grid_.x(layout_.col_idx[vc - 1]), y0, grid_.x(layout_.col_idx[vc - 1]),
+         y1);
+  }
+  glBindVertexArray(ship_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
+  ship_prog_.use();
+  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
+  const glm::vec3 eye(camera.eye());
+  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
+  glUniform1i(ship_prog_.loc("u_solid"), 2);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(tri.size() / 3));
+  glUniform1i(ship_prog_.loc("u_solid"), 0);
 }
 
 // Obstacles as solids (flat-shaded, the ship program's solid colour).
@@ -589,6 +626,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   glBindTexture(GL_TEXTURE_2D, use_caustics ? caustics_->texture() : flat_light_tex_.id());
 
   if (s.draw_water) draw_surface(camera, s, mvp);
+  if (s.draw_water && !s.deep_water) draw_water_sides(camera, s, mvp);
   lap(times.surface);
 
   if (s.draw_ship && !ships_.empty()) draw_ships(camera, s, mvp);
@@ -721,7 +759,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   // bar on the right, axis labels left and below
   const int W = target.width(), H = target.height();
   const double s = std::max(1.0, std::round(H / 300.0));  // text scale (glyphs ~7 px high at 1)
-  const double left = 40 * s, right = 70 * s, top = 18 * s, bottom = 26 * s;
+  const double left = 40 * s, right = 84 * s, top = 18 * s, bottom = 26 * s;
   const double ext_x = C * grid_.dx, ext_y = R * grid_.dx;
   const double avail_w = std::max(1.0, W - left - right), avail_h = std::max(1.0, H - top - bottom);
   const double ppm = std::min(avail_w / ext_x, avail_h / ext_y);  // pixels per metre
@@ -763,7 +801,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
     p.text(px0 - 6 * s - Painter::text_width(l, s), y - 3 * s, l, s);
   }
   p.text(px0 + 0.5 * pw - Painter::text_width("x (m)", s) / 2, py0 + ph + 16 * s, "x (m)", s);
-  p.text(4 * s, py0 + 0.5 * ph - 3 * s, "y (m)", s);
+  p.text(std::max(2 * s, px0 - 38 * s - Painter::text_width("y (m)", s)), py0 + 0.5 * ph - 3 * s, "y (m)", s);
   // colour bar: one row per pixel through the map, ticks at the nice steps
   const double bx = px0 + pw + 12 * s, bw = 12 * s;
   for (int row = 0; row < static_cast<int>(ph); ++row)

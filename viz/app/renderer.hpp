@@ -197,6 +197,7 @@ class WaterRenderer {
   void update_linearisation(const OrbitCamera& camera, float index);
   void build_ground_texture(const RenderSettings& s);
   void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void tone_map(const RenderSettings& s, const RenderTarget& target);
   void set_common_uniforms(const gl::Program& p, const RenderSettings& s, const OrbitCamera& cam) const;
 

@@ -58,6 +58,8 @@ SceneView scene_view(const RenderInfo& info) {
         std::any_of(info.toggles.begin(), info.toggles.end(), [](const RenderToggle& t) { return t.name == "wind"; });
     v.look = wind ? Look::ocean : Look::pool;
   }
+  const double W = v.grid.cols * v.grid.dx, H = v.grid.rows * v.grid.dx;
+  v.slab = std::max(W, H) > 8.0 * std::min(W, H);
   v.plan_view = rq.plan_view.value_or(false);
   v.plan_depth = info.rest_level_m != 0.0;
   v.follow_ship = !v.hulls.empty() && rq.camera.follow_ship.value_or(true);
@@ -77,8 +79,8 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
   const double W = g.cols * g.dx, H = g.rows * g.dx;
   OrbitCamera c = default_camera(g.x0, g.y0, W, H);
   // a quasi-2D slab (one side 8x the other) is seen from low, along its short side
-  const bool slab = std::max(W, H) > 8.0 * std::min(W, H);
-  c.pitch = (slab ? 20.0 : 50.0) * kDeg;
+  const bool slab = view.slab;
+  c.pitch = (slab ? 8.0 : 50.0) * kDeg;
   if (slab && H > W) c.yaw = 0.0;  // the eye on the +x side looking along -x
   // the whole region in view: its far-near extent foreshortened by sin(pitch), its width by
   // the aspect (a 15 % margin for the perspective)
@@ -142,7 +144,7 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
     case Look::pool:
     case Look::shallow:
     case Look::sph:
-      s.pool_deck = true;
+      s.pool_deck = !view.slab;  // a slab is seen from the side: its profile, not a pool
       break;
   }
   s.clear_colour = s.sky_colour;

@@ -33,6 +33,8 @@ struct SceneView {
   /// a floor with an adaptive step is SPH, with a fixed step shallow water (LBM); an elevation
   /// field with a wind sea is the open ocean, without one a pool).
   Look look = Look::pool;
+  /// A quasi-2D slab (one side over 8x the other): seen from low along its short side, no deck.
+  bool slab = false;
   /// Start in the plan view ("view": "plan").
   bool plan_view = false;
   /// The plan view's quantity: "height" (elevation about rest, diverging map) or "depth".
