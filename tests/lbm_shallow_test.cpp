@@ -143,16 +143,17 @@ TEST(LbmCheck, RefusesUnstableParametersNamingThemWithAFix) {
   q.dt_s = 3.0 * p.dt_s;
   r = refusal(q, uniform(8, 32, 1.0));
   EXPECT_NE(r.find("rest population"), std::string::npos);
-  // dry cell
+  // a dry cell is accepted (wetting and drying), a negative depth is not, nor a grid with no wet cell
   LbmFields f = uniform(8, 32, 1.0);
   f.depth_m[40] = 0.0f;
+  EXPECT_EQ(refusal(p, f), "<accepted>");
+  f.depth_m[40] = -1e-3f;
   r = refusal(p, f);
   EXPECT_EQ(r.substr(0, r.find(" |")), "depth_m");
+  EXPECT_NE(r.find("negative"), std::string::npos);
+  r = refusal(p, uniform(8, 32, 0.0));
+  EXPECT_EQ(r.substr(0, r.find(" |")), "depth_m");
   EXPECT_NE(r.find("dry"), std::string::npos);
-  // ... unless the dry cell is an obstacle
-  f.solid.assign(f.depth_m.size(), 0);
-  f.solid[40] = 1;
-  EXPECT_EQ(refusal(p, f), "<accepted>");
   // transcritical flow
   q = p;
   q.expected_froude = 1.2;
@@ -322,4 +323,31 @@ TEST(LbmFailure, RunawayIsStoppedNeverSilent) {
   }
   EXPECT_TRUE(stopped);
   EXPECT_LT(sim.steps(), 100000);
+}
+
+TEST(LbmWetDry, StillWaterAroundIslandsStaysStill) {
+  const auto r = lbm_islands_at_rest(2000);
+  EXPECT_GT(r.dry_start, 0u);
+  EXPECT_EQ(r.dry_end, r.dry_start);
+  EXPECT_LT(r.max_speed_mps, 1e-4);
+  EXPECT_LT(r.max_surface_error_m, 1e-5);
+  EXPECT_EQ(r.max_dry_depth_m, 0.0);
+}
+
+TEST(LbmWetDry, KeepsVolumeAndDepthsNonNegativeWhileWettingAndDrying) {
+  const auto r = lbm_wet_dry_mass(32, 32, 3000);
+  EXPECT_EQ(r.stopped, "");
+  EXPECT_GT(r.dry_end, 0u);
+  EXPECT_GE(r.min_depth_m, 0.0);
+  EXPECT_LT(std::abs(r.volume_drift), 1e-5);
+}
+
+TEST(LbmWetDry, ThackerBowlShorelinesAfterOnePeriod) {
+  // 200 cells: 50 per half width a = 1 m; shorelines within 0.02 a, depth L1 within 2 %.
+  const auto r = lbm_thacker(200, 1.0);
+  EXPECT_EQ(r.stopped, "");
+  EXPECT_LT(std::abs(r.left_error_m), 0.02);
+  EXPECT_LT(std::abs(r.right_error_m), 0.02);
+  EXPECT_LT(r.l1_relative, 2e-2);
+  EXPECT_GE(r.min_depth_m, 0.0);
 }

@@ -95,7 +95,9 @@ TEST(LbmScene, ErrorsNameTheJsonPath) {
   j["lbm"]["time"] = {{"dt_s", 1.0}};  // far beyond 0.8 of the lattice speed
   EXPECT_EQ(error_path(j), "$.lbm.time.dt_s");
   j = base;
-  j["lbm"]["initial"]["regions"][0]["surface_m"] = 0.0;  // dry: depth 0 on a flat bed
+  j["lbm"]["initial"]["regions"][0]["surface_m"] = 0.0;  // dry land: accepted (wetting and drying)
+  EXPECT_EQ(error_path(j), "<no error>");
+  j["lbm"]["initial"]["regions"][0] = {{"depth_m", -0.1}};  // a negative depth is not
   EXPECT_EQ(error_path(j), "$.lbm.initial");
   j = base;
   j["lbm"]["initial"] = {{"dam", {{"x_m", 10.0}, {"left_depth_m", 1.0}, {"right_depth_m", 0.1}}}};

@@ -12,6 +12,8 @@
 #include "huygens/lbm/shallow.hpp"
 #include "huygens/lbm/stoker.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/validation/reference/ritter.hpp"
+#include "huygens/validation/reference/thacker.hpp"
 #include "huygens/validation/validation.hpp"
 
 namespace huygens {
@@ -130,6 +132,225 @@ double lbm_mass_drift(int rows, int cols, std::int64_t steps) {
   const double v0 = sim.volume_m3();
   sim.run(steps);
   return (sim.volume_m3() - v0) / v0;
+}
+
+LbmRitterResult lbm_ritter(int cells, double tau, double cfl) {
+  const RitterParams rp{1.0, kG};
+  const double length = 100.0, c0 = std::sqrt(kG * rp.depth_m);
+  LbmParams p;
+  p.cols = cells;
+  p.rows = 1;
+  p.cell_m = length / cells;
+  p.dt_s = cfl * p.cell_m / (2.0 * c0);  // the front moves at 2 c0
+  p.viscosity_m2s = nu_for_tau(tau, p.cell_m, p.dt_s);
+  p.bottom = p.top = LbmSide::periodic;
+  p.expected_signal_speed_mps = 2.0 * c0;
+  const int dam = cells / 3;  // the dam is the face left of column `dam`
+  const double x0 = dam * p.cell_m;
+  LbmFields f = fields(1, cells);
+  for (int c = 0; c < dam; ++c) f.depth_m[c] = static_cast<float>(rp.depth_m);
+  LbmRitterResult out;
+  out.cell_m = p.cell_m;
+  out.steps = static_cast<std::int64_t>(std::llround(0.9 * x0 / c0 / p.dt_s));  // head 0.1 x0 from the wall
+  LbmShallow sim(p, f);
+  const double v0 = sim.volume_m3();
+  try {
+    sim.run(out.steps);
+  } catch (const std::exception& e) {
+    out.stopped = e.what();
+  }
+  const double t = out.time_s = sim.time_s();
+  double err = 0, norm = 0;
+  out.min_depth_m = INFINITY;
+  int last_wet = -1;
+  for (int c = 0; c < cells; ++c) {
+    const double h = sim.depth_at(0, c), ex = ritter_depth(rp, (c + 0.5) * p.cell_m - x0, t);
+    err += std::abs(h - ex);
+    norm += ex;
+    out.min_depth_m = std::min(out.min_depth_m, h);
+    if (h >= p.min_depth_m) last_wet = c;
+    if (c > 0 && sim.depth_at(0, c - 1) >= 0.01 && h < 0.01)
+      out.x01_m = (c - 0.5 + (sim.depth_at(0, c - 1) - 0.01) / (sim.depth_at(0, c - 1) - h)) * p.cell_m - x0;
+  }
+  out.l1_relative = err / norm;
+  out.front_m = (last_wet + 1) * p.cell_m - x0;
+  out.front_exact_m = ritter_front(rp, t);
+  out.x01_exact_m = ritter_position_of_depth(rp, 0.01, t);
+  out.volume_drift = (sim.volume_m3() - v0) / v0;
+  return out;
+}
+
+namespace {
+
+// Position where the depth crosses `level` between cells c - 1 and c (cell centres at x0 + (c + 1/2) dx).
+double crossing(double x0, double dx, int c, double h0, double h1, double level) {
+  return x0 + (c - 0.5 + (h0 - level) / (h0 - h1)) * dx;
+}
+
+}  // namespace
+
+LbmThackerResult lbm_thacker(int cells, double periods, double tau) {
+  const ThackerParams tp{0.5, 1.0, 0.5, kG};
+  const double x0 = -2.0 * tp.half_width_m, c0 = std::sqrt(kG * tp.depth_m);
+  LbmParams p;
+  p.cols = cells;
+  p.rows = 1;
+  p.cell_m = 4.0 * tp.half_width_m / cells;
+  p.dt_s = 0.4 * p.cell_m / (c0 + tp.speed_mps);
+  p.viscosity_m2s = nu_for_tau(tau, p.cell_m, p.dt_s);
+  p.bottom = p.top = LbmSide::periodic;
+  p.expected_signal_speed_mps = c0 + tp.speed_mps;
+  LbmFields f = fields(1, cells);
+  auto xc = [&](int c) { return x0 + (c + 0.5) * p.cell_m; };
+  for (int c = 0; c < cells; ++c) {
+    f.bed_m[c] = static_cast<float>(thacker_bed(tp, xc(c)));
+    f.depth_m[c] = static_cast<float>(thacker_depth(tp, xc(c), 0.0));
+  }
+  LbmThackerResult out;
+  out.cell_m = p.cell_m;
+  LbmShallow sim(p, f);
+  const double v0 = sim.volume_m3();
+  try {
+    sim.run(static_cast<std::int64_t>(std::llround(periods * thacker_period(tp) / p.dt_s)));
+  } catch (const std::exception& e) {
+    out.stopped = e.what();
+  }
+  const double t = sim.time_s(), level = 0.01 * tp.depth_m, s = thacker_centre(tp, t);
+  const double reach = tp.half_width_m * std::sqrt(1.0 - level / tp.depth_m);
+  double err = 0, norm = 0;
+  out.min_depth_m = INFINITY;
+  for (int c = 0; c < cells; ++c) {
+    const double h = sim.depth_at(0, c), ex = thacker_depth(tp, xc(c), t);
+    err += std::abs(h - ex);
+    norm += ex;
+    out.min_depth_m = std::min(out.min_depth_m, h);
+    if (ex > 0.1 * tp.depth_m) out.surface_error_m = std::max(out.surface_error_m, std::abs(h - ex));
+    if (c == 0) continue;
+    const double hp = sim.depth_at(0, c - 1);
+    if (hp < level && h >= level && out.left_error_m == 0)
+      out.left_error_m = crossing(x0, p.cell_m, c, hp, h, level) - (s - reach);
+    if (hp >= level && h < level) out.right_error_m = crossing(x0, p.cell_m, c, hp, h, level) - (s + reach);
+  }
+  out.l1_relative = err / norm;
+  out.volume_drift = (sim.volume_m3() - v0) / v0;
+  return out;
+}
+
+LbmIslandsResult lbm_islands_at_rest(std::int64_t steps) {
+  const int n = 64;
+  LbmParams p;
+  p.cols = p.rows = n;
+  p.cell_m = 1.0;
+  p.dt_s = 0.4 / std::sqrt(kG * 1.0);
+  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  LbmFields f = fields(n, n);
+  LbmIslandsResult res;
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const double x = c + 0.5, y = r + 0.5;
+      const double cone1 = 1.6 - 0.12 * std::hypot(x - 20, y - 40), cone2 = 1.3 - 0.1 * std::hypot(x - 44, y - 22);
+      const double rect = (x > 40 && x < 56 && y > 44 && y < 52) ? 1.2 : 0.0;
+      const double z = std::max({0.0, cone1, cone2, rect});
+      const std::size_t i = static_cast<std::size_t>(r) * n + c;
+      f.bed_m[i] = static_cast<float>(z);
+      f.depth_m[i] = static_cast<float>(std::max(0.0, 1.0 - z));
+      res.dry_start += f.depth_m[i] < p.min_depth_m ? 1 : 0;
+    }
+  LbmShallow sim(p, f);
+  sim.run(steps);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * n + c;
+      const auto u = sim.velocity_at(r, c);
+      const double h = sim.depth_at(r, c);
+      res.max_speed_mps = std::max(res.max_speed_mps, std::hypot(double(u[0]), double(u[1])));
+      if (f.depth_m[i] >= p.min_depth_m)
+        res.max_surface_error_m = std::max(res.max_surface_error_m, std::abs(h + f.bed_m[i] - 1.0));
+      else
+        res.max_dry_depth_m = std::max(res.max_dry_depth_m, h);
+    }
+  res.dry_end = sim.dry_cells();
+  return res;
+}
+
+LbmWetDryMassResult lbm_wet_dry_mass(int rows, int cols, std::int64_t steps) {
+  LbmParams p;
+  p.cols = cols;
+  p.rows = rows;
+  p.cell_m = 1.0;
+  p.dt_s = 0.35 / std::sqrt(kG * 1.0);
+  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  LbmFields f = fields(rows, cols);
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const double x = (c + 0.5) / cols, y = (r + 0.5) / rows;
+      const double beach = std::max(0.0, 1.2 * (x - 0.5)), hx = x - 0.25, hy = y - 0.5;
+      const double island = std::max(0.0, 0.9 - 6.0 * std::hypot(x - 0.3, y - 0.25));
+      const double z = std::max(beach, island);
+      const double eta = 0.35 + 0.25 * std::exp(-(hx * hx + hy * hy) / 0.01);
+      f.bed_m[static_cast<std::size_t>(r) * cols + c] = static_cast<float>(z);
+      f.depth_m[static_cast<std::size_t>(r) * cols + c] = static_cast<float>(std::max(0.0, eta - z));
+    }
+  LbmWetDryMassResult res;
+  LbmShallow sim(p, f);
+  const double v0 = sim.volume_m3();
+  try {
+    sim.run(steps);
+  } catch (const std::exception& e) {
+    res.stopped = e.what();
+  }
+  res.volume_drift = (sim.volume_m3() - v0) / v0;
+  res.min_depth_m = INFINITY;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) res.min_depth_m = std::min(res.min_depth_m, double(sim.depth_at(r, c)));
+  res.dry_end = sim.dry_cells();
+  return res;
+}
+
+LbmPartialDamResult lbm_partial_dam(double ratio, std::int64_t steps) {
+  const int n = 200;
+  const double hl = 10.0, hr = hl / ratio;
+  const auto st = stoker_solve({hl, hr, kG});
+  LbmParams p;
+  p.cols = p.rows = n;
+  p.cell_m = 1.0;
+  p.dt_s = 0.5 * p.cell_m / st.max_signal_speed_mps;
+  p.viscosity_m2s = 0.6;
+  p.expected_signal_speed_mps = st.max_signal_speed_mps;
+  p.expected_froude = st.middle_velocity_mps / std::sqrt(kG * st.middle_depth_m);
+  LbmFields f = fields(n, n);
+  f.solid.assign(f.depth_m.size(), 0);
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const double x = c + 0.5, y = r + 0.5;
+      const std::size_t i = static_cast<std::size_t>(r) * n + c;
+      f.depth_m[i] = static_cast<float>(x < 100.0 ? hl : hr);
+      if (x > 95.0 && x < 105.0 && (y < 95.0 || y > 170.0)) f.solid[i] = 1;
+    }
+  LbmPartialDamResult res;
+  res.steps = steps;
+  try {
+    LbmShallow sim(p, f);
+    const double v0 = sim.volume_m3();
+    try {
+      for (std::int64_t s = 0; s < steps; ++s) {
+        sim.step();
+        res.max_dry = std::max(res.max_dry, sim.dry_cells());
+      }
+    } catch (const std::exception& e) {
+      res.stopped = e.what();
+    }
+    res.done_steps = sim.steps();
+    res.time_s = sim.time_s();
+    res.volume_drift = (sim.volume_m3() - v0) / v0;
+    res.min_depth_m = INFINITY;
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c)
+        if (!sim.solid_at(r, c)) res.min_depth_m = std::min(res.min_depth_m, double(sim.depth_at(r, c)));
+  } catch (const LbmRefused& e) {
+    res.refused = e.what();
+  }
+  return res;
 }
 
 double lbm_wave_speed_ratio(int cells) {
@@ -292,6 +513,79 @@ std::vector<ValidationRow> cylinder_rows() {
           check("lbm_cylinder", "Strouhal number f D / U", st, 0.165, std::abs(st - 0.165) / 0.165, 0.25)};
 }
 
+// Ritter's dry-bed dam break at 1024 cells: L1 depth error (target 1e-2, twice the wet Stoker
+// bound: the front is first order) and the front where h = 0.01 h0 (target: within 1 % of the
+// distance it travelled; the last wet cell is reported too).
+std::vector<ValidationRow> ritter_rows() {
+  const auto r = lbm_ritter(1024);
+  const double fail = r.stopped.empty() ? 0.0 : INFINITY;
+  return {check("lbm_ritter", "L1 relative depth error, 1024 cells", r.l1_relative, 0.0, r.l1_relative + fail, 1e-2),
+          check("lbm_ritter", "x where h = 0.01 h0 (m from the dam; error / exact)", r.x01_m, r.x01_exact_m,
+                std::abs(r.x01_m - r.x01_exact_m) / r.x01_exact_m + fail, 1e-2),
+          check("lbm_ritter", "last wet cell's face (m from the dam; error / 2 sqrt(g h0) t)", r.front_m,
+                r.front_exact_m, std::abs(r.front_m - r.front_exact_m) / r.front_exact_m + fail, 1e-2),
+          check("lbm_ritter", "smallest depth (m, >= 0)", r.min_depth_m, 0.0, r.min_depth_m >= 0 ? 0.0 : 1.0, 0.0)};
+}
+
+// Thacker's bowl at 400 cells (100 per lens half width a) after 1 and 3 periods: shorelines
+// within 0.02 a (two cells: a threshold front is located to about a cell, a period adds a
+// little), L1 depth error within 2e-2.
+std::vector<ValidationRow> thacker_rows() {
+  std::vector<ValidationRow> rows;
+  for (double periods : {1.0, 3.0}) {
+    const auto r = lbm_thacker(400, periods);
+    const double fail = r.stopped.empty() ? 0.0 : INFINITY;
+    const std::string at = fmt(" after %g period", periods) + (periods > 1 ? "s" : "");
+    rows.push_back(check("lbm_thacker", "left shoreline error (m)" + at, r.left_error_m, 0.0,
+                         std::abs(r.left_error_m) + fail, 0.02));
+    rows.push_back(check("lbm_thacker", "right shoreline error (m)" + at, r.right_error_m, 0.0,
+                         std::abs(r.right_error_m) + fail, 0.02));
+    rows.push_back(
+        check("lbm_thacker", "L1 relative depth error" + at, r.l1_relative, 0.0, r.l1_relative + fail, 2e-2));
+    rows.push_back(check("lbm_thacker", "max |eta - eta_exact| where h > 0.1 h0 (m)" + at, r.surface_error_m, 0.0,
+                         r.surface_error_m + fail, 1e-2));
+  }
+  return rows;
+}
+
+// Volume over 1e5 steps of wetting and drying (target 1e-9 relative) and no negative depth.
+std::vector<ValidationRow> wet_dry_mass_rows() {
+  const auto r = lbm_wet_dry_mass(64, 64, 100000);
+  const double fail = r.stopped.empty() ? 0.0 : INFINITY;
+  return {
+      check("lbm_wet_dry_mass", "relative volume change after 1e5 steps", r.volume_drift, 0.0,
+            std::abs(r.volume_drift) + fail, 1e-9),
+      check("lbm_wet_dry_mass", "smallest depth (m, >= 0)", r.min_depth_m, 0.0, r.min_depth_m >= 0 ? 0.0 : 1.0, 0.0),
+      check("lbm_wet_dry_mass", "dry cells at the end (> 0: the case dries)", static_cast<double>(r.dry_end), 0.0,
+            r.dry_end > 0 ? 0.0 : 1.0, 0.0)};
+}
+
+// Still water around islands for 1e5 steps: the targets of the lake at rest.
+std::vector<ValidationRow> islands_rows() {
+  const auto r = lbm_islands_at_rest(100000);
+  return {check("lbm_islands", "max |u| (m/s)", r.max_speed_mps, 0.0, r.max_speed_mps, 1e-4),
+          check("lbm_islands", "max |h + z_b - 1| over wet cells (m)", r.max_surface_error_m, 0.0,
+                r.max_surface_error_m, 1e-5),
+          check("lbm_islands", "largest depth on the dry land (m)", r.max_dry_depth_m, 0.0, r.max_dry_depth_m, 0.0),
+          check("lbm_islands", "dry cells, end minus start", static_cast<double>(r.dry_end) - r.dry_start, 0.0,
+                r.dry_end == r.dry_start ? 0.0 : 1.0, 0.0)};
+}
+
+// Zhou's partial dam with h_L/h_R = 2 and 5 (the 1D refusal accepts both): 2000 steps complete,
+// no negative depth, volume kept like the closed-box mass case.
+std::vector<ValidationRow> partial_dam_rows() {
+  std::vector<ValidationRow> rows;
+  for (double ratio : {2.0, 5.0}) {
+    const auto r = lbm_partial_dam(ratio, 2000);
+    const std::string name = "lbm_partial_dam_" + fmt("%g", ratio);
+    rows.push_back(check(name, "steps completed of 2000", static_cast<double>(r.done_steps), 2000.0,
+                         r.done_steps == 2000 ? 0.0 : 1.0, 0.0));
+    rows.push_back(check(name, "smallest depth (m, >= 0)", r.min_depth_m, 0.0, r.min_depth_m >= 0 ? 0.0 : 1.0, 0.0));
+    rows.push_back(check(name, "relative volume change", r.volume_drift, 0.0, std::abs(r.volume_drift), 1e-5));
+  }
+  return rows;
+}
+
 }  // namespace
 
 std::vector<ValidationCase> lbm_validation_cases() {
@@ -309,6 +603,16 @@ std::vector<ValidationCase> lbm_validation_cases() {
        "periodic wake behind a cylinder, Re = 100, blockage 0.1: Strouhal number (reference 0.165, "
        "Williamson 1988, unconfined; a loose check)",
        cylinder_rows},
+      {"lbm_ritter", "lbm", "dam break onto a dry bed vs Ritter (1892), 1024 cells: depth L1 and front", ritter_rows},
+      {"lbm_thacker", "lbm",
+       "planar oscillation in a parabolic bowl vs Thacker (1981): shorelines and surface after 1 and 3 periods",
+       thacker_rows},
+      {"lbm_wet_dry_mass", "lbm",
+       "volume over 1e5 steps of a hump running up a beach and round an island (wetting and drying)",
+       wet_dry_mass_rows},
+      {"lbm_islands", "lbm", "still water around islands standing above it stays still for 1e5 steps", islands_rows},
+      {"lbm_partial_dam", "lbm", "Zhou's 2D partial dam break, h_L/h_R = 2 and 5: runs 2000 steps with depths >= 0",
+       partial_dam_rows},
   };
 }
 

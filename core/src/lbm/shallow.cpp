@@ -92,13 +92,14 @@ struct InitialScan {
   double smax = 0, hmax = 0, frmax = 0;
 };
 
-// Dry cells first (the wave speed needs h > 0), then the signal speed, the Froude number and the
-// smallest rest fraction f0/h = 1 - 5 g h / 6 - 2 u.u / 3 (lattice units, paper 002 eq. 2).
+// Negative depths are refused, dry cells (h < min_depth_m) skipped; over the wet cells the signal
+// speed, the Froude number and the smallest rest fraction f0/h = 1 - 5 g h / 6 - 2 u.u / 3 (lattice units, paper 002
+// eq. 2).
 InitialScan scan_initial(const LbmParams& p, const LbmFields& in, LbmLattice& lat) {
   const std::size_t n = static_cast<std::size_t>(p.rows) * static_cast<std::size_t>(p.cols);
   const double dx = p.cell_m, dt = p.dt_s, g = p.gravity_mps2;
   InitialScan s;
-  std::size_t fluid = 0;
+  std::size_t fluid = 0, wet = 0;
   lat.min_rest_fraction = 1.0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!in.solid.empty() && in.solid[i]) continue;
@@ -109,19 +110,24 @@ InitialScan scan_initial(const LbmParams& p, const LbmFields& in, LbmLattice& la
     if (!std::isfinite(h) || !std::isfinite(ux) || !std::isfinite(uy))
       throw LbmRefused("depth_m", "non-finite initial value at row " + std::to_string(i / p.cols) + ", col " +
                                       std::to_string(i % p.cols));
-    if (h < p.min_depth_m)
+    if (h < 0)
       throw LbmRefused("depth_m", "cell (row " + std::to_string(i / p.cols) + ", col " + std::to_string(i % p.cols) +
-                                      ") has depth " + g6(h) + " m < min_depth_m = " + g6(p.min_depth_m) +
-                                      " m: dry cells are not supported by this solver (no wetting and drying); "
-                                      "deepen the water there or mark the cell as an obstacle");
+                                      ") has negative depth " + g6(h) + " m");
+    if (h < p.min_depth_m && p.bed_force == LbmBedForce::naive && !in.bed_m.empty())
+      throw LbmRefused("bed_force", "the naive bed term has no wet/dry form: dry cells need \"centred\"");
+    if (h < p.min_depth_m) continue;  // dry: at rest whatever velocity is given
+    ++wet;
     const double u = std::hypot(ux, uy);
     s.frmax = std::max(s.frmax, u / std::sqrt(g * h));
     s.smax = std::max(s.smax, u + std::sqrt(g * h));
     s.hmax = std::max(s.hmax, h);
     const double ul = u * dt / dx;
+    lat.riemann_ratio = std::max(lat.riemann_ratio, (u + 2.0 * std::sqrt(g * h)) * dt / dx);
     lat.min_rest_fraction = std::min(lat.min_rest_fraction, 1.0 - 5.0 * lat.g_lat_pm * h / 6.0 - 2.0 * ul * ul / 3.0);
   }
   if (fluid == 0) throw LbmRefused("solid", "no fluid cell left");
+  if (wet == 0)
+    throw LbmRefused("depth_m", "every fluid cell is dry (depth < min_depth_m = " + g6(p.min_depth_m) + " m)");
   return s;
 }
 
@@ -193,6 +199,7 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
   ha_ = AlignedBuffer<float>(plane_);
   hb_ = AlignedBuffer<float>(plane_);
   z_ = AlignedBuffer<float>(plane_);
+  theta_ = AlignedBuffer<float>(plane_);
   solid_.assign(plane_, 1);
 
   omega_ = static_cast<float>(1.0 / lat_.tau);
@@ -201,6 +208,7 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
   ax_ = static_cast<float>(p.accel_mps2[0] * acc);
   ay_ = static_cast<float>(p.accel_mps2[1] * acc);
   hmin_ = static_cast<float>(p.min_depth_m);
+  umax_ = static_cast<float>(std::min(0.7, std::max(lat_.signal_ratio, lat_.riemann_ratio)));
 
   // Bed everywhere in the lattice: ghosts take the nearest interior value.
   const auto at = [&](const std::vector<float>& v, int r, int c) {
@@ -217,7 +225,7 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
   has_bed_ = zhi > zlo;
 
   // Fluid cells and their initial equilibrium populations, shifted by the still-water
-  // equilibrium of the mean depth.
+  // equilibrium of the mean depth; with a dry cell, unshifted (a dry cell's f_a = 0 is then exact).
   const double vl = p.dt_s / p.cell_m;  // m/s -> lattice
   double hsum = 0;
   std::size_t nfluid = 0;
@@ -225,9 +233,11 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
     if (in.solid.empty() || !in.solid[i]) {
       hsum += in.depth_m[i];
       ++nfluid;
+      if (in.depth_m[i] < p.min_depth_m) ++dry_;
     }
-  href_ = static_cast<float>(hsum / static_cast<double>(nfluid));
+  href_ = dry_ ? 0.0f : static_cast<float>(hsum / static_cast<double>(nfluid));
   shift_ = lbm_equilibrium(lat_.g_lat_pm, href_, 0.0, 0.0);
+  for (int a = 0; a < 9; ++a) shift_f_[a] = static_cast<float>(shift_[a]);
   for (int r = 0; r < ny; ++r)
     for (int c = 0; c < nx; ++c) {
       const std::size_t i = static_cast<std::size_t>(r) * nx + c;
@@ -235,7 +245,8 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
       const std::size_t k = idx(r, c);
       solid_[k] = 0;
       const double h = in.depth_m[i];
-      const auto f = lbm_equilibrium(lat_.g_lat_pm, h, at(in.ux_mps, r, c) * vl, at(in.uy_mps, r, c) * vl);
+      auto f = lbm_equilibrium(lat_.g_lat_pm, h, at(in.ux_mps, r, c) * vl, at(in.uy_mps, r, c) * vl);
+      if (h < p.min_depth_m) f = {h, 0, 0, 0, 0, 0, 0, 0, 0};  // dry: all water at rest
       for (int a = 0; a < 9; ++a) fa_[a * plane_ + k] = fb_[a * plane_ + k] = static_cast<float>(f[a] - shift_[a]);
       ha_[k] = hb_[k] = static_cast<float>(h);
     }
@@ -329,11 +340,22 @@ void LbmShallow::build_rules() {
   std::stable_partition(rules_.begin(), rules_.end(), [](const Rule& r) { return r.kind == 0; });
 }
 
-void LbmShallow::fill_ghosts() {
+void LbmShallow::set_ghost_depths() {
+  // A ghost takes the depth of the cell whose populations it carries (periodic image, mirror,
+  // zero-gradient copy) or of the cell it feeds (Zou-He), so the wet/dry rule sees the real face;
+  // wall and obstacle ghosts are marked -1 (their value, the bounce-back, passes unchanged).
+  float* h = ha_.data();
+  for (const Rule& r : rules_) h[r.s] = r.up != kNone ? h[r.up] : r.kind != 0 ? h[r.x] : -1.0f;
+}
+
+void LbmShallow::fill_ghosts(bool wet_dry) {
   float* f = fa_.data();
   const float* h = ha_.data();
   const float* z = z_.data();
   const bool comp = has_bed_ && p_.bed_force == LbmBedForce::centred;
+  const float hmin = hmin_;
+  // the wet/dry pass adds the bed term on wet-wet faces only
+  auto wet = [&](std::uint32_t a, std::uint32_t b) { return !wet_dry || (h[a] >= hmin && h[b] >= hmin); };
   const double q = p_.inflow_discharge_m2s * p_.dt_s / p_.cell_m;  // h u_lat (unit: m)
   for (const Rule& r : rules_) {  // copies first, then inflow/outflow (they read the copies)
     float v;
@@ -362,8 +384,8 @@ void LbmShallow::fill_ghosts() {
     }
     if (comp) {
       const float k = static_cast<float>(kLambda[r.a]) * g_ * (1.0f / 6.0f);
-      v -= -k * (h[r.x] + h[r.s]) * (z[r.x] - z[r.s]);  // the kernel adds this back
-      if (r.up != kNone) v += -k * (h[r.x] + h[r.up]) * (z[r.x] - z[r.up]);
+      if (wet(r.x, r.s)) v -= -k * (h[r.x] + h[r.s]) * (z[r.x] - z[r.s]);  // the kernel adds this back
+      if (r.up != kNone && wet(r.x, r.up)) v += -k * (h[r.x] + h[r.up]) * (z[r.x] - z[r.up]);
     }
     f[r.dst] = v;
   }
@@ -408,12 +430,13 @@ struct Cell9 {
 
 // Constants of the collision: omega = 1/tau, g_lat (1/m), the force a dt^2/dx, H and h_min (m).
 struct Collision {
-  float w, g, ax, ay, hmin, href;
+  float w, g, ax, ay, hmin, href, umax2 = 0.0f;
 };
 
 // BGK collision (paper 002 eq. 1) of a cell's pulled populations f: moments (eq. 3-4) and the
 // equilibrium (eq. 2), both minus the shift, plus the force lambda_a h (e_a . a) / 3. Writes the
 // new depth h; `bad` counts h < h_min (also NaN).
+template <bool Cap = false>
 [[gnu::always_inline]] inline Cell9 collide(const Cell9& f, const Collision& k, float& h, float& bad) {
   const float f0 = f.f0, f1 = f.f1, f2 = f.f2, f3 = f.f3, f4 = f.f4, f5 = f.f5, f6 = f.f6, f7 = f.f7, f8 = f.f8;
   // moments of the shifted populations: dh = h - H exactly as precise as the wave
@@ -423,7 +446,13 @@ struct Collision {
   const float my = (f2 + f5 + f6) - (f4 + f7 + f8);
   const float ih = h > k.hmin ? 1.0f / h : 0.0f;
   bad += h >= k.hmin ? 0.0f : 1.0f;
-  const float ux = mx * ih, uy = my * ih;
+  float ux = mx * ih, uy = my * ih;
+  if constexpr (Cap) {  // |u| <= u_max (wet/dry pass: the thin layer at a front)
+    const float u2 = ux * ux + uy * uy;
+    const float r = u2 > k.umax2 ? std::sqrt(k.umax2 / u2) : 1.0f;
+    ux *= r;
+    uy *= r;
+  }
   // equilibrium minus the shift: axis base g (h^2 - H^2)/6 - h u.u/6;
   // rest = dh - sum of the others (so the shifted equilibria sum to dh: mass exact)
   const float usq = ux * ux + uy * uy;
@@ -443,6 +472,53 @@ struct Collision {
   return {f0 + w * (e0 - f0),      f1 + w * (e1 - f1) + gx, f2 + w * (e2 - f2) + gy,
           f3 + w * (e3 - f3) - gx, f4 + w * (e4 - f4) - gy, f5 + w * (e5 - f5) + g5,
           f6 + w * (e6 - f6) + g6, f7 + w * (e7 - f7) - g5, f8 + w * (e8 - f8) - g6};
+}
+
+// The face between c and n = c - e_a in the wet/dry pass (see the header comment): p1 = f*_a(n)
+// pulled, p2 = f*_abar(c) its own (shifted values). Returns what c receives unlimited (p1 plus the
+// centred bed term on a wet-wet face, k = lambda_a g / 6, or p2 on a closed face) and sets the
+// net flux into c, F = v - p2. n computes the same face from the same floats with the roles of
+// p1 and p2 swapped and the bed term negated, so the face exchanges water and makes none.
+[[gnu::always_inline]] inline float wet_dry_face(float p1, float p2, float hc, float zc, float hn, float zn, float k,
+                                                 float hmin, bool ghost, float mc, float mn, float& flux) {
+  const bool wc = hc >= hmin, wn = hn >= hmin;
+  const bool closed = (wc != wn) & (wc ? hc + zc <= zn + hmin : hn + zn <= zc + hmin);
+  const float bed = (wc & wn) ? -k * (hc + hn) * (zc - zn) : 0.0f;
+  const float open = (wc == wn) | ghost ? p1 + bed : wc ? mc : p1 + p2 - mn;
+  const float v = ghost & (hn < 0.0f) ? p1 : closed ? p2 : open;  // hn < 0: a wall ghost
+  flux = v - p2;
+  return v;
+}
+
+// What a wet cell (depth h, lattice velocity u) receives on link a from a dry neighbour: its own
+// equilibrium population of that link without the pressure part lambda_a g h^2 / 6, i.e. an empty
+// neighbour moving with it (shifted by ks). The dry cell receives the rest of the pair.
+[[gnu::always_inline]] inline float dry_mirror(int a, float h, float ux, float uy, float ks) {
+  const float eu = static_cast<float>(kEx[a]) * ux + static_cast<float>(kEy[a]) * uy;
+  return static_cast<float>(kLambda[a]) * h *
+             (eu * (1.0f / 3.0f) + 0.5f * eu * eu - (ux * ux + uy * uy) * (1.0f / 6.0f)) -
+         ks;
+}
+
+// Lattice velocity of cell c from its post-collision populations (shifted: the shifts carry no
+// momentum), 0 when dry.
+[[gnu::always_inline]] inline void cell_velocity(const float* src, std::ptrdiff_t P, std::ptrdiff_t c, float h,
+                                                 float hmin, float& ux, float& uy) {
+  const float f1 = src[P + c], f2 = src[2 * P + c], f3 = src[3 * P + c], f4 = src[4 * P + c];
+  const float f5 = src[5 * P + c], f6 = src[6 * P + c], f7 = src[7 * P + c], f8 = src[8 * P + c];
+  const float ih = h >= hmin ? 1.0f / h : 0.0f;
+  ux = ((f1 + f5 + f8) - (f3 + f6 + f7)) * ih;
+  uy = ((f2 + f5 + f6) - (f4 + f7 + f8)) * ih;
+}
+
+// A dry cell (h < h_min) puts all its water at rest: f*_a = 0 (stored -ks_a), f*_0 = h, with the
+// rest population the remainder of dh as in collide() (mass exact).
+[[gnu::always_inline]] inline Cell9 rest_if_dry(const Cell9& f, const Cell9& o, float h, float hmin, const Cell9& ks) {
+  const bool dry = h < hmin;
+  const float dh = ((f.f0 + f.f1) + (f.f2 + f.f3)) + ((f.f4 + f.f5) + (f.f6 + f.f7)) + f.f8;  // as collide()
+  const float r0 = dh - (((-ks.f1 - ks.f2) + (-ks.f3 - ks.f4)) + ((-ks.f5 - ks.f6) + (-ks.f7 - ks.f8)));
+  return {dry ? r0 : o.f0,     dry ? -ks.f1 : o.f1, dry ? -ks.f2 : o.f2, dry ? -ks.f3 : o.f3, dry ? -ks.f4 : o.f4,
+          dry ? -ks.f5 : o.f5, dry ? -ks.f6 : o.f6, dry ? -ks.f7 : o.f7, dry ? -ks.f8 : o.f8};
 }
 
 }  // namespace
@@ -510,37 +586,152 @@ void LbmShallow::stream_collide(int& flagged) {
   flagged = total;
 }
 
+// Net outflow limiter of the wet/dry pass: theta_c = min(1, h_c / O_c), O_c the sum of c's
+// outgoing face fluxes; a face's flux is scaled by the theta of the cell it drains, so no depth
+// goes negative (h_new >= h_c - theta_c O_c >= 0). Ghosts take their image's theta.
+void LbmShallow::outflow_limiter() {
+  const std::ptrdiff_t S = static_cast<std::ptrdiff_t>(stride_), P = static_cast<std::ptrdiff_t>(plane_);
+  const std::ptrdiff_t off[9] = {0, 1, S, -1, -S, S + 1, S - 1, -S - 1, -S + 1};
+  const float* src = fa_.data();
+  const float* hold = ha_.data();
+  const float* z = z_.data();
+  float* theta = theta_.data();
+  const float kb[9] = {0, g_ / 6, g_ / 6, g_ / 6, g_ / 6, g_ / 24, g_ / 24, g_ / 24, g_ / 24};
+  const float hmin = hmin_, keep = hmin_ / 16.0f;
+  const float* shp = shift_f_.data();
+  auto mirror = [&](int a, std::ptrdiff_t w) {  // only used when w is wet and its neighbour dry
+    float ux, uy;
+    cell_velocity(src, P, w, hold[w], hmin, ux, uy);
+    return dry_mirror(a, hold[w], ux, uy, shp[a]);
+  };
+  const std::uint8_t* solid = solid_.data();
+  auto mixed = [&](std::ptrdiff_t c, std::ptrdiff_t n) { return !solid[n] && (hold[c] >= hmin) != (hold[n] >= hmin); };
+  const Span* spans = spans_.data();
+  const int nspans = static_cast<int>(spans_.size());
+#pragma omp parallel for schedule(static) if (ncells_ >= 16384)
+  for (int s = 0; s < nspans; ++s)
+    for (std::ptrdiff_t c = spans[s].begin; c < spans[s].end; ++c) {
+      float out = 0.0f;
+      for (int a = 1; a < 9; ++a) {
+        float flux;
+        wet_dry_face(src[a * P + c - off[a]], src[kOpp[a] * P + c], hold[c], z[c], hold[c - off[a]], z[c - off[a]],
+                     kb[a], hmin, solid[c - off[a]] != 0, mixed(c, c - off[a]) ? mirror(a, c) : 0.0f,
+                     mixed(c, c - off[a]) ? mirror(kOpp[a], c - off[a]) : 0.0f, flux);
+        out += flux < 0.0f ? -flux : 0.0f;
+      }
+      const float avail = hold[c] - keep;  // a film h_min/16 stays: float rounding never crosses 0
+      theta[c] = out <= avail ? 1.0f : avail > 0.0f ? avail / out : 0.0f;
+    }
+  for (const Rule& r : rules_) theta[r.s] = r.up != kNone ? theta[r.up] : 1.0f;
+}
+
+// The wet/dry pass (while a cell is dry): limited face exchanges, collision with |u| <= u_max,
+// dry cells to rest. `dry` counts h < h_min, `bad` counts h < 0 or NaN.
+void LbmShallow::stream_collide_wet_dry(int& dry, int& bad) {
+  outflow_limiter();
+  const std::ptrdiff_t S = static_cast<std::ptrdiff_t>(stride_), P = static_cast<std::ptrdiff_t>(plane_);
+  const std::ptrdiff_t off[9] = {0, 1, S, -1, -S, S + 1, S - 1, -S - 1, -S + 1};
+  const float* src = fa_.data();
+  float* dst = fb_.data();
+  const float* hold = ha_.data();
+  float* hnew = hb_.data();
+  const float* z = z_.data();
+  const float* theta = theta_.data();
+  const Collision k{omega_, g_, ax_, ay_, hmin_, href_, umax_ * umax_};
+  const float kb[9] = {0, g_ / 6, g_ / 6, g_ / 6, g_ / 6, g_ / 24, g_ / 24, g_ / 24, g_ / 24};
+  float sh[9];
+  for (int a = 0; a < 9; ++a) sh[a] = static_cast<float>(shift_[a]);
+  const Cell9 ks{sh[0], sh[1], sh[2], sh[3], sh[4], sh[5], sh[6], sh[7], sh[8]};
+  const float hmin = hmin_;
+  const float* shp = shift_f_.data();
+  auto mirror = [&](int a, std::ptrdiff_t w) {  // only used when w is wet and its neighbour dry
+    float ux, uy;
+    cell_velocity(src, P, w, hold[w], hmin, ux, uy);
+    return dry_mirror(a, hold[w], ux, uy, shp[a]);
+  };
+  const std::uint8_t* solid = solid_.data();
+  auto mixed = [&](std::ptrdiff_t c, std::ptrdiff_t n) { return !solid[n] && (hold[c] >= hmin) != (hold[n] >= hmin); };
+  const Span* spans = spans_.data();
+  const int nspans = static_cast<int>(spans_.size());
+  int ndry = 0, nbad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : ndry, nbad) if (ncells_ >= 16384)
+  for (int s = 0; s < nspans; ++s)
+    for (std::ptrdiff_t c = spans[s].begin; c < spans[s].end; ++c) {
+      float fp[9];
+      fp[0] = src[c];
+      for (int a = 1; a < 9; ++a) {
+        const std::ptrdiff_t n = c - off[a];
+        const float p2 = src[kOpp[a] * P + c];
+        float flux;
+        const float v = wet_dry_face(src[a * P + n], p2, hold[c], z[c], hold[n], z[n], kb[a], hmin, solid[n] != 0,
+                                     mixed(c, n) ? mirror(a, c) : 0.0f, mixed(c, n) ? mirror(kOpp[a], n) : 0.0f, flux);
+        const float th = flux < 0.0f ? theta[c] : theta[n];
+        fp[a] = th >= 1.0f ? v : p2 + th * flux;
+      }
+      const Cell9 f{fp[0], fp[1], fp[2], fp[3], fp[4], fp[5], fp[6], fp[7], fp[8]};
+      float h, unused = 0.0f;
+      const Cell9 post = collide<true>(f, k, h, unused);
+      const Cell9 o = rest_if_dry(f, post, h, hmin, ks);
+      ndry += h < hmin ? 1 : 0;
+      nbad += h >= 0.0f ? 0 : 1;
+      const float op[9] = {o.f0, o.f1, o.f2, o.f3, o.f4, o.f5, o.f6, o.f7, o.f8};
+      for (int a = 0; a < 9; ++a) dst[a * P + c] = op[a];
+      hnew[c] = h;
+    }
+  dry = ndry;
+  bad = nbad;
+}
+
 void LbmShallow::step() {
+  const bool wet_dry = dry_ > 0;
   {
     StageTimer t(stats_[st_fill_]);
-    fill_ghosts();
+    if (wet_dry) set_ghost_depths();
+    fill_ghosts(wet_dry);
   }
-  int flagged = 0;
+  int flagged = 0, bad = 0;
   {
     StageTimer t(stats_[st_kernel_]);
-    if (!has_bed_)
+    if (wet_dry)
+      stream_collide_wet_dry(flagged, bad);
+    else if (!has_bed_)
       stream_collide<0>(flagged);
     else if (p_.bed_force == LbmBedForce::centred)
       stream_collide<1>(flagged);
     else
       stream_collide<2>(flagged);
+    if (!wet_dry && flagged) {
+      // A cell fell below h_min (or went negative) in the all-wet pass: the populations it read
+      // are intact (pull scheme), so the step is redone by the wet/dry pass. The naive bed term
+      // has no wet/dry form: that run stops.
+      if (p_.bed_force == LbmBedForce::naive && has_bed_) {
+        bad = 1;
+      } else {
+        set_ghost_depths();
+        fill_ghosts(true);
+        stream_collide_wet_dry(flagged, bad);
+      }
+    }
   }
   std::swap(fa_, fb_);
   std::swap(ha_, hb_);
   ++steps_;
-  if (flagged) {
-    for (const Span& sp : spans_)
-      for (std::uint32_t c = sp.begin; c < sp.end; ++c)
-        if (!std::isfinite(ha_[c])) throw NonFiniteError("stream_collide", steps_);
-    for (const Span& sp : spans_)
-      for (std::uint32_t c = sp.begin; c < sp.end; ++c)
-        if (ha_[c] < hmin_) {
-          const std::size_t col = c % stride_ - kPad, row = c / stride_ - 1;
-          throw LbmDryError("step " + std::to_string(steps_) + ": cell (row " + std::to_string(row) + ", col " +
-                            std::to_string(col) + ") fell to depth " + g6(ha_[c]) +
-                            " m < min_depth_m = " + g6(p_.min_depth_m) + " m; this solver has no wetting and drying");
-        }
-  }
+  if (bad) throw_bad_cell();
+  dry_ = static_cast<std::size_t>(flagged);
+}
+
+void LbmShallow::throw_bad_cell() const {
+  for (const Span& sp : spans_)
+    for (std::uint32_t c = sp.begin; c < sp.end; ++c)
+      if (!std::isfinite(ha_[c])) throw NonFiniteError("stream_collide", steps_);
+  for (const Span& sp : spans_)
+    for (std::uint32_t c = sp.begin; c < sp.end; ++c)
+      if (ha_[c] < 0.0f || (ha_[c] < hmin_ && p_.bed_force == LbmBedForce::naive && has_bed_)) {
+        const std::size_t col = c % stride_ - kPad, row = c / stride_ - 1;
+        throw LbmDryError("step " + std::to_string(steps_) + ": cell (row " + std::to_string(row) + ", col " +
+                          std::to_string(col) + ") fell to depth " + g6(ha_[c]) + " m" +
+                          (ha_[c] < 0.0f ? " < 0" : " < min_depth_m with the naive bed term (no wet/dry form)"));
+      }
 }
 
 double LbmShallow::volume_m3() const {
@@ -569,7 +760,7 @@ float LbmShallow::depth_at(int row, int col) const {
 
 std::array<float, 2> LbmShallow::velocity_at(int row, int col) const {
   const std::size_t k = idx(row, col);
-  if (solid_[k]) return {0.0f, 0.0f};
+  if (solid_[k] || ha_[k] < hmin_) return {0.0f, 0.0f};  // dry cells are at rest
   double h = href_, mx = 0, my = 0;
   for (int a = 0; a < 9; ++a) {
     const double f = fa_[a * plane_ + k];  // shifted populations

@@ -65,7 +65,7 @@ class LbmSolver final : public Solver {
              {{"h", "depth (m), 0 in obstacles"},
               {"u", "velocity (m/s), (rows, cols, 2)"},
               {"eta", "surface elevation h + z_b (m)"}}},
-            {"dry_cells", "refused (no wetting and drying)"}};
+            {"dry_cells", "wetting and drying: h < min_depth_m is dry, at rest, passes no water"}};
   }
   const StageStats& stats() const override { return sim_.stats(); }
   std::span<const float> height() override {
@@ -206,12 +206,13 @@ void parse_bed(const JsonIn& lb, const Scene& scene, LbmParams& p, LbmFields& f)
   p.bed_force = bed_force == "naive" ? LbmBedForce::naive : LbmBedForce::centred;
 }
 
-// The water level of object o ("depth_m", or "surface_m" minus the bed) at cell i; neither: unchanged.
+// The water level of object o ("depth_m", or "surface_m" minus the bed, 0 where the bed stands
+// above the surface: dry land) at cell i; neither: unchanged.
 void set_level(const JsonIn& o, std::size_t i, LbmFields& f) {
   if (o.has("depth_m"))
     f.depth_m[i] = static_cast<float>(o.number("depth_m", -1e4, 1e4));
   else if (o.has("surface_m"))
-    f.depth_m[i] = static_cast<float>(o.number("surface_m", -1e4, 1e4) - f.bed_m[i]);
+    f.depth_m[i] = std::max(0.0f, static_cast<float>(o.number("surface_m", -1e4, 1e4) - f.bed_m[i]));
 }
 
 // The flow a dam releases (Stoker 1957): it bounds the time step and is refused when transcritical.
@@ -236,8 +237,12 @@ DamFlow parse_dam(const JsonIn& dam, const LbmParams& p, LbmFields& f) {
   const double hl = dam.number("left_depth_m", 0.0, 1e4), hr = dam.number("right_depth_m", 0.0, 1e4);
   for_each_cell(p, [&](std::size_t i, double x, double) { f.depth_m[i] = static_cast<float>(x < xd ? hl : hr); });
   DamFlow flow;
-  if (hl == hr || std::min(hl, hr) <= 0) return flow;
   const double g = p.gravity_mps2;
+  if (hl != hr && std::min(hl, hr) < p.min_depth_m) {  // onto a dry bed: the front moves at 2 sqrt(g h) (Ritter)
+    flow.signal_speed_mps = 2.0 * std::sqrt(g * std::max(hl, hr));
+    return flow;
+  }
+  if (hl == hr) return flow;
   const StokerSolution st = stoker_solve({std::max(hl, hr), std::min(hl, hr), g});
   flow.signal_speed_mps = st.max_signal_speed_mps;
   flow.froude = middle_froude(st);
@@ -404,8 +409,9 @@ MemoryEstimate lbm_memory(const LbmParams& p) {
   const std::uint64_t lattice = static_cast<std::uint64_t>(p.rows + 2) * (p.cols + 2);  // with the ghost ring
   MemoryEstimate m;
   m.size_key = "$.lbm.grid.rows, $.lbm.grid.cols";
-  // two sets of 9 populations, depth now and next, bed (floats), the solid flags (bytes)
-  m.add("lattice", lattice * (18 * 4 + 3 * 4 + 1));
+  // two sets of 9 populations, depth now and next, bed, the wet/dry outflow limiter (floats), the
+  // solid flags (bytes)
+  m.add("lattice", lattice * (18 * 4 + 4 * 4 + 1));
   // the scene's fields (bed, depth, ux, uy, solid) and the solver's outputs (h, eta, u, v, bed)
   m.add("scene fields", cells * (4 * 4 + 1));
   m.add("output fields", cells * 5 * 4);

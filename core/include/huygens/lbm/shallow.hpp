@@ -10,8 +10,15 @@
 //   S_a = -lambda_a g (h(x) + h(x - e_a)) (z_b(x) - z_b(x - e_a)) / 6
 // Sides and obstacles are ghost cells a precomputed rule list fills before each step (bounce-back,
 // mirror, periodic image, Zou-He inflow and outflow). Populations are stored minus the still-water
-// equilibrium of the mean depth. Dry cells are refused (no wetting and drying). Why each choice,
-// and measurements: docs/lbm.md.
+// equilibrium of the mean depth (of zero when a cell starts dry).
+// Wetting and drying: a cell with h < h_min is dry; its collision puts all its water at rest
+// (f0 = h, f_a = 0), so it passes nothing on. The face between x and n = x - e_a carries the
+// streamed pair (f*_a(n) to x, f*_abar(x) to n) unless it is closed, when both bounce back; either
+// way mass is exchanged, never made. Wet-wet and dry-dry faces are open; a face between a wet cell w
+// and a dry cell d is open only when eta_w = h_w + z_w > z_d + h_min (the water reaches above the dry
+// bed: still water next to dry land stays still) and w's population toward d is >= 0 (a dry cell
+// never receives a negative population). The bed term acts on wet-wet faces only. A negative depth
+// stops the run (LbmDryError). Why each choice, and measurements: docs/lbm.md.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -63,7 +70,7 @@ struct LbmParams {
   double inflow_discharge_m2s = 0.0;
   /// Depth held at an outflow side (unit: m); 0 = zero-gradient outflow.
   double outflow_depth_m = 0.0;
-  /// Smallest depth a fluid cell may have (unit: m); shallower cells are refused as dry.
+  /// Depth below which a cell is dry (unit: m): it holds its water at rest and passes none on.
   double min_depth_m = 1e-4;
   /// Largest |u| + sqrt(g h) the flow is expected to reach beyond the initial state, e.g. from
   /// the Stoker solution of a dam (unit: m/s); 0 = use the initial state only.
@@ -104,7 +111,7 @@ class LbmRefused : public std::invalid_argument {
   std::string parameter_;
 };
 
-/// A fluid cell fell below min_depth_m during the run (no wetting and drying).
+/// A fluid cell's depth went negative during the run (the wet/dry rule could not keep it >= 0).
 class LbmDryError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -120,6 +127,9 @@ struct LbmLattice {
   double speed_mps = 1.0;
   /// Largest (|u| + sqrt(g h)) / e of the initial state or the expected flow.
   double signal_ratio = 0.0;
+  /// Largest (|u| + 2 sqrt(g h)) / e of the initial state: the Riemann-invariant bound on the
+  /// speed water released from it can reach (the front of a dam break onto a dry bed, 2 sqrt(g h0)).
+  double riemann_ratio = 0.0;
   /// Smallest f0 / h of the initial state (>= 0 required).
   double min_rest_fraction = 1.0;
 };
@@ -130,7 +140,8 @@ std::array<double, 9> lbm_equilibrium(double g_lat, double h, double ux, double 
 
 /// Checks a parameter set and its initial fields; throws LbmRefused naming the parameter:
 /// tau >= 0.55, (|u| + sqrt(g h)) dt/dx < 0.8, f0 >= 0 (g h < 1.2 in lattice units), Froude
-/// number <= kLbmMaxFroude, no dry fluid cell, consistent sides. Returns the lattice quantities.
+/// number <= kLbmMaxFroude (over wet cells), no negative depth and at least one wet cell,
+/// consistent sides. Returns the lattice quantities.
 LbmLattice lbm_check(const LbmParams& p, const LbmFields& init);
 
 /// The solver state. Built from params and initial fields (after lbm_check); step() does no
@@ -174,6 +185,8 @@ class LbmShallow {
 
   /// Bytes the stream-collide pass reads and writes per fluid cell.
   int bytes_per_cell() const;
+  /// Fluid cells with depth below min_depth_m after the last step (or initially).
+  std::size_t dry_cells() const { return dry_; }
 
  private:
   struct Rule {
@@ -193,9 +206,13 @@ class LbmShallow {
     return static_cast<std::size_t>(row + 1) * stride_ + kPad + static_cast<std::size_t>(col);
   }
   void build_rules();
-  void fill_ghosts();
+  void fill_ghosts(bool wet_dry);
+  void set_ghost_depths();
   template <int Mode>
   void stream_collide(int& flagged);
+  void outflow_limiter();
+  void stream_collide_wet_dry(int& dry, int& bad);
+  void throw_bad_cell() const;
 
   static constexpr std::size_t kPad = 16;  // interior column 0 starts 64-byte aligned
   static constexpr std::uint32_t kNone = 0xffffffffu;
@@ -206,13 +223,16 @@ class LbmShallow {
   AlignedBuffer<float> fa_, fb_;     // 9 planes each: post-collision populations
   AlignedBuffer<float> ha_, hb_;     // depth at the current and next step
   AlignedBuffer<float> z_;           // bed
+  AlignedBuffer<float> theta_;       // outflow limiter of the wet/dry pass
   std::vector<std::uint8_t> solid_;  // per lattice cell: 1 = not fluid (ghost or obstacle)
   std::vector<Span> spans_;
   std::vector<Rule> rules_;
-  float omega_ = 1.0f, g_ = 0.0f, ax_ = 0.0f, ay_ = 0.0f, hmin_ = 0.0f, href_ = 0.0f;
+  float omega_ = 1.0f, g_ = 0.0f, ax_ = 0.0f, ay_ = 0.0f, hmin_ = 0.0f, href_ = 0.0f, umax_ = 1.0f;
   std::array<double, 9> shift_{};  // f_a = stored_a + shift_a = equilibrium of (href, u = 0)
+  std::array<float, 9> shift_f_{};
   bool has_bed_ = false;
   std::size_t ncells_ = 0;  // fluid cells
+  std::size_t dry_ = 0;     // fluid cells with h < h_min (the wet/dry pass runs while > 0)
   std::int64_t steps_ = 0;
   StageStats stats_;
   int st_fill_ = 0, st_kernel_ = 0;

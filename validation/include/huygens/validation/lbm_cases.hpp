@@ -50,6 +50,79 @@ LbmLakeResult lbm_lake_at_rest(std::int64_t steps, LbmBedForce force);
 /// with a bed mound and a released hump of water (accumulated in double).
 double lbm_mass_drift(int rows, int cols, std::int64_t steps);
 
+/// Ritter's dry-bed dam break (validation/reference/ritter.hpp): a 1-row channel of `cells`
+/// (100 m, periodic in y, walls), h0 = 1 m at rest left of the dam at x = 100/3 m, dry beyond;
+/// run until the rarefaction head and the front are 10 % of the way from the walls.
+struct LbmRitterResult {
+  /// sum |h - h_exact| / sum h_exact over all cells at the end.
+  double l1_relative = 0;
+  /// Numerical front: right face of the last wet cell (unit: m from the dam).
+  double front_m = 0;
+  /// Exact front 2 sqrt(g h0) t (unit: m from the dam).
+  double front_exact_m = 0;
+  /// Where the depth falls to 0.01 h0, measured (interpolated) and exact (unit: m from the dam).
+  double x01_m = 0, x01_exact_m = 0;
+  /// Smallest depth over the run's end state (unit: m) and the relative volume change.
+  double min_depth_m = 0, volume_drift = 0;
+  /// Cell size (unit: m), steps and the simulated time (unit: s).
+  double cell_m = 0, time_s = 0;
+  std::int64_t steps = 0;
+  /// Non-empty when the run stopped (negative depth or a non-finite value).
+  std::string stopped;
+};
+LbmRitterResult lbm_ritter(int cells, double tau = 0.55, double cfl = 0.5);
+
+/// Thacker's planar oscillation in a parabolic bowl (validation/reference/thacker.hpp), one row
+/// (periodic in y) of `cells` across [-2a, 2a], a = 1 m, h0 = 0.5 m, U0 = 0.5 m/s, released at
+/// rest (t = 0: s = -U0/omega); measured after `periods` periods.
+struct LbmThackerResult {
+  /// Shorelines where h = 0.01 h0, measured (interpolated) minus exact, left and right (unit: m).
+  double left_error_m = 0, right_error_m = 0;
+  /// sum |h - h_exact| / sum h_exact over all cells.
+  double l1_relative = 0;
+  /// Largest |eta - eta_exact| over cells where the exact depth exceeds 0.1 h0 (unit: m).
+  double surface_error_m = 0;
+  /// Relative volume change and the smallest depth at the end (unit: m).
+  double volume_drift = 0, min_depth_m = 0;
+  /// Cell size (unit: m); non-empty when the run stopped.
+  double cell_m = 0;
+  std::string stopped;
+};
+LbmThackerResult lbm_thacker(int cells, double periods, double tau = 0.55);
+
+/// Still water (surface 1 m) around islands that stand above it (two cones and a flat-topped
+/// rectangle) in a closed 64 x 64 box of 1 m cells, after `steps`: the wet/dry rule must leave it still.
+struct LbmIslandsResult {
+  /// Largest |u| over the cells (unit: m/s) and largest |h + z_b - 1| over wet cells (unit: m).
+  double max_speed_mps = 0, max_surface_error_m = 0;
+  /// Largest depth over the cells that started dry (unit: m).
+  double max_dry_depth_m = 0;
+  /// Dry cells at the start and at the end.
+  std::size_t dry_start = 0, dry_end = 0;
+};
+LbmIslandsResult lbm_islands_at_rest(std::int64_t steps);
+
+/// Wetting and drying in a closed rows x cols box of 1 m cells: a hump of water released on a
+/// beach sloping up to dry land on one side, with an island; relative volume change over `steps`
+/// (accumulated in double), the smallest depth seen at the end and the dry cells at the end.
+struct LbmWetDryMassResult {
+  double volume_drift = 0, min_depth_m = 0;
+  std::size_t dry_end = 0;
+  std::string stopped;
+};
+LbmWetDryMassResult lbm_wet_dry_mass(int rows, int cols, std::int64_t steps);
+
+/// Zhou's partial dam break (the setting of scenes/dam_break.json: 200 m x 200 m basin, dam at
+/// x = 100 m with a 75 m breach) with 10 m upstream and 10/ratio m downstream, `steps` steps.
+struct LbmPartialDamResult {
+  std::int64_t steps = 0, done_steps = 0;
+  double time_s = 0, volume_drift = 0, min_depth_m = 0;
+  /// Largest number of dry cells seen at the end of a step.
+  std::size_t max_dry = 0;
+  std::string refused, stopped;
+};
+LbmPartialDamResult lbm_partial_dam(double ratio, std::int64_t steps);
+
 /// Speed of a small long-wave pulse (amplitude 1e-4 h, 1 m deep) over sqrt(g h), measured by
 /// the centroid of the right-going half; `cells` along a 1-row periodic channel.
 double lbm_wave_speed_ratio(int cells);
