@@ -11,8 +11,9 @@ or 4 (refused for memory), within the time limit; a non-zero exit must print a m
 stderr starting with "huygens:". A signal (abort, segmentation fault), exit code 1 (an uncaught
 failure), a time-out or a silent refusal fails the test and is listed.
 
-Each run has an address-space limit (--memory-gib, default 4): a mutant asking for gigabytes must
-be refused (exit 2 or 4) or fail its allocation with exit 4, not fill the machine.
+Each run has an address-space limit (--memory-gib, default 4; 0 for none, under AddressSanitizer):
+a mutant asking for gigabytes must be refused (exit 2 or 4) or fail its allocation with exit 4,
+not fill the machine.
 
 usage: scene_mutation_test.py --cli PATH/huygens --scenes SCENES_DIR [--per-scene N] [--seed S]
        [--jobs J] [--timeout SECONDS] [--memory-gib G]
@@ -125,7 +126,7 @@ def limit_address_space(gib):
     gigabytes fails at once (exit 4, out of memory) instead of filling the machine."""
     def apply():
         resource.setrlimit(resource.RLIMIT_AS, (gib << 30, gib << 30))
-    return apply
+    return apply if gib > 0 else None
 
 
 def run_one(cli, file, timeout, gib):
@@ -164,7 +165,7 @@ def main():
     ap.add_argument("--verbose", action="store_true", help="print every mutant's outcome and message")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=60)
-    # not for sanitizer builds (AddressSanitizer reserves terabytes of address space)
+    # 0: no limit, for sanitizer builds (AddressSanitizer reserves terabytes of address space)
     ap.add_argument("--memory-gib", type=int, default=4)
     args = ap.parse_args()
     args.cli = os.path.abspath(args.cli)
