@@ -49,7 +49,7 @@ std::string error_path(const json& doc) {
 }  // namespace
 
 TEST(LbmScene, ShippedScenesRunAndDumpTheDocumentedFields) {
-  for (const char* name : {"dam_break.json", "channel.json"}) {
+  for (const char* name : {"dam_break.json", "channel.json", "flood.json"}) {
     auto solver = make_solver(load_scene(huygens::test::scenes_dir() + "/" + name), RunOptions{false});
     for (int i = 0; i < 5; ++i) solver->step();
     const auto out = solver->outputs();
