@@ -3,7 +3,10 @@
 // exactly [b, e), 1/r by Newton steps, the grid path equals all pairs, the impact viscosity.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -68,6 +71,30 @@ TEST(SphForces, DensitySumCoversExactlyTheRangeAndItsImage) {
       EXPECT_NEAR(msum, wantm, 1e-4 * wantm + 1e-12) << b << " " << e;
     }
   }
+}
+
+// sph_keep, the branch-free select of the vectorised loops: x or +0, bit for bit, for any x.
+TEST(SphForces, KeepSelectsBitForBit) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  for (const float x : {1.5f, -2.f, 0.f, -0.f, 1e-40f, nan, inf, -inf}) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(sph_keep(true, x)), std::bit_cast<std::uint32_t>(x)) << x;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(sph_keep(false, x)), 0u) << x;
+  }
+}
+
+// A candidate with a non-finite position lies outside the support: the density sum equals the one
+// with that candidate far away (SphSystem flags the particle itself).
+TEST(SphForces, NonFiniteCandidateLeavesTheDensitySum) {
+  Arrays a(64), far(64);
+  a.x[10] = std::numeric_limits<float>::quiet_NaN();
+  far.x[10] = 1e3f;
+  const float h = 0.04f, h2 = h * h;
+  const SphImage self = sph_self_image(0.05f, 0.05f, 0.05f);
+  float sum = 0.f, msum = 0.f, sum_far = 0.f, msum_far = 0.f;
+  sph_poly6_range<false, false>(a.view(), 0, 64, self, h, h2, sum, msum);
+  sph_poly6_range<false, false>(far.view(), 0, 64, self, h, h2, sum_far, msum_far);
+  EXPECT_GT(sum, 0.f);
+  EXPECT_EQ(sum, sum_far);
 }
 
 TEST(SphForces, ForceSumIsPressureViscosityAndImpactOfTheRange) {

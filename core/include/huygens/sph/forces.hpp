@@ -10,7 +10,13 @@
 // pbk = beta h^2 / rho0: the impact viscosity on approaching pairs only. kImage: the sums over the
 // mirror images of the range (d = o + s X_j, boundary.hpp) instead of the particles (d = x_i - X_j).
 // Whole aligned 8-float vectors over [b & ~7, (e + 7) & ~7), lanes outside [b, e) masked (arrays
-// padded: no scalar remainder); 1/r without square root or division (sph_rsqrt).
+// padded: no scalar remainder); 1/r without square root or division (sph_rsqrt). The loop bodies
+// are branch-free: every term is computed for every lane and the support and range test selects
+// it by a bitwise and (sph_keep), which SSE, AVX2 and AVX-512 all express, so the compiler
+// vectorises the loops for each of them (a conditional h - r needs masked arithmetic, AVX-512
+// only, because a floating-point operation may trap; docs/sph.md, "Vectorisation"). The two range
+// sums are kept out of line (one call per range of ~100-200 candidates), so each instantiation is
+// a function of its own whose object code scripts/simd_report.py checks (test simd_object_code).
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -29,6 +35,12 @@ inline float sph_rsqrt(float x) {
   return y;
 }
 
+/// keep ? x : +0, as x & (all ones or zero): branch-free, bit for bit the select, and a NaN x
+/// becomes 0 where keep is false.
+inline float sph_keep(bool keep, float x) {
+  return std::bit_cast<float>(std::bit_cast<std::uint32_t>(x) & (0u - static_cast<std::uint32_t>(keep)));
+}
+
 /// The particle arrays a pair sum reads (cell-sorted, 64-byte aligned): positions (m), velocities
 /// (m/s), PP = l p / rho^2, IR = 1 / rho, LR = l / rho.
 struct SphView {
@@ -37,8 +49,8 @@ struct SphView {
 
 /// Adds the density sum to `sum` and, with kMoment, the first moment of the spiky gradient to `msum`.
 template <bool kImage, bool kMoment>
-inline void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im, float h, float h2,
-                            float& sum, float& msum) {
+[[gnu::noinline]] void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im, float h,
+                                       float h2, float& sum, float& msum) {
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
@@ -51,14 +63,17 @@ inline void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, 
     const float dy = kImage ? oy + sy * Y[j] : oy - Y[j];
     const float dz = kImage ? oz + sz * Z[j] : oz - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const bool in = r2 < h2 && j >= b && j < e;
-    const float q = in ? h2 - r2 : 0.f;
-    s6 += q * q * q;
+    const bool in = (r2 < h2) & (j >= b) & (j < e);
+    const float q = sph_keep(in, h2 - r2);
+    // the selected cube is added: the and between product and sum keeps them two roundings (no
+    // fused multiply-add), the same sums for every ISA
+    s6 += sph_keep(in, q * q * q);
     if constexpr (kMoment) {
-      // first moment of the spiky gradient: (h - r)^2 r
-      const float r = r2 * sph_rsqrt(std::max(r2, 1e-30f));
-      const float hr = in ? h - r : 0.f;
-      sm += hr * hr * r;
+      // first moment of the spiky gradient: (h - r)^2 r, r = r2 / sqrt(r2 + 1e-30): 0 at r2 = 0, and
+      // r2 + 1e-30 rounds to r2 for r2 > 2e-23 m^2
+      const float r = r2 * sph_rsqrt(r2 + 1e-30f);
+      const float hr = sph_keep(in, h - r);
+      sm += sph_keep(in, hr * hr * r);
     }
   }
   sum += s6;
@@ -68,8 +83,9 @@ inline void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, 
 /// Adds the pressure sum to acc[0..2], the viscous sum to acc[3..5] and the spiky first moment
 /// (for the next step's correction) to acc[6]; vi = v_i, Pi = P_i, rmin = smallest r used (m).
 template <bool kImage>
-inline void sph_force_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im, const float vi[3],
-                            float Pi, float h, float h2, float rmin, float pik, float pbk, float acc[7]) {
+[[gnu::noinline]] void sph_force_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im,
+                                       const float vi[3], float Pi, float h, float h2, float rmin, float pik, float pbk,
+                                       float acc[7]) {
   const float rmin2 = rmin * rmin, eta2 = 0.01f * h2;
   const float* X = v.X;
   const float* Y = v.Y;
@@ -93,7 +109,7 @@ inline void sph_force_range(const SphView& v, std::uint32_t b, std::uint32_t e, 
     const float r2 = dx * dx + dy * dy + dz * dz;
     const float ri = sph_rsqrt(std::max(r2, rmin2));  // 1 / r
     const float r = r2 * ri;
-    const float hr = (r2 < h2 && j >= b && j < e) ? h - r : 0.f;
+    const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r);
     const float Pj = kImage ? std::max(PP[j] + LR[j] * (G0 + gx * X[j] + gy * Y[j] + gz * Z[j]), 0.f) : PP[j];
     const float vjx = kImage ? -sx * VX[j] : VX[j], vjy = kImage ? -sy * VY[j] : VY[j],
                 vjz = kImage ? -sz * VZ[j] : VZ[j];
