@@ -511,12 +511,13 @@ template <bool Cap = false>
   uy = ((f2 + f5 + f6) - (f4 + f7 + f8)) * ih;
 }
 
-// A dry cell (h < h_min) puts all its water at rest: f*_a = 0 (stored -ks_a), f*_0 = h, with the
-// rest population the remainder of dh as in collide() (mass exact).
+// A dry cell (h < h_min) puts all its water at rest: f*_a = 0 (stored -ks_a) and the rest population
+// gains what arrived on the moving links, f*_0 = f_0 + sum (f_a + ks_a): a dry cell nothing reached
+// keeps its populations bit for bit (recomputing f*_0 from h would add a rounding every step).
 [[gnu::always_inline]] inline Cell9 rest_if_dry(const Cell9& f, const Cell9& o, float h, float hmin, const Cell9& ks) {
   const bool dry = h < hmin;
-  const float dh = ((f.f0 + f.f1) + (f.f2 + f.f3)) + ((f.f4 + f.f5) + (f.f6 + f.f7)) + f.f8;  // as collide()
-  const float r0 = dh - (((-ks.f1 - ks.f2) + (-ks.f3 - ks.f4)) + ((-ks.f5 - ks.f6) + (-ks.f7 - ks.f8)));
+  const float r0 = f.f0 + ((((f.f1 + ks.f1) + (f.f2 + ks.f2)) + ((f.f3 + ks.f3) + (f.f4 + ks.f4))) +
+                           (((f.f5 + ks.f5) + (f.f6 + ks.f6)) + ((f.f7 + ks.f7) + (f.f8 + ks.f8))));
   return {dry ? r0 : o.f0,     dry ? -ks.f1 : o.f1, dry ? -ks.f2 : o.f2, dry ? -ks.f3 : o.f3, dry ? -ks.f4 : o.f4,
           dry ? -ks.f5 : o.f5, dry ? -ks.f6 : o.f6, dry ? -ks.f7 : o.f7, dry ? -ks.f8 : o.f8};
 }
