@@ -2,7 +2,7 @@
 //   huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--overwrite] [--stats-json FILE] [--fast-plans]
 //   huygens validate [CASE...] [--list]
 // Exit codes (program.hpp, README): 0 ok, 1 a validation case failed or a write failed, 2 bad
-// scene or usage, 3 a non-finite value (or a dry LBM cell), 4 not enough memory, 130/143 stopped
+// scene or usage, 3 a non-finite value (or a negative LBM depth), 4 not enough memory, 130/143 stopped
 // by SIGINT/SIGTERM.
 #include <cstdio>
 #include <string>
@@ -36,7 +36,7 @@ const char* const kUsage =
     "          --list prints the case names.\n"
     "\n"
     "exit codes: 0 ok; 1 a case failed or a write failed; 2 bad scene or usage; 3 non-finite\n"
-    "            value (or an LBM cell ran dry); 4 not enough memory; 130/143 stopped by\n"
+    "            value (or a negative LBM depth); 4 not enough memory; 130/143 stopped by\n"
     "            SIGINT/SIGTERM.\n";
 
 }  // namespace huygens

@@ -1,5 +1,5 @@
 // huygens run: one scene without graphics, its stage table, dumps and meta.json. A run ends
-// complete (0), stopped by a non-finite value or a dry LBM cell (3), by SIGINT/SIGTERM (130/143)
+// complete (0), stopped by a non-finite value or a negative LBM depth (3), by SIGINT/SIGTERM (130/143)
 // or by a failed write (1); every way leaves meta.json describing exactly the dumps that exist.
 #include <chrono>
 #include <cstdio>
@@ -112,7 +112,7 @@ int run_steps(const RunArgs& a, Solver& solver, DumpWriter* dumps) {
   } catch (const LbmDryError& e) {
     // not a non-finite value but the same kind of stop: a named step and cell, earlier dumps valid
     return stop({{"stage", "dry_cell"}, {"step", solver.steps()}, {"reason", e.what()}},
-                std::string("run stopped: a cell ran dry: ") + e.what(), kExitNonFinite);
+                std::string("run stopped: a negative depth: ") + e.what(), kExitNonFinite);
   } catch (const IoError& e) {
     // meta.json keeps its last good version (it may be the file that failed)
     std::fprintf(stderr, "huygens: run stopped at step %lld: %s\n", static_cast<long long>(solver.steps()), e.what());
