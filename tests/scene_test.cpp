@@ -250,6 +250,7 @@ TEST(JsonIn, IntegerGetterRefusesWhatAnIntegerCannotHold) {
   // an unsigned above LLONG_MAX is not wrapped to a negative number inside a wide range
   EXPECT_THROW(r.integer("c", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max()),
                SceneError);
+  EXPECT_THROW(r.integer("c", -10, -1), SceneError);  // 2^64 - 1 would wrap to -1
 }
 
 TEST(JsonIn, NumberGettersRefuseWrongTypesNamingThePath) {

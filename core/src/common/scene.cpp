@@ -99,7 +99,8 @@ long long JsonIn::integer(const std::string& key, long long lo, long long hi) co
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   if (v.is_number_unsigned() || v.is_number_integer()) {
     // an unsigned above the largest long long is compared as unsigned, never wrapped
-    const bool above = v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(hi);
+    const bool above =
+        v.is_number_unsigned() && (hi < 0 || v.get<unsigned long long>() > static_cast<unsigned long long>(hi));
     const long long x = above ? hi : v.get<long long>();
     if (above || x < lo || x > hi) fail(key, "value " + v.dump() + " is out of range " + range);
     return x;
