@@ -5,14 +5,15 @@
 // the level from the screen-space derivatives of v_surface, i.e. from how much the triangle
 // shrank on the ground, so brightness ~ 1/area. The ship's shadow is drawn black into the
 // lower levels (Figure 7).
-// EXPLICIT mode: brightness f_gain from the geometry shader, times the shadow mask.
+// EXPLICIT mode: brightness = the triangle's gain, unit * (surface area) / (ground area)
+// computed on the CPU (CausticsRenderer::render), fetched by gl_PrimitiveID from a buffer
+// texture, times the shadow mask.
+in vec2 v_surface;
 #ifdef EXPLICIT
-in vec2 f_surface;
-flat in float f_gain;
+uniform samplerBuffer u_gain;
 uniform sampler2D u_mask;  // 1 = lit, 0 = ship shadow (surface coordinates)
 uniform int u_use_mask;
 #else
-in vec2 v_surface;
 uniform sampler2D u_mip;
 uniform float u_lod_bias;  // still water selects level 2 + u_lod_bias
 uniform int u_isotropic;   // 1: level of detail from the area scale sqrt|det J| instead of the GPU's own
@@ -20,8 +21,8 @@ uniform int u_isotropic;   // 1: level of detail from the area scale sqrt|det J|
 out vec4 o_color;
 void main() {
 #ifdef EXPLICIT
-  float m = (u_use_mask != 0) ? texture(u_mask, f_surface).r : 1.0;
-  o_color = vec4(f_gain * m);
+  float m = (u_use_mask != 0) ? texture(u_mask, v_surface).r : 1.0;
+  o_color = vec4(texelFetch(u_gain, gl_PrimitiveID).r * m);
 #else
   if (u_isotropic != 0) {
     // isotropic variant (not in the paper): texels per pixel from the triangle's area scale,

@@ -36,13 +36,18 @@ CausticsRenderer::CausticsRenderer(const CausticsParams& params)
       fb_(target_) {
   caustics_mesh_init(params_, mesh_);
   const std::string vs = std::string(gl::shader_source("caustics.vert"));
-  const std::string gs = std::string(gl::shader_source("caustics.geom"));
   const std::string fs = std::string(gl::shader_source("caustics.frag"));
   mip_prog_ = gl::program_from_strings(vs, fs, "caustics (MIP)");
-  explicit_prog_ = gl::program_from_strings(vs, with_define(fs, "EXPLICIT"), "caustics (explicit)", gs);
+  // explicit mode: the per-triangle gain comes from a buffer texture indexed by gl_PrimitiveID,
+  // computed on the CPU in render() (a geometry shader did it per triangle; the CPU loop takes
+  // ~2 ms for the 346k triangles of a 416 x 416 mesh and llvmpipe's geometry stage is skipped)
+  explicit_prog_ = gl::program_from_strings(vs, with_define(fs, "EXPLICIT"), "caustics (explicit)");
   shadow_prog_ = gl::program_from_strings(kShadowVs, kShadowFs, "caustics shadow");
   mip_prog_.set("u_mip", 0);
   explicit_prog_.set("u_mask", 0);
+  explicit_prog_.set("u_gain", 1);
+  glGenBuffers(1, &gain_buffer_);
+  glGenTextures(1, &gain_texture_);
 
   // mesh buffers: ground positions (streamed), surface coordinates and indices (static)
   glGenVertexArrays(1, &vao_);
@@ -76,6 +81,8 @@ CausticsRenderer::CausticsRenderer(const CausticsParams& params)
 }
 
 CausticsRenderer::~CausticsRenderer() {
+  glDeleteTextures(1, &gain_texture_);
+  glDeleteBuffers(1, &gain_buffer_);
   glDeleteBuffers(1, &vbo_ground_);
   glDeleteBuffers(1, &vbo_surface_);
   glDeleteBuffers(1, &ebo_);
@@ -184,8 +191,34 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
   glBlendFunc(GL_ONE, GL_ONE);
   if (explicit_mode) {
     explicit_prog_.use();
-    explicit_prog_.set("u_target_size", float(params_.texture_width), float(params_.texture_height));
-    explicit_prog_.set("u_unit", params_.float_target ? 1.0f : params_.unit_level_u8 / 255.0f);
+    // per triangle: unit * (surface area) / (ground area), both in texels of the caustics
+    // texture (the still-water projection maps one onto the other; surface = the beam
+    // cross-section, CausticsParams::flux_by_beam_area)
+    const float unit = params_.float_target ? 1.0f : params_.unit_level_u8 / 255.0f;
+    const float tw = float(params_.texture_width), th = float(params_.texture_height);
+    const std::size_t n_tri = mesh_.indices.size() / 3, nv = std::size_t(mesh_.cols) * mesh_.rows;
+    gains_.resize(n_tri);
+    auto pos = [&](const std::vector<float>& main, const std::vector<float>& skirt, std::uint32_t v, int c) {
+      return v < nv ? main[2 * std::size_t(v) + c] : skirt[2 * (std::size_t(v) - nv) + c];
+    };
+    for (std::size_t t = 0; t < n_tri; ++t) {
+      const std::uint32_t a = mesh_.indices[3 * t], b = mesh_.indices[3 * t + 1], c = mesh_.indices[3 * t + 2];
+      auto area = [&](const std::vector<float>& m, const std::vector<float>& sk) {
+        const float ax = pos(m, sk, a, 0) * tw, ay = pos(m, sk, a, 1) * th;
+        const float e1x = pos(m, sk, b, 0) * tw - ax, e1y = pos(m, sk, b, 1) * th - ay;
+        const float e2x = pos(m, sk, c, 0) * tw - ax, e2y = pos(m, sk, c, 1) * th - ay;
+        return 0.5f * std::abs(e1x * e2y - e1y * e2x);
+      };
+      const float ground = area(mesh_.ground_uv, mesh_.skirt_ground_uv);
+      const float surface = area(mesh_.surface_uv, mesh_.skirt_surface_uv);
+      gains_[t] = unit * surface / std::max(ground, 1e-6f * surface);
+    }
+    glBindBuffer(GL_TEXTURE_BUFFER, gain_buffer_);
+    glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(gains_.size() * sizeof(float)), gains_.data(), GL_STREAM_DRAW);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_BUFFER, gain_texture_);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, gain_buffer_);
+    glActiveTexture(GL_TEXTURE0);
     explicit_prog_.set("u_use_mask", has_ship ? 1 : 0);
     if (has_ship) mask_->bind(0);
   } else {

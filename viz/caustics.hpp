@@ -11,8 +11,10 @@
 //    is 4x the target's size, so shrinking a triangle's area by 4 moves one level up); the
 //    ship's shadow is drawn black into the levels still water reads and those below
 //    (Figure 7; the higher levels are skipped as in the paper).
-//  * Explicit mode: brightness = unit * (surface area) / (ground area) per triangle, from a
-//    geometry shader; the ship's shadow is a mask in surface coordinates.
+//  * Explicit mode: brightness = unit * (surface area) / (ground area) per triangle, computed on
+//    the CPU and read by the fragment shader through gl_PrimitiveID from a buffer texture (a
+//    geometry shader did this per triangle before); the ship's shadow
+//    is a mask in surface coordinates.
 // The mesh carries a skirt beyond its border (CausticsMesh in caustics_cpu.hpp), so the
 // texture's outer texels are lit even where the waves move the border inwards.
 // Values: unit irradiance (still water, sun light as it enters the surface) is 1 in a float
@@ -21,6 +23,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "caustics_cpu.hpp"
 #include "gl/gl.hpp"
@@ -68,6 +71,9 @@ class CausticsRenderer {
   std::optional<gl::Texture> mask_;
   std::optional<gl::Framebuffer> mask_fb_;
   double cpu_seconds_ = 0.0;
+  // explicit mode: one gain per triangle, read by gl_PrimitiveID from a buffer texture
+  std::vector<float> gains_;
+  GLuint gain_buffer_ = 0, gain_texture_ = 0;
 
  public:
   ~CausticsRenderer();
