@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <span>
 #include <string>
@@ -254,4 +255,46 @@ TEST(RenderInfo, LbmAndSphScenesAsTheirFilesSay) {
   EXPECT_EQ(p.dt_s, 0.0) << "adaptive step";
   EXPECT_DOUBLE_EQ(p.frame_dt_s, 1.0 / 60.0);
   EXPECT_TRUE(p.toggles.empty());
+}
+
+// The "render" block's viewer keys (docs/viz.md "Looks"): look, view, camera, sun and
+// caustics_mode are read with their ranges; an unknown key, in the block or in its objects, is
+// refused with its JSON path (the SI-suffix convention of docs/design.md 6).
+TEST(RenderRequest, ViewerKeysAndUnknownKeysRefused) {
+  auto parse = [](const std::string& text) {
+    const nlohmann::json j = nlohmann::json::parse(text);
+    return parse_render_request(JsonIn(j, "$"));
+  };
+  const RenderRequest r = parse(R"({"render": {"look": "shallow", "view": "plan", "caustics_mode": "mip_paper",
+      "camera": {"target_m": [1, 2, 0], "distance_m": 12, "yaw_deg": -90, "pitch_deg": 55, "follow_ship": false},
+      "sun": {"elevation_deg": 40, "azimuth_deg": 180}}})");
+  ASSERT_TRUE(r.look.has_value());
+  EXPECT_EQ(*r.look, LookRequest::shallow);
+  EXPECT_TRUE(r.plan_view.value_or(false));
+  EXPECT_EQ(r.caustics_mode.value_or(CausticsModeRequest::conserving), CausticsModeRequest::mip_paper);
+  ASSERT_TRUE(r.camera.target_m.has_value());
+  EXPECT_EQ((*r.camera.target_m)[1], 2.0);
+  EXPECT_EQ(r.camera.distance_m.value_or(0.0), 12.0);
+  EXPECT_EQ(r.camera.yaw_deg.value_or(0.0), -90.0);
+  EXPECT_EQ(r.camera.pitch_deg.value_or(0.0), 55.0);
+  EXPECT_FALSE(r.camera.follow_ship.value_or(true));
+  EXPECT_EQ(r.sun_elevation_deg.value_or(0.0), 40.0);
+  EXPECT_EQ(r.sun_azimuth_deg.value_or(0.0), 180.0);
+  const RenderRequest none = parse(R"({"solver": "huygens"})");
+  EXPECT_FALSE(none.look.has_value() || none.plan_view.has_value() || none.camera.distance_m.has_value());
+  auto refused = [&](const std::string& text, const std::string& path) {
+    try {
+      parse(text);
+      ADD_FAILURE() << "accepted " << text;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  };
+  refused(R"({"render": {"looks": "pool"}})", "$.render");
+  refused(R"({"render": {"look": "lake"}})", "$.render.look");
+  refused(R"({"render": {"view": "side"}})", "$.render.view");
+  refused(R"({"render": {"camera": {"distance": 3}}})", "$.render.camera");
+  refused(R"({"render": {"camera": {"pitch_deg": 120}}})", "$.render.camera.pitch_deg");
+  refused(R"({"render": {"sun": {"elevation_deg": 40, "zenith_deg": 3}}})", "$.render.sun");
+  refused(R"({"render": {"caustics_mode": "photons"}})", "$.render.caustics_mode");
 }

@@ -723,3 +723,37 @@ TEST_F(VizRender, DefaultCausticsConserveLightOnSolverFields) {
     }
   }
 }
+
+// The plan view shows exact values (docs/viz.md "Plan view"): with no lighting, the pixel at
+// the centre of every grid cell's square is the colour map at that point's value on the
+// colour bar's range (to 8-bit rounding), the range is symmetric about 0 for heights and holds
+// the extremes.
+TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  std::vector<float> v(kN * kN);
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j)
+      v[i * kN + j] = static_cast<float>(0.003 * std::sin(0.05 * j) + 0.002 * std::cos(0.07 * i));  // m
+  RenderTarget target(640, 360);
+  r.render_plan(v, "height", 1000.0, "mm", true, "test", target);
+  const gl::Image8 img = target.read();
+  const WaterRenderer::PlanPlot& p = r.plan;
+  EXPECT_DOUBLE_EQ(p.lo, -p.hi);
+  double max_abs = 0;
+  for (float x : v) max_abs = std::max(max_abs, 1000.0 * std::abs(x));
+  EXPECT_GE(p.hi, max_abs) << "the colour bar holds the extremes";
+  double worst = 0;
+  int checked = 0;
+  for (std::size_t i = 0; i < kN; i += 7)
+    for (std::size_t j = 0; j < kN; j += 5) {
+      const int x = static_cast<int>(p.x0 + (j + 0.5) * p.width / kN);
+      const int y = static_cast<int>(p.y0 + p.height - (i + 0.5) * p.height / kN);
+      const glm::vec3 c = plan_colour((1000.0 * v[i * kN + j] - p.lo) / (p.hi - p.lo), true);
+      for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(channel(img, x, y, ch) - c[ch]));
+      ++checked;
+    }
+  std::printf("plan view: %d grid points, worst colour difference %.4f (1/255 = %.4f)\n", checked, worst, 1 / 255.0);
+  EXPECT_LE(worst, 0.5 / 255.0 + 1e-6);
+  if (worst > 0.5 / 255.0 + 1e-6) write_debug("plan_view.png", img);
+}

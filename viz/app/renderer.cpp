@@ -661,11 +661,10 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
 // Plan view: exact values as colours, a colour bar and axes (docs/viz.md "Plan view")
 
 namespace huygens {
-namespace {
 
 // Piecewise-linear colour maps through a few control colours (t in [0, 1]): a diverging
 // blue-white-red for heights about rest (ColorBrewer RdBu), viridis for depths.
-glm::vec3 colour_map(double t, bool diverging) {
+glm::vec3 plan_colour(double t, bool diverging) {
   static const glm::vec3 rdbu[] = {{0.02f, 0.19f, 0.38f},
                                    {0.26f, 0.58f, 0.76f},
                                    {0.97f, 0.97f, 0.97f},
@@ -681,6 +680,8 @@ glm::vec3 colour_map(double t, bool diverging) {
   const int k = std::min(static_cast<int>(x), 3);
   return glm::mix(c[k], c[k + 1], static_cast<float>(x - k));
 }
+
+namespace {
 
 // A "nice" step (1, 2 or 5 times a power of ten) giving about `n` intervals over `range`.
 double nice_step(double range, int n) {
@@ -747,7 +748,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   std::vector<std::uint8_t> px(R * C * 4);
   for (std::size_t k = 0; k < R * C; ++k) {
     const bool solid = !fill_from_.empty() && fill_from_[k] != k;
-    const glm::vec3 c = solid ? glm::vec3(0.55f) : colour_map((unit_scale * values[k] - lo) / (hi - lo), diverging);
+    const glm::vec3 c = solid ? glm::vec3(0.55f) : plan_colour((unit_scale * values[k] - lo) / (hi - lo), diverging);
     for (int ch = 0; ch < 3; ++ch) px[4 * k + ch] = static_cast<std::uint8_t>(std::lround(255.0f * c[ch]));
     px[4 * k + 3] = 255;
   }
@@ -765,6 +766,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   const double ppm = std::min(avail_w / ext_x, avail_h / ext_y);  // pixels per metre
   const double pw = ext_x * ppm, ph = ext_y * ppm;
   const double px0 = left + 0.5 * (avail_w - pw), py0 = top + 0.5 * (avail_h - ph);
+  plan.x0 = px0, plan.y0 = py0, plan.width = pw, plan.height = ph, plan.lo = lo, plan.hi = hi;
 
   glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
   glViewport(0, 0, W, H);
@@ -805,7 +807,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   // colour bar: one row per pixel through the map, ticks at the nice steps
   const double bx = px0 + pw + 12 * s, bw = 12 * s;
   for (int row = 0; row < static_cast<int>(ph); ++row)
-    p.rect(bx, py0 + ph - row - 1, bw, 1, colour_map((row + 0.5) / ph, diverging));
+    p.rect(bx, py0 + ph - row - 1, bw, 1, plan_colour((row + 0.5) / ph, diverging));
   for (double v = lo; v <= hi + 1e-9 * cstep; v += cstep) {
     const double y = py0 + ph - (v - lo) / (hi - lo) * ph;
     p.rect(bx + bw, y - 0.5 * lw, 3 * s, lw, ink);

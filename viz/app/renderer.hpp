@@ -158,6 +158,9 @@ struct RenderTimes {
   double prepare = 0, upload = 0, caustics = 0, ground = 0, surface = 0, ship = 0, tonemap = 0;
 };
 
+/// The plan view's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
+glm::vec3 plan_colour(double t, bool diverging);
+
 class CausticsStage;  // wraps the caustics pass (viz/caustics.hpp) when it is built
 
 class WaterRenderer {
@@ -189,6 +192,11 @@ class WaterRenderer {
   void render(const OrbitCamera& camera, const RenderSettings& settings, const RenderTarget& target);
 
   RenderTimes times;
+  /// The last plan view's plot: its rectangle in pixels (from the image's top-left corner, the
+  /// grid's row 0 at the bottom) and the colour bar's range (unit: the plan's unit).
+  struct PlanPlot {
+    double x0 = 0, y0 = 0, width = 0, height = 0, lo = 0, hi = 1;
+  } plan;
 
  private:
   void build_surface_mesh();
