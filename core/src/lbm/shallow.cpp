@@ -708,6 +708,7 @@ void LbmShallow::step() {
       if (p_.bed_force == LbmBedForce::naive && has_bed_) {
         bad = 1;
       } else {
+        unshift();
         set_ghost_depths();
         fill_ghosts(true);
         stream_collide_wet_dry(flagged, bad);
@@ -719,6 +720,20 @@ void LbmShallow::step() {
   ++steps_;
   if (bad) throw_bad_cell();
   dry_ = static_cast<std::size_t>(flagged);
+}
+
+void LbmShallow::unshift() {
+  // h - H of a cell near dry has the float resolution of H, coarser than a thin film: once a cell
+  // dries, populations are stored unshifted (a dry cell's zero populations and depth are exact).
+  if (href_ == 0.0f) return;
+  for (const Span& sp : spans_)
+    for (int a = 0; a < 9; ++a) {
+      float* f = fa_.data() + static_cast<std::size_t>(a) * plane_;
+      for (std::uint32_t c = sp.begin; c < sp.end; ++c) f[c] += shift_f_[a];
+    }
+  shift_ = {};
+  shift_f_ = {};
+  href_ = 0.0f;
 }
 
 void LbmShallow::throw_bad_cell() const {

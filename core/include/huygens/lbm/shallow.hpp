@@ -10,7 +10,7 @@
 //   S_a = -lambda_a g (h(x) + h(x - e_a)) (z_b(x) - z_b(x - e_a)) / 6
 // Sides and obstacles are ghost cells a precomputed rule list fills before each step (bounce-back,
 // mirror, periodic image, Zou-He inflow and outflow). Populations are stored minus the still-water
-// equilibrium of the mean depth (of zero when a cell starts dry).
+// equilibrium of the mean depth, unshifted once a cell is dry (or from the start).
 // Wetting and drying: a cell with h < h_min is dry; its collision puts all its water at rest
 // (f0 = h, f_a = 0), so it passes nothing on. The face between x and n = x - e_a carries the
 // streamed pair (f*_a(n) to x, f*_abar(x) to n) unless it is closed, when both bounce back; either
@@ -212,6 +212,7 @@ class LbmShallow {
   void stream_collide(int& flagged);
   void outflow_limiter();
   void stream_collide_wet_dry(int& dry, int& bad);
+  void unshift();
   void throw_bad_cell() const;
 
   static constexpr std::size_t kPad = 16;  // interior column 0 starts 64-byte aligned
