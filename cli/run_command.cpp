@@ -147,7 +147,9 @@ int cmd_run(int argc, char** argv) {
   try {
     solver = make_solver(load_scene(a.scene_file), a.options);
   } catch (const SceneError& e) {
-    std::fprintf(stderr, "huygens: scene error in %s: %s\n", a.scene_file.c_str(), e.what());
+    const bool named = std::string(e.what()).find(a.scene_file) != std::string::npos;  // syntax errors name it
+    std::fprintf(stderr, "huygens: scene error%s%s: %s\n", named ? "" : " in ", named ? "" : a.scene_file.c_str(),
+                 e.what());
     return kExitUsage;
   }
   print_header(a, *solver);
