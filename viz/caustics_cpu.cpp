@@ -216,22 +216,22 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
 
 int mesh_size_for_field(const HeightfieldView& f, double per_wavelength, int min_n) {
   check_field(f);
-  // lambda = 2 pi sigma_eta / sigma_grad: for one sine, 2 pi / k; for a spectrum the
-  // k^2-weighted mean wavelength, i.e. the shorter waves that focus the light
-  double s = 0, s2 = 0, g2 = 0;
-  const std::size_t n = f.eta.size();
-  for (float v : f.eta) s += v;
-  const double mean = s / double(n);
-  for (int i = 0; i + 1 < f.rows; ++i)
-    for (int j = 0; j + 1 < f.cols; ++j) {
+  // lambda = 2 pi rms(grad eta) / rms(laplacian eta): for one sine 2 pi / k; for a spectrum the
+  // k^4-weighted mean wavelength, i.e. the curvature that focuses light into caustics (a long
+  // swell with short rings on it is resolved for the rings)
+  double g2 = 0, l2 = 0;
+  const double inv = 1.0 / (double(f.dx_m) * f.dx_m);
+  for (int i = 1; i + 1 < f.rows; ++i)
+    for (int j = 1; j + 1 < f.cols; ++j) {
       const float* r = f.eta.data() + std::size_t(i) * f.cols + j;
-      const double gx = (r[1] - r[0]) / f.dx_m, gy = (r[f.cols] - r[0]) / f.dx_m;
-      s2 += (r[0] - mean) * (r[0] - mean);
+      const double gx = (r[1] - r[-1]) / (2.0 * f.dx_m), gy = (r[f.cols] - r[-f.cols]) / (2.0 * f.dx_m);
+      const double lap = (r[1] + r[-1] + r[f.cols] + r[-f.cols] - 4.0 * r[0]) * inv;
       g2 += gx * gx + gy * gy;
+      l2 += lap * lap;
     }
   const int n_max = std::max(f.rows, f.cols);
-  if (!(g2 > 0) || !(s2 > 0)) return std::min(min_n, n_max);
-  const double lambda = 2 * std::numbers::pi * std::sqrt(s2 / g2);
+  if (!(g2 > 0) || !(l2 > 0)) return std::min(min_n, n_max);
+  const double lambda = 2 * std::numbers::pi * std::sqrt(g2 / l2);
   const double extent = double(n_max - 1) * f.dx_m;
   const double want = std::ceil(per_wavelength * extent / lambda) + 1;
   return int(std::clamp(want, double(std::min(min_n, n_max)), double(n_max)));

@@ -88,10 +88,10 @@ struct CausticsParams {
   bool cover_domain = false;
 };
 
-/// Mesh vertices per side that resolve the field's waves: `per_wavelength` cells per dominant
-/// wavelength lambda = 2 pi rms(eta - mean) / rms(grad eta) (the spectral radius of gyration,
-/// weighted toward the short, sharp waves that make caustics), at least `min_n` and at most
-/// the field's own points along its longer side (unit: vertices).
+/// Mesh vertices per side that resolve the field's caustics: `per_wavelength` cells per dominant
+/// wavelength lambda = 2 pi rms(grad eta) / rms(laplacian eta) (the k^4-weighted mean: the
+/// curvature that focuses light, so short rings on a long swell are resolved), at least `min_n`
+/// and at most the field's own points along its longer side (unit: vertices).
 int mesh_size_for_field(const HeightfieldView& field, double per_wavelength = 8.0, int min_n = 96);
 
 /// Horizontal displacement (dx, dy) on the ground of the ray entering a surface point with

@@ -37,10 +37,10 @@ namespace huygens {
 
 enum class FresnelModel : int { off = 0, paper = 1, schlick = 2 };
 /// How the caustics texture is made (docs/viz.md "Caustics", measured error there):
-/// conserving = explicit area per triangle in a float target, float blur (the default, light
-/// conserved); mip_paper = the paper's MIP trick in the 8-bit target with the accumulation-buffer
-/// blur emulation; mip_float = the MIP trick in a float target; explicit_u8 = explicit area in
-/// the 8-bit target (unit light = 32/255, saturates at 8x).
+/// conserving = explicit area per triangle, exact Snell projection of the vertices, float
+/// target, float blur (the default, light conserved); mip_paper = the paper's MIP trick in the 8-bit target with the
+/// accumulation-buffer blur emulation; mip_float = the MIP trick in a float target; explicit_u8 = explicit area in the
+/// 8-bit target (unit light = 32/255, saturates at 8x).
 enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, explicit_u8 = 3 };
 /// How the scene looks (SceneView::look, chosen from RenderInfo, docs/viz.md "Looks").
 enum class Look : int { pool = 0, ocean = 1, shallow = 2, sph = 3 };
