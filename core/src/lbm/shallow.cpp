@@ -476,9 +476,11 @@ template <bool Cap = false>
 
 // The face between c and n = c - e_a in the wet/dry pass (see the header comment): p1 = f*_a(n)
 // pulled, p2 = f*_abar(c) its own (shifted values). Returns what c receives unlimited (p1 plus the
-// centred bed term on a wet-wet face, k = lambda_a g / 6, or p2 on a closed face) and sets the
-// net flux into c, F = v - p2. n computes the same face from the same floats with the roles of
-// p1 and p2 swapped and the bed term negated, so the face exchanges water and makes none.
+// centred bed term on a wet-wet face, k = lambda_a g / 6; p2 on a closed face; on an open wet-dry
+// face the wet cell's mirror mc, the dry cell the rest p1 + p2 - mn) and sets the net flux into c,
+// F = v - p2. n computes the same face from the same floats with the roles of p1 and p2 swapped and
+// the bed term negated, so the face exchanges water and makes none. A ghost neighbour streams
+// (its image decides the same way); a wall ghost (hn < 0) passes its bounce-back.
 [[gnu::always_inline]] inline float wet_dry_face(float p1, float p2, float hc, float zc, float hn, float zn, float k,
                                                  float hmin, bool ghost, float mc, float mn, float& flux) {
   const bool wc = hc >= hmin, wn = hn >= hmin;
@@ -640,11 +642,9 @@ void LbmShallow::stream_collide_wet_dry(int& dry, int& bad) {
   const float* theta = theta_.data();
   const Collision k{omega_, g_, ax_, ay_, hmin_, href_, umax_ * umax_};
   const float kb[9] = {0, g_ / 6, g_ / 6, g_ / 6, g_ / 6, g_ / 24, g_ / 24, g_ / 24, g_ / 24};
-  float sh[9];
-  for (int a = 0; a < 9; ++a) sh[a] = static_cast<float>(shift_[a]);
-  const Cell9 ks{sh[0], sh[1], sh[2], sh[3], sh[4], sh[5], sh[6], sh[7], sh[8]};
-  const float hmin = hmin_;
   const float* shp = shift_f_.data();
+  const Cell9 ks{shp[0], shp[1], shp[2], shp[3], shp[4], shp[5], shp[6], shp[7], shp[8]};
+  const float hmin = hmin_;
   auto mirror = [&](int a, std::ptrdiff_t w) {  // only used when w is wet and its neighbour dry
     float ux, uy;
     cell_velocity(src, P, w, hold[w], hmin, ux, uy);
