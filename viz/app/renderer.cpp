@@ -760,7 +760,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   // bar on the right, axis labels left and below
   const int W = target.width(), H = target.height();
   const double s = std::max(1.0, std::round(H / 300.0));  // text scale (glyphs ~7 px high at 1)
-  const double left = 40 * s, right = 84 * s, top = 18 * s, bottom = 26 * s;
+  const double left = 40 * s, right = 84 * s + plan_reserve_right, top = 30 * s, bottom = 26 * s;
   const double ext_x = C * grid_.dx, ext_y = R * grid_.dx;
   const double avail_w = std::max(1.0, W - left - right), avail_h = std::max(1.0, H - top - bottom);
   const double ppm = std::min(avail_w / ext_x, avail_h / ext_y);  // pixels per metre
@@ -803,7 +803,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
     p.text(px0 - 6 * s - Painter::text_width(l, s), y - 3 * s, l, s);
   }
   p.text(px0 + 0.5 * pw - Painter::text_width("x (m)", s) / 2, py0 + ph + 16 * s, "x (m)", s);
-  p.text(std::max(2 * s, px0 - 38 * s - Painter::text_width("y (m)", s)), py0 + 0.5 * ph - 3 * s, "y (m)", s);
+  p.text(px0 - 0.5 * Painter::text_width("y (m)", s), py0 - 16 * s, "y (m)", s);  // above the y axis
   // colour bar: one row per pixel through the map, ticks at the nice steps
   const double bx = px0 + pw + 12 * s, bw = 12 * s;
   for (int row = 0; row < static_cast<int>(ph); ++row)

@@ -197,6 +197,8 @@ class WaterRenderer {
   struct PlanPlot {
     double x0 = 0, y0 = 0, width = 0, height = 0, lo = 0, hi = 1;
   } plan;
+  /// Pixels the plan view leaves free on the right (the window's panel) (unit: px).
+  double plan_reserve_right = 0.0;
 
  private:
   void build_surface_mesh();

@@ -51,6 +51,8 @@ struct App {
   bool plan = false;
   /// The camera follows the first ship until the user orbits, pans or zooms.
   bool follow = false;
+  /// The panel's width (unit: px; the plan view leaves it free).
+  float panel_width = 0.0f;
   /// Frames drawn (the render rows' call count in the timing table).
   unsigned long long frames_drawn = 0;
   // stones: radius and depth of the dent (the default is seen at the default scene's start-up
@@ -379,10 +381,12 @@ void panel_timing(App& a, const WaterRenderer& r, const FramePair& fp) {
 }
 
 void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
-  // on the right-hand side (ships start on the left), wide enough for its labels; the sections
-  // below the switches start collapsed so the panel covers little of the water
+  // on the right-hand side (ships start on the left), wide enough for its labels; its sections
+  // start collapsed so the panel covers only a strip at the top (a followed ship and its wake
+  // are in the middle of the view)
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   const float width = std::min(470.0f, 0.45f * display.x);
+  a.panel_width = width;
   ImGui::SetNextWindowPos(ImVec2(display.x - width - 10.0f, 10.0f), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(width, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("huygens-viz");
@@ -400,7 +404,7 @@ void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   if (ImGui::Button("reset (R)")) on_key(a, GLFW_KEY_R);
   ImGui::SameLine();
   if (ImGui::Button("screenshot (S)")) on_key(a, GLFW_KEY_S);
-  if (ImGui::CollapsingHeader("features", ImGuiTreeNodeFlags_DefaultOpen)) panel_features(a);
+  if (ImGui::CollapsingHeader("features")) panel_features(a);
   if (ImGui::CollapsingHeader("parameters")) panel_parameters(a);
   if (ImGui::CollapsingHeader("timing (ms)")) panel_timing(a, r, fp);
   if (!a.last_screenshot.empty()) ImGui::Text("last screenshot: %s", a.last_screenshot.c_str());
@@ -465,6 +469,7 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
   if (fw > 0 && fh > 0) {
     if (target.width() != fw || target.height() != fh) target = RenderTarget(fw, fh);
     if (a.follow && !a.ships_drawn.empty()) follow_ship(a.view, a.ships_drawn[0], a.camera);
+    renderer.plan_reserve_right = a.show_panel ? a.panel_width + 10.0 : 0.0;
     if (a.plan)
       render_plan_view(renderer, a.view, a.field, fp ? fp.newest->info.time_s : 0.0, a.scene_name, target);
     else
