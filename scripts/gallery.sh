@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Renders every shipped scene headless at a telling time into docs/gallery/ (640x360 PNGs), in
 # the perspective view and, where a picture should be read (the Kelvin angle, the
-# Cauchy-Poisson ring, the dam-break front, the vortex street), in the plan view too.
+# Cauchy-Poisson ring, the dam-break front, the vortex street), in the plan view too; the LBM
+# flows also as speed and as the dye they carried since t = 0.
 #   scripts/gallery.sh [BUILD_DIR]      (default: build; needs huygens-viz built there)
 # EGL surfaceless (Mesa llvmpipe): no display needed. The images are what the README shows.
 set -euo pipefail
@@ -21,13 +22,13 @@ shots=(
   "ocean 10 perspective"
   "pool 0.3 perspective"
   "sph_dam_break 0.3 perspective"
-  "dam_break 10 perspective,plan"
-  "channel 20 perspective,plan"
+  "dam_break 10 perspective,plan,dye"
+  "channel 20 perspective,plan,speed,dye"
 )
 for shot in "${shots[@]}"; do
   read -r scene t views <<<"$shot"
   for view in ${views//,/ }; do
-    name=$scene; [ "$view" = plan ] && name=${scene}_plan
+    name=$scene; [ "$view" != perspective ] && name=${scene}_$view
     "$viz" "$root/scenes/$scene.json" --headless --time "$t" --frames 1 --size 640x360 --view "$view" \
       --screenshot "$out/$name.png" >/dev/null
     python3 "$root/scripts/png_shrink.py" "$out/$name.png"  # 6 bits per channel, zlib 9

@@ -20,8 +20,10 @@
 
 #include "camera.hpp"
 #include "caustics_stage.hpp"
+#include "dye.hpp"
 #include "gl.hpp"
 #include "headless.hpp"
+#include "huygens/pipeline/runner.hpp"
 #include "renderer.hpp"
 #include "scene_view.hpp"
 #include "scenes_dir.hpp"
@@ -756,4 +758,37 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   std::printf("plan view: %d grid points, worst colour difference %.4f (1/255 = %.4f)\n", checked, worst, 1 / 255.0);
   EXPECT_LE(worst, 0.5 / 255.0 + 1e-6);
   if (worst > 0.5 / 255.0 + 1e-6) write_debug("plan_view.png", img);
+}
+
+// Dye (dye.hpp): a uniform flow of exactly one grid point per step along x moves the bands
+// (and any pattern) one point downstream, the inflow edge keeps its value; no flow changes
+// nothing; the LBM channel's frames carry the solver's velocity (Frame::velocity) into the dye.
+TEST(VizDye, UniformFlowShiftsThePatternAndTheChannelCarriesVelocity) {
+  GridPlacement g;
+  g.rows = 20, g.cols = 30, g.dx = 0.1;
+  DyeField dye(g, 4);
+  const std::vector<float> start(dye.values().begin(), dye.values().end());
+  EXPECT_EQ(start[0], 0.0f);
+  EXPECT_EQ(start[5 * 30], 1.0f) << "the second band";
+  std::vector<float> u(2 * 20 * 30, 0.0f);
+  dye.advect(u, 0.5);
+  EXPECT_EQ(std::vector<float>(dye.values().begin(), dye.values().end()), start) << "no flow";
+  // a diagonal pattern, then one point per step along x: c'(i, j) = c(i, j - 1), c'(i, 0) = c(i, 0)
+  for (std::size_t k = 0; k < 2 * 20 * 30; k += 2) u[k] = 0.2f;  // 0.2 m/s x 0.5 s = 1 point
+  for (int step = 0; step < 3; ++step) dye.advect(u, 0.5);
+  for (std::size_t i = 0; i < 20; ++i) EXPECT_EQ(dye.values()[i * 30 + 29], start[i * 30]) << "row " << i;
+  // the channel: velocity in every frame, the inflow's 0.297 m/s at the left edge
+  ViewerSolver vs = viewer_solver("channel");
+  ASSERT_TRUE(solver_has_velocity(*vs.solver));
+  RunnerParams rp;
+  rp.manual_clock = true;
+  const std::size_t n = vs.info.grid.rows * vs.info.grid.cols;
+  Runner runner(std::move(vs.solver), rp);
+  runner.start();
+  runner.show(0.05);
+  ASSERT_TRUE(runner.wait_shown());
+  std::vector<float> vel(2 * n);
+  ASSERT_TRUE(runner.frames().velocity(vel));
+  EXPECT_NEAR(vel[2 * (80 * 320 + 2)], 0.297, 0.03) << "u at the inflow";
+  runner.stop();
 }

@@ -19,8 +19,9 @@ struct WindowOptions {
   std::string screenshot;
   /// Start with the simulation paused.
   bool paused = false;
-  /// Start in the plan view (P toggles it).
+  /// Start in the plan view (P toggles it), showing this.
   bool plan = false;
+  PlanQuantity plan_quantity = PlanQuantity::level;
 };
 
 /// Runs `scene`'s solver in the window until it is closed; returns the process exit code.

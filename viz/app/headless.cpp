@@ -1,8 +1,10 @@
 #include "headless.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
+#include "dye.hpp"
 #include "huygens/pipeline/runner.hpp"
 
 namespace huygens {
@@ -25,11 +27,18 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   rp.manual_clock = true;
   Runner runner(std::move(scene.solver), rp);
   runner.start();
-  std::vector<float> field(g.rows * g.cols);
+  std::vector<float> field(g.rows * g.cols), velocity(2 * g.rows * g.cols);
   std::vector<ShipPose> ships;
   HeadlessResult res;
-  for (int k = 0; k < opt.frames; ++k) {
-    const double t = opt.time + k * view.frame_dt;
+  // the dye needs the flow's history: every frame from t = 0, the last `frames` drawn
+  const bool dye_view = opt.plan && opt.plan_quantity == PlanQuantity::dye;
+  DyeField dye(g);
+  const int skipped = dye_view ? static_cast<int>(std::floor(opt.time / view.frame_dt + 1e-9)) : 0;
+  const double t_first = dye_view ? opt.time - skipped * view.frame_dt : opt.time;
+  double dye_time = 0.0;
+  bool has_velocity = false;
+  for (int k = 0; k < skipped + opt.frames; ++k) {
+    const double t = t_first + k * view.frame_dt;
     runner.show(t);
     if (!runner.wait_shown()) {
       runner.stop();
@@ -37,6 +46,12 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
       throw std::runtime_error("headless: the simulation ended before display time " + std::to_string(t) + " s");
     }
     const FramePair frames = runner.frames();
+    has_velocity = frames.velocity(velocity);
+    if (dye_view && has_velocity) {
+      dye.advect(velocity, frames.newest->info.time_s - dye_time);
+      dye_time = frames.newest->info.time_s;
+    }
+    if (k < skipped) continue;                    // the dye's history: not drawn
     frames.sample(runner.display_time(), field);  // the newest frame (the clock never runs ahead of it)
     renderer.set_heights(field);
     frame_ships(view, frames, runner.display_time(), ships);  // where the solver has them
@@ -48,7 +63,9 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     camera_placed = true;
     renderer.times.enabled = (k + 1 == opt.frames);
     if (opt.plan)
-      render_plan_view(renderer, view, field, frames.newest->info.time_s, name, target);
+      render_plan_view(renderer, view, field,
+                       has_velocity ? std::span<const float>(velocity) : std::span<const float>{}, dye.values(),
+                       opt.plan_quantity, frames.newest->info.time_s, name, target);
     else
       renderer.render(cam, opt.settings, target);
     res.steps = frames.newest->info.step;

@@ -7,7 +7,8 @@
 // Frame k (k = 0 .. frames-1) shows display time T + k frame_dt (RenderInfo::frame_dt_s); the
 // runner publishes every step at or before it, and the frame drawn is the newest (the last full
 // step at or before the display time: no interpolation, deterministic, exact at step times).
-// The image is the last frame.
+// The image is the last frame. The dye view advects its dye through every frame from t = 0
+// (frame_dt apart), drawing only the last `frames` of them.
 #include <string>
 
 #include "camera.hpp"
@@ -31,8 +32,9 @@ struct HeadlessOptions {
   /// the scene's view does.
   bool custom_camera = false;
   OrbitCamera camera;
-  /// The plan view (render_plan_view) instead of the perspective picture.
+  /// The plan view (render_plan_view) instead of the perspective picture, and what it shows.
   bool plan = false;
+  PlanQuantity plan_quantity = PlanQuantity::level;
 };
 
 struct HeadlessResult {

@@ -108,7 +108,8 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
       o.paper_fresnel = true;
     } else if (a == "--view") {
       o.view = nonempty_arg(a, next());
-      if (o.view != "perspective" && o.view != "plan") throw UsageError("--view takes perspective or plan");
+      if (o.view != "perspective" && o.view != "plan" && o.view != "speed" && o.view != "dye")
+        throw UsageError("--view takes perspective, plan, speed or dye");
     } else if (a == "--caustics-mode") {
       o.caustics_mode = nonempty_arg(a, next());
       if (o.caustics_mode != "conserving" && o.caustics_mode != "mip_paper" && o.caustics_mode != "mip_float" &&
@@ -127,7 +128,8 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
   return true;
 }
 
-int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& settings, bool plan) {
+int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& settings, bool plan,
+                 PlanQuantity quantity) {
   if (o.screenshot.empty()) {
     std::fprintf(stderr, "huygens-viz: --headless needs --screenshot FILE.png\n");
     return 2;
@@ -142,6 +144,7 @@ int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& set
   opt.subsample = o.subsample;
   opt.settings = settings;
   opt.plan = plan;
+  opt.plan_quantity = quantity;
   const std::string name = vs.name;
   const HeadlessResult r = render_headless(std::move(vs), opt);
   gl::write_png(o.screenshot, r.image);
@@ -281,9 +284,14 @@ int run(CliOptions o) {
                              : o.caustics_mode == "mip_float"   ? CausticsMode::mip_float
                              : o.caustics_mode == "explicit_u8" ? CausticsMode::explicit_u8
                                                                 : CausticsMode::conserving;
-  const bool plan = o.view.empty() ? vs.info.request.plan_view.value_or(false) : o.view == "plan";
+  const bool plan = o.view.empty() ? vs.info.request.plan_view.value_or(false) : o.view != "perspective";
+  const PlanQuantity quantity = o.view == "speed" ? PlanQuantity::speed
+                                : o.view == "dye" ? PlanQuantity::dye
+                                                  : PlanQuantity::level;
+  if (quantity != PlanQuantity::level && !solver_has_velocity(*vs.solver))
+    throw UsageError("--view " + o.view + " needs a flow's velocity: the LBM scenes (dam_break, channel)");
   if (o.benchmark) return run_benchmark(std::move(vs), settings, o.subsample);
-  if (o.headless) return run_headless(std::move(vs), o, settings, plan);
+  if (o.headless) return run_headless(std::move(vs), o, settings, plan, quantity);
   WindowOptions wo;
   wo.width = o.w;
   wo.height = o.h;
@@ -292,6 +300,7 @@ int run(CliOptions o) {
   wo.auto_frames = o.auto_frames;
   wo.screenshot = o.screenshot;
   wo.plan = plan;
+  wo.plan_quantity = quantity;
   return run_window(std::move(vs), wo);
 }
 

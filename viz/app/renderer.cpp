@@ -743,8 +743,8 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   if (diverging) hi = std::max(std::abs(lo), std::abs(hi)), lo = -hi;
   if (hi - lo < 1e-12) hi = lo + 1.0;
   const double cstep = nice_step(hi - lo, 6);
-  lo = std::floor(lo / cstep - 1e-9) * cstep;
-  hi = std::ceil(hi / cstep + 1e-9) * cstep;
+  lo = std::floor(lo / cstep + 1e-9) * cstep;  // a value on a tick stays the end
+  hi = std::ceil(hi / cstep - 1e-9) * cstep;
   std::vector<std::uint8_t> px(R * C * 4);
   for (std::size_t k = 0; k < R * C; ++k) {
     const bool solid = !fill_from_.empty() && fill_from_[k] != k;

@@ -190,21 +190,46 @@ ViewSetup view_setup(const ViewerSolver& vs, double aspect) {
   return v;
 }
 
-void render_plan_view(WaterRenderer& renderer, const SceneView& view, std::span<const float> field, double t_s,
+void render_plan_view(WaterRenderer& renderer, const SceneView& view, std::span<const float> field,
+                      std::span<const float> velocity, std::span<const float> dye, PlanQuantity quantity, double t_s,
                       const std::string& name, const RenderTarget& target) {
-  std::vector<float> v(field.begin(), field.end());
+  std::string base = name;
+  if (const auto slash = base.find_last_of('/'); slash != std::string::npos) base = base.substr(slash + 1);
+  char title[160];
+  std::snprintf(title, sizeof title, "%s   t = %.2f s", base.c_str(), t_s);
+  std::vector<float> v;
+  if (quantity == PlanQuantity::speed && velocity.size() == 2 * field.size()) {
+    v.resize(field.size());
+    double range = 0.0;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      v[k] = std::hypot(velocity[2 * k], velocity[2 * k + 1]);
+      range = std::max(range, static_cast<double>(v[k]));
+    }
+    const bool cm = range < 2.0;
+    renderer.render_plan(v, "speed", cm ? 100.0 : 1.0, cm ? "cm/s" : "m/s", false, title, target);
+    return;
+  }
+  if (quantity == PlanQuantity::dye && dye.size() == field.size()) {
+    renderer.render_plan(dye, "dye", 1.0, "1", false, title, target);
+    return;
+  }
   // a height about rest (m); LBM/SPH: the depth above the bed (the height itself on a flat bed)
+  v.assign(field.begin(), field.end());
   double range = 0.0;
   if (!view.plan_depth)
     for (float& x : v) x -= static_cast<float>(view.height_offset);
   for (float x : v) range = std::max(range, static_cast<double>(std::abs(x)));
   const double scale = range < 0.02 ? 1000.0 : range < 2.0 ? 100.0 : 1.0;
   const std::string unit = scale == 1000.0 ? "mm" : scale == 100.0 ? "cm" : "m";
-  std::string base = name;
-  if (const auto slash = base.find_last_of('/'); slash != std::string::npos) base = base.substr(slash + 1);
-  char title[160];
-  std::snprintf(title, sizeof title, "%s   t = %.2f s", base.c_str(), t_s);
   renderer.render_plan(v, view.plan_depth ? "depth" : "height", scale, unit, !view.plan_depth, title, target);
+}
+
+bool solver_has_velocity(Solver& solver) {
+  for (const OutputField& f : solver.outputs())
+    if (f.name == "u" && f.shape.size() == 3 && f.shape[0] == solver.height_rows() &&
+        f.shape[1] == solver.height_cols() && f.shape[2] == 2)
+      return true;
+  return false;
 }
 
 const char* builtin_scene_names() { return HUYGENS_BUILTIN_SCENES; }

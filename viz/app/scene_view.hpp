@@ -93,11 +93,21 @@ struct ViewSetup {
 };
 ViewSetup view_setup(const ViewerSolver& vs, double aspect);
 
-/// Plan view of the visible field `field` (the solver's height(), rows x cols) at time `t_s`:
-/// the height about rest (diverging map) or the depth (sequential), in mm, cm or m by its
-/// range, titled with the scene's name and the time (WaterRenderer::render_plan).
-void render_plan_view(WaterRenderer& renderer, const SceneView& view, std::span<const float> field, double t_s,
+/// What the plan view shows: the level (the height about rest, or the depth for LBM/SPH), the
+/// flow's speed |u| or the dye it carries (both need the frames' velocity: LBM scenes).
+enum class PlanQuantity { level, speed, dye };
+
+/// Plan view at time `t_s` (WaterRenderer::render_plan): the level of `field` (the solver's
+/// height(), rows x cols; the height about rest with a diverging map, or the depth, sequential),
+/// the speed of `velocity` (rows x cols x 2) or `dye` (rows x cols, in [0, 1]), in mm, cm or m
+/// (mm/s, cm/s, m/s) by its range, titled with the scene's name and the time.
+void render_plan_view(WaterRenderer& renderer, const SceneView& view, std::span<const float> field,
+                      std::span<const float> velocity, std::span<const float> dye, PlanQuantity quantity, double t_s,
                       const std::string& name, const RenderTarget& target);
+
+/// True when the solver's outputs include a velocity on the visible grid (an LBM's "u"): its
+/// frames carry it (Frame::velocity) for the speed and dye views.
+bool solver_has_velocity(Solver& solver);
 
 /// Base names of the built-in scenes, space separated.
 const char* builtin_scene_names();

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "app.hpp"
+#include "dye.hpp"
 #include "gl.hpp"
 #include "huygens/pipeline/command.hpp"
 #include "huygens/pipeline/runner.hpp"
@@ -47,8 +48,15 @@ struct App {
   std::string last_screenshot;
   bool quit = false;
   double time_scale = 1.0;
-  /// Plan view (P): the colour-mapped field with colour bar and axes instead of the picture.
+  /// Plan view (P): the colour-mapped field with colour bar and axes instead of the picture;
+  /// P steps through the level, and for a flow (LBM) its speed and dye, back to the picture.
   bool plan = false;
+  PlanQuantity plan_quantity = PlanQuantity::level;
+  /// The newest frame's velocity (LBM) and the dye it carries since the start (dye.hpp).
+  bool has_velocity = false;
+  std::vector<float> velocity;
+  std::unique_ptr<DyeField> dye;
+  double dye_time = 0.0;
   /// The camera follows the first ship until the user orbits, pans or zooms.
   bool follow = false;
   /// The panel's width (unit: px; the plan view leaves it free).
@@ -178,7 +186,13 @@ void on_key(App& a, int key) {
       a.settings.paper_glint = a.settings.fresnel == FresnelModel::paper;
       break;
     case GLFW_KEY_P:
-      a.plan = !a.plan;
+      if (!a.plan) {
+        a.plan = true, a.plan_quantity = PlanQuantity::level;
+      } else if (a.has_velocity && a.plan_quantity != PlanQuantity::dye) {
+        a.plan_quantity = a.plan_quantity == PlanQuantity::level ? PlanQuantity::speed : PlanQuantity::dye;
+      } else {
+        a.plan = false;
+      }
       break;
     case GLFW_KEY_ESCAPE:
       a.quit = true;
@@ -303,6 +317,12 @@ void panel_features(App& a) {
     if (ImGui::Checkbox(t.label.c_str(), &t.on)) a.runner->send(cmd::Toggle{CommandName{t.name}, t.on});
   }
   ImGui::Checkbox("plan view (P)", &a.plan);
+  if (a.plan && a.has_velocity) {
+    int q = static_cast<int>(a.plan_quantity);
+    ImGui::SameLine();
+    ImGui::Combo("shows", &q, "depth\0speed\0dye\0");
+    a.plan_quantity = static_cast<PlanQuantity>(q);
+  }
   ImGui::SameLine();
   ImGui::Checkbox("time interpolation", &a.interpolate);
   ImGui::Checkbox("caustics", &a.settings.caustics);
@@ -463,6 +483,13 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
   // the hulls at the same display time as the heights, where the solver has them (a dragged ship
   // is where the simulation has steered it, not where the cursor is)
   if (fp) frame_ships(a.view, fp, t, a.ships_drawn);
+  // the flow: its velocity and the dye it carries (advected once per new frame; a reset, which
+  // starts the time again, starts the dye again)
+  if (fp && (a.has_velocity = fp.velocity(a.velocity))) {
+    const double tn = fp.newest->info.time_s;
+    if (tn < a.dye_time) a.dye->reset(), a.dye_time = 0.0;
+    if (tn > a.dye_time) a.dye->advect(a.velocity, tn - a.dye_time), a.dye_time = tn;
+  }
   renderer.set_ships(a.ships_drawn);
   int fw, fh;
   glfwGetFramebufferSize(a.window, &fw, &fh);
@@ -471,7 +498,9 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
     if (a.follow && !a.ships_drawn.empty()) follow_ship(a.view, a.ships_drawn[0], a.camera);
     renderer.plan_reserve_right = a.show_panel ? a.panel_width + 10.0 : 0.0;
     if (a.plan)
-      render_plan_view(renderer, a.view, a.field, fp ? fp.newest->info.time_s : 0.0, a.scene_name, target);
+      render_plan_view(renderer, a.view, a.field,
+                       a.has_velocity ? std::span<const float>(a.velocity) : std::span<const float>{}, a.dye->values(),
+                       a.plan_quantity, fp ? fp.newest->info.time_s : 0.0, a.scene_name, target);
     else
       renderer.render(a.camera, a.settings, target);
     ++a.frames_drawn;
@@ -570,6 +599,9 @@ int run_window(ViewerSolver scene, const WindowOptions& opt) {
     a.camera = setup.camera;
     a.follow = a.view.follow_ship;
     a.plan = opt.plan;
+    a.plan_quantity = opt.plan_quantity;
+    a.velocity.assign(2 * a.view.grid.rows * a.view.grid.cols, 0.0f);
+    a.dye = std::make_unique<DyeField>(a.view.grid);
     RunnerParams rp;
     rp.realtime = true;
     rp.start_paused = opt.paused;

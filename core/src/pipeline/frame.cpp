@@ -12,7 +12,8 @@
 
 namespace huygens {
 
-FrameRing::FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count, std::size_t slots, bool with_rate)
+FrameRing::FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count, std::size_t slots, bool with_rate,
+                     bool with_velocity)
     : rows_(rows), cols_(cols), state_(pack(kNone, kNone, 0)) {
   if (slots < kMinSlots || slots > kMaxSlots)
     throw std::invalid_argument("FrameRing: slots must be in [5, 32], got " + std::to_string(slots));
@@ -22,6 +23,7 @@ FrameRing::FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count
     f.cols = cols;
     f.eta = AlignedBuffer<float>(rows * cols);
     if (with_rate) f.eta_dot = AlignedBuffer<float>(rows * cols);
+    if (with_velocity) f.velocity = AlignedBuffer<float>(2 * rows * cols);
     f.stages.resize(stage_count);
   }
 }
@@ -53,15 +55,19 @@ void FrameRing::publish() {
 }
 
 void FrameRing::publish(const FrameInfo& info, std::span<const float> eta, std::span<const float> eta_dot,
-                        std::span<const StageStat> stages) {
+                        std::span<const StageStat> stages, std::span<const float> velocity) {
   const std::size_t n = rows_ * cols_;
-  if (eta.size() != n || (!eta_dot.empty() && eta_dot.size() != n))
+  if (eta.size() != n || (!eta_dot.empty() && eta_dot.size() != n) || (!velocity.empty() && velocity.size() != 2 * n))
     throw std::invalid_argument("FrameRing::publish: field size " + std::to_string(eta.size()) + "/" +
-                                std::to_string(eta_dot.size()) + " != " + std::to_string(rows_) + " x " +
-                                std::to_string(cols_));
+                                std::to_string(eta_dot.size()) + "/" + std::to_string(velocity.size()) +
+                                " != " + std::to_string(rows_) + " x " + std::to_string(cols_));
   Frame& f = begin_write();
   if (!eta_dot.empty() && f.eta_dot.size() != n)
     throw std::invalid_argument("FrameRing::publish: ring was built without eta_dot buffers");
+  if (!velocity.empty() && f.velocity.size() != 2 * n)
+    throw std::invalid_argument("FrameRing::publish: ring was built without velocity buffers");
+  f.has_velocity = !velocity.empty();
+  if (f.has_velocity) std::memcpy(f.velocity.data(), velocity.data(), 2 * n * sizeof(float));
   f.info = info;
   std::memcpy(f.eta.data(), eta.data(), n * sizeof(float));
   f.has_rate = !eta_dot.empty();
@@ -70,6 +76,12 @@ void FrameRing::publish(const FrameInfo& info, std::span<const float> eta, std::
   for (std::size_t i = 0; i < k; ++i)
     f.stages[i] = StageCounter{stages[i].calls, stages[i].ns, stages[i].bytes, stages[i].transforms};
   publish();
+}
+
+bool FramePair::velocity(std::span<float> out) const {
+  if (!newest || !newest->has_velocity || out.size() != newest->velocity.size()) return false;
+  std::memcpy(out.data(), newest->velocity.data(), out.size() * sizeof(float));
+  return true;
 }
 
 FramePair FrameRing::acquire() {

@@ -22,6 +22,16 @@ void sleep_s(double s) {
   std::this_thread::sleep_for(std::chrono::nanoseconds(static_cast<std::int64_t>(std::max(s, 0.0) * 1e9)));
 }
 
+// The solver's depth-averaged velocity (an output "u" of rows x cols x 2 on the visible grid,
+// the LBM's), or an empty span: the frames carry it for flow visualisation.
+std::span<const float> velocity_output(Solver& s) {
+  for (const OutputField& f : s.outputs())
+    if (f.name == "u" && f.shape.size() == 3 && f.shape[0] == s.height_rows() && f.shape[1] == s.height_cols() &&
+        f.shape[2] == 2)
+      return f.data;
+  return {};
+}
+
 }  // namespace
 
 std::int64_t runner_now_ns() {
@@ -36,7 +46,7 @@ Runner::Runner(std::unique_ptr<Solver> solver, RunnerParams params, Factory rese
       commands_(params.command_capacity),
       refused_(params.command_capacity),
       ring_(solver_->height_rows(), solver_->height_cols(), solver_->stats().all().size(), params.frame_slots,
-            !solver_->height_rate().empty()) {
+            !solver_->height_rate().empty(), !velocity_output(*solver_).empty()) {
   if (!(params.time_scale > 0) || !std::isfinite(params.time_scale))
     throw std::invalid_argument("Runner: time_scale must be a positive number");
   if (!(params.poll_s > 0)) throw std::invalid_argument("Runner: poll_s must be positive");
@@ -138,7 +148,9 @@ void Runner::publish() {
   FrameInfo info{solver_->steps(), solver_->time(), applied_.load(std::memory_order_relaxed)};
   // where the solver has its ships (a steered ship is not where its scene path says)
   info.ship_count = static_cast<std::uint32_t>(std::min(solver_->ship_poses(info.ships), info.ships.size()));
-  ring_.publish(info, solver_->height(), solver_->height_rate(), solver_->stats().all());
+  // (a solver with a velocity output: the frames' buffers exist, Runner's constructor)
+  const std::span<const float> velocity = ring_.with_velocity() ? velocity_output(*solver_) : std::span<const float>{};
+  ring_.publish(info, solver_->height(), solver_->height_rate(), solver_->stats().all(), velocity);
 }
 
 void Runner::apply_commands() {

@@ -74,6 +74,11 @@ struct Frame {
   AlignedBuffer<float> eta;
   /// Its time derivative, rows x cols (unit: m/s); meaningful only when has_rate.
   AlignedBuffer<float> eta_dot;
+  /// True when `velocity` holds the solver's depth-averaged velocity (an LBM's "u" output).
+  bool has_velocity = false;
+  /// Horizontal velocity (u, v) per point, rows x cols x 2, C order (unit: m/s); for flow
+  /// visualisation (dye, speed maps); meaningful only when has_velocity.
+  AlignedBuffer<float> velocity;
   /// Per-stage counters, one per stage of the solver's StageStats, same order.
   std::vector<StageCounter> stages;
 };
@@ -98,6 +103,9 @@ struct FramePair {
   /// between prev and newest, heading along the shorter arc; the newest frame's pose when prev
   /// has no such ship. False when the newest frame has no ship i.
   bool ship(std::size_t i, double t, ShipState& out) const;
+  /// The newest frame's velocity into `out` (rows x cols x 2; unit: m/s; not interpolated).
+  /// False, leaving `out` alone, when it has none.
+  bool velocity(std::span<float> out) const;
 };
 
 class FrameRing {
@@ -107,27 +115,31 @@ class FrameRing {
   /// The most slots the state word can describe.
   static constexpr std::size_t kMaxSlots = 32;
 
-  /// Allocates `slots` frames of rows x cols (with an eta_dot buffer when `with_rate`) and
-  /// `stage_count` counters each. Throws std::invalid_argument for slots outside [5, 32].
+  /// Allocates `slots` frames of rows x cols (with an eta_dot buffer when `with_rate`, a
+  /// velocity buffer of rows x cols x 2 when `with_velocity`) and `stage_count` counters each.
+  /// Throws std::invalid_argument for slots outside [5, 32].
   FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count, std::size_t slots = kMinSlots,
-            bool with_rate = true);
+            bool with_rate = true, bool with_velocity = false);
   FrameRing(const FrameRing&) = delete;
   FrameRing& operator=(const FrameRing&) = delete;
 
   std::size_t rows() const { return rows_; }
   std::size_t cols() const { return cols_; }
   std::size_t slots() const { return frames_.size(); }
+  /// The frames have velocity buffers.
+  bool with_velocity() const { return !frames_.empty() && frames_[0].velocity.size() > 0; }
 
   // ---- producer (one thread) ----
   /// A free slot to fill (never blocks; the same slot until publish()).
   Frame& begin_write();
   /// Publishes the slot begin_write() returned as the newest frame (sets its seq).
   void publish();
-  /// begin_write + one memcpy per field + publish. `eta_dot` may be empty (has_rate = false);
-  /// stage counters beyond the ring's stage_count are not copied. Throws
-  /// std::invalid_argument, before touching the ring, when a field has the wrong size.
+  /// begin_write + one memcpy per field + publish. `eta_dot` may be empty (has_rate = false),
+  /// `velocity` too (has_velocity = false); stage counters beyond the ring's stage_count are not
+  /// copied. Throws std::invalid_argument, before touching the ring, when a field has the wrong
+  /// size or the ring has no buffer for it.
   void publish(const FrameInfo& info, std::span<const float> eta, std::span<const float> eta_dot,
-               std::span<const StageStat> stages = {});
+               std::span<const StageStat> stages = {}, std::span<const float> velocity = {});
   /// Frames published so far (producer's count; readable from any thread).
   std::uint64_t published() const { return published_.load(std::memory_order_acquire); }
 
