@@ -11,14 +11,17 @@
 // Sides and obstacles are ghost cells a precomputed rule list fills before each step (bounce-back,
 // mirror, periodic image, Zou-He inflow and outflow). Populations are stored minus the still-water
 // equilibrium of the mean depth, unshifted once a cell is dry (or from the start).
-// Wetting and drying: a cell with h < h_min is dry; its collision puts all its water at rest
-// (f0 = h, f_a = 0), so it passes nothing on. The face between x and n = x - e_a carries the
-// streamed pair (f*_a(n) to x, f*_abar(x) to n) unless it is closed, when both bounce back; either
-// way mass is exchanged, never made. Wet-wet and dry-dry faces are open; a face between a wet cell w
-// and a dry cell d is open only when eta_w = h_w + z_w > z_d + h_min (the water reaches above the dry
-// bed: still water next to dry land stays still) and w's population toward d is >= 0 (a dry cell
-// never receives a negative population). The bed term acts on wet-wet faces only. A negative depth
-// stops the run (LbmDryError). Why each choice, and measurements: docs/lbm.md.
+// Wetting and drying (a pass of its own while a cell is dry): a cell with h < h_min is dry; its
+// collision puts all its water at rest (f0 = h, f_a = 0), so it passes nothing on. The face between
+// x and n = x - e_a carries the pair f*_a(n) + f*_abar(x), shared out so that each cell receives
+// one part (mass is exchanged, never made): wet-wet faces stream with the bed term, dry-dry faces
+// stream; a face between a wet cell w and a dry cell d is closed (both bounce back) unless
+// h_w + z_w > z_d + h_min, so still water next to dry land stays still; on an open one w receives
+// its own equilibrium of that link without the pressure part lambda_a g h^2 / 6 (an empty
+// neighbour moving with it) and d the rest. An outflow limiter scales each face's net flux by
+// theta = min(1, h / outflow) of the cell it drains (every depth stays >= 0), and speeds are capped
+// at the Riemann bound max(|u| + 2 sqrt(g h)) of the initial state. A negative depth stops the run
+// (LbmDryError). Why each choice, and measurements: docs/lbm.md.
 #include <array>
 #include <cstdint>
 #include <span>
