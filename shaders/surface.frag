@@ -14,6 +14,9 @@ out vec4 o_color;
 
 uniform sampler2D u_diffs;  // RG32F: eta_u, eta_v at the grid points
 uniform sampler2D u_coef;   // RGBA32F: c, d, e, f at the grid points
+uniform sampler2D u_dye;    // R32F: dye in [0, 1] at the grid points (u_use_dye)
+uniform int u_use_dye;
+uniform vec3 u_dye_colour;
 // (u_eye, u_ortho, u_view_dir, u_index, u_water_colour, u_sky*, u_sun_dir, u_deep: ground_common.glsl)
 uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
 uniform vec2 u_grid_size;   // cols, rows
@@ -52,6 +55,8 @@ void main() {
     vec3 T = exp(-u_absorb * path);
     refr = refr * T + u_water_colour * (1.0 - T);
   }
+  // dye carried by the flow (paper 002; viz/app/dye.hpp), in the water at this point
+  if (u_use_dye != 0) refr = mix(refr, u_dye_colour, 0.7 * texture(u_dye, tc).r);
 
   vec3 v = -dir;
   float nv = max(dot(n, v), 0.0);

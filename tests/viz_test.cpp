@@ -322,6 +322,7 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
     o.frames = 3;
     ViewerSolver vs = viewer_solver(scene.string());
     o.settings = view_setup(vs, 1.0).settings;  // as huygens-viz does
+    o.flow = solver_has_velocity(*vs.solver);
     const gl::Image8 actual = render_headless(std::move(vs), o).image;
     const gl::Image8 expected = gl::read_png(golden.string(), 4);
     ASSERT_EQ(actual.width, expected.width);

@@ -31,7 +31,8 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   std::vector<ShipPose> ships;
   HeadlessResult res;
   // the dye needs the flow's history: every frame from t = 0, the last `frames` drawn
-  const bool dye_view = opt.plan && opt.plan_quantity == PlanQuantity::dye;
+  // (the plan's dye view, and the perspective picture of a flow, whose water the dye tints)
+  const bool dye_view = opt.plan ? opt.plan_quantity == PlanQuantity::dye : opt.settings.dye && opt.flow;
   DyeField dye(g);
   const int skipped = dye_view ? static_cast<int>(std::floor(opt.time / view.frame_dt + 1e-9)) : 0;
   const double t_first = dye_view ? opt.time - skipped * view.frame_dt : opt.time;
@@ -56,6 +57,7 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     renderer.set_heights(field);
     frame_ships(view, frames, runner.display_time(), ships);  // where the solver has them
     renderer.set_ships(ships);
+    if (dye_view && has_velocity) renderer.set_dye(dye.values());
     if (!opt.custom_camera && !ships.empty() && view.follow_ship) {
       if (!camera_placed) cam = start_camera(view, aspect, &ships[0]);
       follow_ship(view, ships[0], cam);

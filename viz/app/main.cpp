@@ -145,6 +145,7 @@ int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& set
   opt.settings = settings;
   opt.plan = plan;
   opt.plan_quantity = quantity;
+  opt.flow = solver_has_velocity(*vs.solver);
   const std::string name = vs.name;
   const HeadlessResult r = render_headless(std::move(vs), opt);
   gl::write_png(o.screenshot, r.image);

@@ -298,6 +298,16 @@ void WaterRenderer::set_heights(std::span<const float> eta) {
   times.prepare = elapsed_ms(t0);
 }
 
+void WaterRenderer::set_dye(std::span<const float> dye) {
+  has_dye_ = dye.size() == grid_.rows * grid_.cols;
+  if (!has_dye_) return;
+  if (dye_tex_.width() != static_cast<int>(grid_.cols)) {
+    dye_tex_ = gl::Texture(static_cast<int>(grid_.cols), static_cast<int>(grid_.rows), GL_R32F);
+    dye_tex_.set_filter(GL_LINEAR, GL_LINEAR);
+  }
+  dye_tex_.upload(dye.data(), GL_RED, GL_FLOAT);
+}
+
 void WaterRenderer::update_linearisation(const OrbitCamera& camera, float index) {
   const ViewRays v = camera.rays();
   if (lin_valid_ && index == lin_index_ && v.ortho == lin_view_.ortho &&
@@ -546,6 +556,11 @@ void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings
   set_common_uniforms(p, s, camera);
   glUniformMatrix4fv(p.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
   diffs_tex_.bind(2);
+  const bool dye = s.dye && has_dye_;
+  glUniform1i(p.loc("u_use_dye"), dye ? 1 : 0);
+  glUniform1i(p.loc("u_dye"), 4);
+  glUniform3fv(p.loc("u_dye_colour"), 1, glm::value_ptr(s.dye_colour));
+  if (dye) dye_tex_.bind(4);
   coef_tex_.bind(3);
   glUniform1i(p.loc("u_diffs"), 2);
   glUniform1i(p.loc("u_coef"), 3);

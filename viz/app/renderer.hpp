@@ -103,6 +103,9 @@ struct RenderSettings {
   bool draw_ship = true;
   /// Obstacles (RenderInfo::obstacles) as solid blocks above the water.
   bool draw_solids = true;
+  /// Tint the water with the dye the flow carries (set_dye; LBM scenes, paper 002).
+  bool dye = true;
+  glm::vec3 dye_colour{0.75f, 0.12f, 0.45f};
   GroundPattern ground = GroundPattern::tiles;
   /// Checker/tile squares across the visible region (unit: 1).
   int ground_squares = 8;
@@ -180,6 +183,8 @@ class WaterRenderer {
   /// Level subtracted from every height given to set_heights (unit: m; SceneGeometry::height_offset).
   void set_height_offset(double offset) { offset_ = static_cast<float>(offset); }
   void set_ships(std::span<const ShipPose> ships) { ships_.assign(ships.begin(), ships.end()); }
+  /// Dye per grid point (rows x cols, in [0, 1]; dye.hpp) that tints the water; empty = none.
+  void set_dye(std::span<const float> dye);
   /// Obstacles: drawn as solids, and the heights inside them (a solver leaves them dry or
   /// empty) replaced by the nearest water point's, so the surface closes around them.
   void set_obstacles(std::span<const RenderObstacle> obstacles);
@@ -219,7 +224,8 @@ class WaterRenderer {
   std::vector<ShipPose> ships_;
 
   gl::Program surface_prog_, ground_prog_, ship_prog_;
-  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_;
+  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_;
+  bool has_dye_ = false;
   GLuint surface_vao_ = 0, surface_static_vbo_ = 0, surface_h_vbo_ = 0, surface_lin_vbo_ = 0, surface_ibo_ = 0;
   GLsizei surface_index_count_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0;

@@ -341,6 +341,10 @@ void panel_features(App& a) {
   int fres = static_cast<int>(a.settings.fresnel);
   ImGui::Combo("Fresnel (F)", &fres, "off\0paper clamp(1-2.5 n.v)\0Schlick\0");
   a.settings.fresnel = static_cast<FresnelModel>(fres);
+  if (a.has_velocity) {
+    ImGui::Checkbox("dye (flow)", &a.settings.dye);
+    ImGui::SameLine();
+  }
   ImGui::Checkbox("water", &a.settings.draw_water);
   ImGui::SameLine();
   ImGui::Checkbox("ships", &a.settings.draw_ship);
@@ -489,6 +493,7 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
     const double tn = fp.newest->info.time_s;
     if (tn < a.dye_time) a.dye->reset(), a.dye_time = 0.0;
     if (tn > a.dye_time) a.dye->advect(a.velocity, tn - a.dye_time), a.dye_time = tn;
+    renderer.set_dye(a.dye->values());
   }
   renderer.set_ships(a.ships_drawn);
   int fw, fh;
