@@ -180,6 +180,9 @@ TEST(Cli, AScenePastTheMemoryIsRefusedBeforeTheRun) {
 }
 
 TEST(Cli, TheAddressSpaceLimitCountsAsMemory) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space and doubles the resident memory";
+#endif
   const fs::path d = work_dir("ulimit");
   scene(d, "{}", 4096);  // about 0.6 GiB of fields
   const Result r = run(d, "run scene.json --steps 1 --fast-plans", "ulimit -v 400000;");
@@ -264,6 +267,9 @@ nlohmann::json shipped(const std::string& name) {
 // must be within -15 % / +25 % of the peak RSS growth over a 64^2 run (the program, libraries and
 // thread stacks). It may err high (a refusal a little early), not much low (an OOM kill).
 TEST(Cli, TheMemoryEstimateMatchesThePeakOfTheRun) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space and doubles the resident memory";
+#endif
   const fs::path d = work_dir("estimate");
   const double base = peak_and_estimate(d, scene(d)).first;
   auto big_default = shipped("default.json");
