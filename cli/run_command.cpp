@@ -111,7 +111,7 @@ int run_steps(const RunArgs& a, Solver& solver, DumpWriter* dumps) {
                 std::string("run stopped: ") + e.what() + "; the dumps listed in meta.json are valid", kExitNonFinite);
   } catch (const LbmDryError& e) {
     // not a non-finite value but the same kind of stop: a named step and cell, earlier dumps valid
-    return stop({{"stage", "dry_cell"}, {"step", solver.steps()}, {"reason", e.what()}},
+    return stop({{"stage", "negative_depth"}, {"step", solver.steps()}, {"reason", e.what()}},
                 std::string("run stopped: a negative depth: ") + e.what(), kExitNonFinite);
   } catch (const IoError& e) {
     // meta.json keeps its last good version (it may be the file that failed)

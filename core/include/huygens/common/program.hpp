@@ -14,7 +14,7 @@ enum ExitCode : int {
   kExitOk = 0,
   kExitFailed = 1,     ///< a validation case or accuracy check failed, or a file could not be written
   kExitUsage = 2,      ///< bad command line or scene (the JSON path is named)
-  kExitNonFinite = 3,  ///< the run stopped on a non-finite value (or an LBM cell ran dry)
+  kExitNonFinite = 3,  ///< the run stopped on a non-finite value (or a negative LBM depth)
   kExitResources = 4,  ///< the scene needs more memory than the machine has (refused before the run)
   kExitSigint = 130,   ///< stopped by SIGINT (128 + 2) after a clean stop
   kExitSigterm = 143,  ///< stopped by SIGTERM (128 + 15) after a clean stop
