@@ -159,5 +159,5 @@ int bench_main(int argc, char** argv) {
 }
 
 int main(int argc, char** argv) {
-  return huygens::run_program("huygens-bench", [&]() { return bench_main(argc, argv); });
+  return huygens::run_program("huygens-bench", argv, [&]() { return bench_main(argc, argv); });
 }

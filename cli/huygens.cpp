@@ -43,7 +43,7 @@ const char* const kUsage =
 
 int main(int argc, char** argv) {
   using namespace huygens;
-  return run_program("huygens", [&]() {
+  return run_program("huygens", argv, [&]() {
     if (argc < 2) throw UsageError("no command given");
     const std::string cmd = argv[1];
     if (cmd == "--help" || cmd == "-h" || cmd == "help") {

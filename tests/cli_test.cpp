@@ -219,15 +219,19 @@ TEST(Cli, TheViewersCommandLineIsCheckedToo) {
 }
 #endif
 
-// OpenMP threads sleep at barriers unless the user sets OMP_WAIT_POLICY (program.cpp): libgomp
-// prints the policy it took with OMP_DISPLAY_ENV.
-TEST(Cli, OpenMpWaitsArePassiveUnlessTheUserChooses) {
+// OpenMP threads spin briefly (GOMP_SPINCOUNT 3000) then sleep, unless the user sets
+// OMP_WAIT_POLICY or GOMP_SPINCOUNT (program.cpp): libgomp prints what it took with OMP_DISPLAY_ENV.
+TEST(Cli, OpenMpWaitsSpinBrieflyUnlessTheUserChooses) {
   const fs::path d = work_dir("omp");
   scene(d);
-  const Result unset = run(d, "run scene.json --steps 1 --fast-plans", "env -u OMP_WAIT_POLICY OMP_DISPLAY_ENV=true");
-  EXPECT_NE(unset.output.find("OMP_WAIT_POLICY = 'PASSIVE'"), std::string::npos) << unset.output;
-  const Result active = run(d, "run scene.json --steps 1 --fast-plans", "OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=true");
+  const std::string args = "run scene.json --steps 1 --fast-plans";
+  const Result unset = run(d, args, "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose");
+  EXPECT_NE(unset.output.find("GOMP_SPINCOUNT = '3000'"), std::string::npos) << unset.output;
+  const Result active = run(d, args, "env -u GOMP_SPINCOUNT OMP_WAIT_POLICY=active OMP_DISPLAY_ENV=verbose");
   EXPECT_NE(active.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << active.output;
+  EXPECT_EQ(active.output.find("GOMP_SPINCOUNT = '3000'"), std::string::npos) << active.output;
+  const Result mine = run(d, args, "env -u OMP_WAIT_POLICY GOMP_SPINCOUNT=77 OMP_DISPLAY_ENV=verbose");
+  EXPECT_NE(mine.output.find("GOMP_SPINCOUNT = '77'"), std::string::npos) << mine.output;
 }
 
 // ---- the memory estimate against the run's peak resident memory ----

@@ -255,5 +255,5 @@ void main() { o_color = vec4(texelFetch(u_src, ivec2(gl_FragCoord.xy), 0).r); }
 }
 
 int main(int argc, char** argv) {
-  return run_program("huygens-caustics-bench", [&]() { return bench_main(argc, argv); });
+  return run_program("huygens-caustics-bench", argv, [&]() { return bench_main(argc, argv); });
 }

@@ -308,7 +308,7 @@ int run(CliOptions o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return huygens::run_program("huygens-viz", [&]() {
+  return huygens::run_program("huygens-viz", argv, [&]() {
     CliOptions o;
     if (!parse_args(argc, argv, o)) {
       usage(stdout);

@@ -70,17 +70,22 @@ std::string nonempty_arg(std::string_view flag, const char* text) {
   return text;
 }
 
-// OpenMP threads that sleep at barriers unless the user chose otherwise: with spinning waits, a
-// region's barrier waits for a thread the kernel descheduled for another process, and 2 threads
-// run slower than 1 on a loaded machine (docs/robustness.md, the "load" bench). libgomp reads
-// OMP_WAIT_POLICY once, in its initialiser, before main(); an executable's .preinit_array runs
-// before any library's initialiser, so the default is set there. OMP_WAIT_POLICY=active restores
-// spinning.
-void default_passive_waits(int, char**, char**) { setenv("OMP_WAIT_POLICY", "PASSIVE", /*overwrite=*/0); }
-__attribute__((section(".preinit_array"), used)) void (*const huygens_preinit_omp)(int, char**,
-                                                                                   char**) = default_passive_waits;
+// OpenMP waits: spin briefly, then sleep, unless the user chose (OMP_WAIT_POLICY or
+// GOMP_SPINCOUNT). libgomp's own default spins ~300000 iterations at every barrier: on a loaded
+// machine a thread spins away its time slice waiting for a partner the kernel descheduled, and
+// 2 threads ran 10-40x slower than 1; purely passive waits pay a futex wake per region on a
+// quiet machine (the LBM channel gained nothing from a second thread). 3000 iterations keep both
+// (the "load" section of huygens-bench; docs/robustness.md). libgomp reads the variables once,
+// when it is loaded, so the program sets the default and executes itself again (once: the
+// variable is then set); if that fails it runs on with libgomp's default.
+void default_omp_waits(char** argv) {
+  if (!argv || getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT")) return;
+  setenv("GOMP_SPINCOUNT", "3000", 0);
+  execv("/proc/self/exe", argv);
+}
 
-int run_program(const char* name, const std::function<int()>& body) {
+int run_program(const char* name, char** argv, const std::function<int()>& body) {
+  default_omp_waits(argv);
   g_program = name;
   std::set_terminate(on_terminate);
   try {

@@ -43,8 +43,10 @@ std::string nonempty_arg(std::string_view flag, const char* text);
 /// Runs a program's body and returns its exit code. Every exception becomes a line
 /// "NAME: ..." on stderr and its code: UsageError and SceneError 2, NonFiniteError 3,
 /// ResourceError and std::bad_alloc 4, anything else 1. Also installs a std::terminate handler
-/// that prints the same kind of line (an exception that escapes a thread) and exits 1.
-int run_program(const char* name, const std::function<int()>& body);
+/// that prints the same kind of line (an exception that escapes a thread) and exits 1. First,
+/// when neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT is set, sets GOMP_SPINCOUNT=3000 and executes
+/// the program again with `argv` (libgomp reads it only at start; program.cpp says why).
+int run_program(const char* name, char** argv, const std::function<int()>& body);
 
 /// SIGINT/SIGTERM as a request to stop between steps: the first signal sets the request (and
 /// says so on stderr), a second one ends the process at once by the signal's default action.
