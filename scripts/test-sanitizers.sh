@@ -7,9 +7,9 @@
 #      (ctest label ${HUYGENS_ASAN_LABEL:-unit}; set HUYGENS_ASAN_LABEL= for every test).
 # Build dirs: ${HUYGENS_TSAN_DIR:-build-tsan} and ${HUYGENS_ASAN_DIR:-build-asan}. The viewer
 # is not built here (Mesa's llvmpipe is not instrumented; the render tests run in test.sh).
-# HUYGENS_STRESS_ITEMS sets the stress item count under TSan: the SPSC queue runs its full
-# 4 million items per capacity, the frame ring and the runner (whole frames checked value by
-# value) 200000 unless it is set.
+# HUYGENS_STRESS_ITEMS sets the stress item count under TSan: the SPSC queue runs 4 million
+# items per capacity (10 million in the Release suite), the frame ring and the runner (whole
+# frames checked value by value) 200000 unless it is set.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=$(nproc)

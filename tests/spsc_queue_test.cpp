@@ -1,10 +1,14 @@
 // SpscQueue: FIFO semantics, capacity, and a two-thread stress test that pushes many
-// items (4 million per capacity by default; HUYGENS_STRESS_ITEMS overrides) through rings of capacity 2, 3 and 8 with a
+// items (10 million per capacity by default; HUYGENS_STRESS_ITEMS overrides, the
+// ThreadSanitizer run uses fewer) through rings of capacity 2, 3 and 8 with a
 // consumer that is alternately fast and deliberately slow, checking order and content (every item carries a checksum of
 // its payload).
 #include "huygens/pipeline/spsc_queue.hpp"
 
 #include <gtest/gtest.h>
+#include <linux/futex.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -51,15 +55,16 @@ Item make_item(std::uint64_t seq) {
 
 std::uint64_t stress_items() {
   if (const char* e = std::getenv("HUYGENS_STRESS_ITEMS")) return std::strtoull(e, nullptr, 10);
-  return 4'000'000;
+  return 10'000'000;
 }
 
 // How a stress thread waits for the other side: spin a few times (cheap when both threads have
 // a core), then sleep on a futex until the other side rings. A sleeping thread leaves the run
 // queue, so on a machine whose cores are busy with other work the scheduler runs the peer in its
-// place and wakes this thread as soon as the peer has made progress; a yield would hand the core
-// to the other work for a whole time slice per item. The doorbell is the test's own: the queue
-// is polled in the product and stays as it is.
+// place and wakes this thread as soon as the peer has made progress. A yield would hand the core
+// to the other work for a whole time slice per item, and so would std::atomic::wait, which
+// libstdc++ 12 precedes with four sched_yield calls; hence the raw futex. The doorbell is the
+// test's own: the queue is polled in the product and stays as it is.
 class Doorbell {
  public:
   /// The count to wait on: read it before the attempt that may fail.
@@ -67,17 +72,25 @@ class Doorbell {
   /// After a push (or pop): counts it and wakes the peer if it sleeps (no system call otherwise).
   void ring() noexcept {
     rings_.fetch_add(1, std::memory_order_seq_cst);
-    rings_.notify_one();
+    if (sleepers_.load(std::memory_order_seq_cst) != 0) futex(FUTEX_WAKE_PRIVATE, 1);
   }
-  /// After a failed attempt: spin 64 times, then sleep until ring() moves the count past `seen`.
-  void wait(std::uint32_t seen, int& spins) const noexcept {
+  /// After a failed attempt: spin 64 times, then sleep until ring() moves the count past `seen`
+  /// (the kernel compares the count with `seen` atomically, so a ring in between is not lost).
+  void wait(std::uint32_t seen, int& spins) noexcept {
     if (++spins <= 64) return;
     spins = 0;
-    rings_.wait(seen, std::memory_order_seq_cst);
+    sleepers_.fetch_add(1, std::memory_order_seq_cst);
+    futex(FUTEX_WAIT_PRIVATE, seen);
+    sleepers_.fetch_sub(1, std::memory_order_seq_cst);
   }
 
  private:
+  void futex(int op, std::uint32_t value) noexcept {
+    static_assert(sizeof(rings_) == sizeof(std::uint32_t), "the futex word is 32 bits");
+    syscall(SYS_futex, reinterpret_cast<std::uint32_t*>(&rings_), op, value, nullptr, nullptr, 0);
+  }
   std::atomic<std::uint32_t> rings_{0};
+  std::atomic<int> sleepers_{0};
 };
 
 }  // namespace
@@ -158,7 +171,7 @@ TEST(SpscQueue, CarriesCommandsByValue) {
 
 // ---- stress: two threads, order and content ----
 //
-// Per capacity, n items (4 million by default) go through the ring. The consumer
+// Per capacity, n items (10 million by default) go through the ring. The consumer
 // alternates between two behaviours in blocks of n/10 items: fast (pops as quickly as it
 // can, so the ring runs near empty and the consumer meets "empty") and deliberately slow
 // (extra work per item and a yield every 4096 items, so the ring runs full and the
