@@ -2,7 +2,7 @@
 # Renders every shipped scene headless at a telling time into docs/gallery/ (640x360 PNGs), in
 # the perspective view and, where a picture should be read (the Kelvin angle, the
 # Cauchy-Poisson ring, the dam-break front, the vortex street), in the plan view too; the LBM
-# flows also as speed and as the dye they carried since t = 0.
+# flows also as speed and as the dye they carried since t = 0, the SPH dam break as particles.
 #   scripts/gallery.sh [BUILD_DIR]      (default: build; needs huygens-viz built there)
 # EGL surfaceless (Mesa llvmpipe): no display needed. The images are what the README shows.
 set -euo pipefail
@@ -22,6 +22,7 @@ shots=(
   "ocean 10 perspective"
   "pool 0.3 perspective"
   "sph_dam_break 0.3 perspective"
+  "sph_dam_break 0.15 particles"
   "dam_break 10 perspective,plan,dye"
   "channel 20 perspective,plan,speed,dye"
 )

@@ -140,6 +140,22 @@ TEST(FrameRing, RefusesBadSizesAndSlotCounts) {
   EXPECT_FALSE(no_rate.acquire().newest->has_rate);
 }
 
+TEST(FrameRing, CarriesParticlesOfItsSize) {
+  FrameRing ring(2, 2, 0, 5, false, false, 8);
+  EXPECT_EQ(ring.particle_floats(), 8u);
+  std::vector<float> eta(4), parts{0.1f, 0.2f, 0.3f, 1.5f, 0.4f, 0.5f, 0.6f, 2.5f}, wrong(4);
+  EXPECT_THROW(ring.publish(FrameInfo{}, eta, {}, {}, {}, wrong), std::invalid_argument);
+  ring.publish(FrameInfo{}, eta, {}, {}, {}, parts);
+  parts[3] = 9.0f;  // later changes do not reach the published frame
+  FramePair p = ring.acquire();
+  ASSERT_TRUE(p.newest->has_particles);
+  EXPECT_EQ(std::vector<float>(p.newest->particles.span().begin(), p.newest->particles.span().end()),
+            (std::vector<float>{0.1f, 0.2f, 0.3f, 1.5f, 0.4f, 0.5f, 0.6f, 2.5f}));
+  ring.publish(FrameInfo{}, eta, {});  // a frame without particles says so
+  EXPECT_FALSE(ring.acquire().newest->has_particles);
+  EXPECT_EQ(FrameRing(2, 2, 0).particle_floats(), 0u);
+}
+
 TEST(FrameRing, StageCountersAreSnapshots) {
   FrameRing ring(2, 2, 2);
   std::vector<float> eta(4);

@@ -3,8 +3,11 @@
 // build, run, dump and take commands.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "huygens/pipeline/solver.hpp"
 #include "huygens/sph/solver.hpp"
@@ -131,4 +134,32 @@ TEST(SphScene, ShippedScenesBuildAndRun) {
   const auto n = pool->meta()["particles"].get<std::size_t>();
   EXPECT_GT(n, 2500u);
   EXPECT_LT(n, 3500u);
+}
+
+TEST(SphScene, ParticlesForTheViewerArePositionsAndSpeeds) {
+  auto solver = make_solver(load_scene(huygens::test::scenes_dir() + "/pool.json"));
+  const RenderInfo info = solver->render_info();
+  ASSERT_TRUE(info.particle_box_m.has_value());
+  EXPECT_DOUBLE_EQ((*info.particle_box_m)[0], solver->meta()["container_m"][0].get<double>());
+  EXPECT_DOUBLE_EQ((*info.particle_box_m)[2], solver->meta()["container_m"][2].get<double>());
+  for (int k = 0; k < 3; ++k) solver->step();
+  ASSERT_TRUE(solver->apply(cmd::Drop{0.05f, 0.05f, 0.02f, 0.01f}));  // a splash: some particles move fast
+  solver->step();
+  const std::span<const float> p = solver->particles();
+  const auto out = solver->outputs();
+  ASSERT_EQ(p.size(), out[0].shape[0] * 4);
+  // the same positions as the "pos" dump (which is in id order; particles() in memory order)
+  std::vector<std::array<float, 3>> a, b;
+  float fastest = 0.0f;
+  for (std::size_t i = 0; i < p.size() / 4; ++i) {
+    a.push_back({p[4 * i], p[4 * i + 1], p[4 * i + 2]});
+    b.push_back({out[0].data[3 * i], out[0].data[3 * i + 1], out[0].data[3 * i + 2]});
+    EXPECT_GE(p[4 * i + 3], 0.0f);
+    fastest = std::max(fastest, p[4 * i + 3]);
+  }
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
+  EXPECT_GT(fastest, 0.05f) << "the splash's particles have a speed";
+  EXPECT_EQ(solver->particles().size(), p.size()) << "the same size every call";
 }

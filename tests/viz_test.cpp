@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +25,7 @@
 #include "gl.hpp"
 #include "headless.hpp"
 #include "huygens/pipeline/runner.hpp"
+#include "plot.hpp"
 #include "renderer.hpp"
 #include "scene_view.hpp"
 #include "scenes_dir.hpp"
@@ -759,6 +761,43 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   std::printf("plan view: %d grid points, worst colour difference %.4f (1/255 = %.4f)\n", checked, worst, 1 / 255.0);
   EXPECT_LE(worst, 0.5 / 255.0 + 1e-6);
   if (worst > 0.5 / 255.0 + 1e-6) write_debug("plan_view.png", img);
+}
+
+// The particle view (plot.hpp, render_particles): particles seen from the side (-y) as discs
+// coloured by speed on the colour bar's range, the nearer particle over the farther one (and the
+// farther shaded darker), an obstacle as a grey silhouette between them; the plot keeps the
+// container's aspect. Synthetic particles: their pixels are known exactly.
+TEST_F(VizRender, ParticleViewDrawsSpeedsNearestFirstAndObstacles) {
+  const std::array<double, 3> box{2.0, 1.0, 1.0};
+  // x, y, z, speed: slow near the left; fast at the right; at x = 1, a far particle and a near
+  // one at the same spot; a particle behind the obstacle at x = 1.5
+  const std::vector<float> parts{0.25f, 0.0f, 0.5f, 0.0f, 1.75f, 0.0f, 0.5f, 3.0f, 1.0f, 0.9f,
+                                 0.5f,  3.0f, 1.0f, 0.1f, 0.5f,  0.0f, 1.5f, 0.9f, 0.5f, 3.0f};
+  RenderObstacle box_obstacle;
+  box_obstacle.kind = RenderObstacle::Kind::box;
+  box_obstacle.min_m = {1.4, 0.5, 0.0};
+  box_obstacle.max_m = {1.6, 0.6, 0.8};
+  RenderTarget target(640, 360);
+  const WaterRenderer::PlanPlot p =
+      render_particles(parts, box, 0.05, std::span(&box_obstacle, 1), "test", 0.0, target);
+  const gl::Image8 img = target.read();
+  EXPECT_NEAR(p.width / p.height, 2.0, 0.02) << "the container's aspect";
+  EXPECT_EQ(p.lo, 0.0);
+  EXPECT_DOUBLE_EQ(p.hi, 3.0) << "the fastest, 3 m/s, ends the bar (in m/s: cm/s only below 2 m/s)";
+  auto at = [&](double x, double z, int ch) {
+    return channel(img, static_cast<int>(p.x0 + x / box[0] * p.width),
+                   static_cast<int>(p.y0 + p.height - z / box[2] * p.height), ch);
+  };
+  auto expect_colour = [&](double x, double z, glm::vec3 c, const char* what) {
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(at(x, z, ch), c[ch], 1.0 / 255.0 + 1e-6) << what << " channel " << ch;
+  };
+  const glm::vec3 fast = plan_colour(1.0, false), slow = plan_colour(0.0, false);
+  expect_colour(0.25, 0.5, slow, "the resting particle, nearest (y = 0): unshaded");
+  expect_colour(1.75, 0.5, fast, "the fast particle");
+  expect_colour(1.0, 0.5, slow * static_cast<float>(1.0 - 0.45 * 0.1), "the nearer particle covers the farther");
+  expect_colour(1.5, 0.5, glm::vec3(0.55f), "the obstacle covers the particle behind it");
+  expect_colour(0.6, 0.2, glm::vec3(236, 240, 244) / 255.0f, "the tank where no particle is");
+  if (::testing::Test::HasFailure()) write_debug("particle_view.png", img);
 }
 
 // Dye (dye.hpp): a uniform flow of exactly one grid point per step along x moves the bands

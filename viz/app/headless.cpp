@@ -65,9 +65,11 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     camera_placed = true;
     renderer.times.enabled = (k + 1 == opt.frames);
     if (opt.plan)
-      render_plan_view(renderer, view, field,
-                       has_velocity ? std::span<const float>(velocity) : std::span<const float>{}, dye.values(),
-                       opt.plan_quantity, frames.newest->info.time_s, name, target);
+      render_plan_view(
+          renderer, view,
+          PlanData{field, has_velocity ? std::span<const float>(velocity) : std::span<const float>{}, dye.values(),
+                   frames.newest->has_particles ? frames.newest->particles.span() : std::span<const float>{}},
+          opt.plan_quantity, frames.newest->info.time_s, name, target);
     else
       renderer.render(cam, opt.settings, target);
     res.steps = frames.newest->info.step;

@@ -29,33 +29,35 @@ namespace {
 using namespace huygens;
 
 void usage(std::FILE* f) {
-  std::fprintf(
-      f,
-      "usage: huygens-viz [SCENE] [options]\n"
-      "  SCENE                 scene JSON file (default: the built-in default.json); when no such\n"
-      "                        file exists, the name of a built-in scene: %s\n"
-      "  --headless            render offscreen with no display server (EGL surfaceless)\n"
-      "  --frames N            frames to render in --headless mode (default 1)\n"
-      "  --time T              display time of the first headless frame, s (default 0)\n"
-      "  --screenshot FILE.png where the headless image (or the S key's image) goes\n"
-      "  --size WxH            image / window size in pixels (default 1280x720; headless 256x256)\n"
-      "  --subsample F         surface mesh subsampling factor (default 4)\n"
-      "  --exact               exact per-pixel Snell refraction (default: linearised coordinates)\n"
-      "  --schlick             Schlick Fresnel (the default; --paper-fresnel: clamp(1 - 2.5 n.v))\n"
-      "  --paper-fresnel       the paper's Fresnel f = clamp(1 - 2.5 n.v) and glint\n"
-      "  --no-caustics         do not light the ground with caustics\n"
-      "  --caustics-mode M     conserving (default: explicit area, float), mip_paper (the paper's\n"
-      "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8\n"
-      "  --view V              perspective (default) or plan (colour map, colour bar, axes in metres)\n"
-      "  --benchmark           print per-pass render times at 1280x720 and 640x360 (headless)\n"
-      "  --auto-frames N       window: after N frames press S, then quit (smoke test)\n"
-      "  --help                this text\n"
-      "Exit codes: 0 ok; 1 a write or the GL context failed; 2 bad scene or usage; 3 non-finite\n"
-      "  value; 4 not enough memory for the scene.\n"
-      "Keys (window): space pause, R reset, F1 hide panel, S screenshot, E exact/linearised,\n"
-      "  F Fresnel model, P plan view, Esc quit. Mouse: left click drops a stone, left drag on a ship moves it,\n"
-      "  right drag orbits, middle drag (or shift+right) pans, wheel zooms.\n",
-      builtin_scene_names());
+  std::fprintf(f,
+               "usage: huygens-viz [SCENE] [options]\n"
+               "  SCENE                 scene JSON file (default: the built-in default.json); when no such\n"
+               "                        file exists, the name of a built-in scene: %s\n"
+               "  --headless            render offscreen with no display server (EGL surfaceless)\n"
+               "  --frames N            frames to render in --headless mode (default 1)\n"
+               "  --time T              display time of the first headless frame, s (default 0)\n"
+               "  --screenshot FILE.png where the headless image (or the S key's image) goes\n"
+               "  --size WxH            image / window size in pixels (default 1280x720; headless 256x256)\n"
+               "  --subsample F         surface mesh subsampling factor (default 4)\n"
+               "  --exact               exact per-pixel Snell refraction (default: linearised coordinates)\n"
+               "  --schlick             Schlick Fresnel (the default; --paper-fresnel: clamp(1 - 2.5 n.v))\n"
+               "  --paper-fresnel       the paper's Fresnel f = clamp(1 - 2.5 n.v) and glint\n"
+               "  --no-caustics         do not light the ground with caustics\n"
+               "  --caustics-mode M     conserving (default: explicit area, float), mip_paper (the paper's\n"
+               "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8\n"
+               "  --view V              perspective (default) or plan (colour map, colour bar, axes in metres);\n"
+               "                        LBM: speed or dye (the flow's speed, dye it carries); SPH: particles\n"
+               "                        (seen from the side, coloured by speed)\n"
+               "  --benchmark           print per-pass render times at 1280x720 and 640x360 (headless)\n"
+               "  --auto-frames N       window: after N frames press S, then quit (smoke test)\n"
+               "  --help                this text\n"
+               "Exit codes: 0 ok; 1 a write or the GL context failed; 2 bad scene or usage; 3 non-finite\n"
+               "  value; 4 not enough memory for the scene.\n"
+               "Keys (window): space pause, R reset, F1 hide panel, S screenshot, E exact/linearised,\n"
+               "  F Fresnel model, P plan view (again: speed, dye or particles), Esc quit. Mouse: left click\n"
+               "  drops a stone, left drag on a ship moves it, right drag orbits, middle drag (or shift+right)\n"
+               "  pans, wheel zooms.\n",
+               builtin_scene_names());
 }
 
 struct CliOptions {
@@ -108,8 +110,8 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
       o.paper_fresnel = true;
     } else if (a == "--view") {
       o.view = nonempty_arg(a, next());
-      if (o.view != "perspective" && o.view != "plan" && o.view != "speed" && o.view != "dye")
-        throw UsageError("--view takes perspective, plan, speed or dye");
+      if (o.view != "perspective" && o.view != "plan" && o.view != "speed" && o.view != "dye" && o.view != "particles")
+        throw UsageError("--view takes perspective, plan, speed, dye or particles");
     } else if (a == "--caustics-mode") {
       o.caustics_mode = nonempty_arg(a, next());
       if (o.caustics_mode != "conserving" && o.caustics_mode != "mip_paper" && o.caustics_mode != "mip_float" &&
@@ -286,11 +288,14 @@ int run(CliOptions o) {
                              : o.caustics_mode == "explicit_u8" ? CausticsMode::explicit_u8
                                                                 : CausticsMode::conserving;
   const bool plan = o.view.empty() ? vs.info.request.plan_view.value_or(false) : o.view != "perspective";
-  const PlanQuantity quantity = o.view == "speed" ? PlanQuantity::speed
-                                : o.view == "dye" ? PlanQuantity::dye
-                                                  : PlanQuantity::level;
-  if (quantity != PlanQuantity::level && !solver_has_velocity(*vs.solver))
-    throw UsageError("--view " + o.view + " needs a flow's velocity: the LBM scenes (dam_break, channel)");
+  const PlanQuantity quantity = o.view == "speed"       ? PlanQuantity::speed
+                                : o.view == "dye"       ? PlanQuantity::dye
+                                : o.view == "particles" ? PlanQuantity::particles
+                                                        : PlanQuantity::level;
+  if ((quantity == PlanQuantity::speed || quantity == PlanQuantity::dye) && !solver_has_velocity(*vs.solver))
+    throw UsageError("--view " + o.view + " needs a flow's velocity: the LBM scenes (dam_break, channel, flood)");
+  if (quantity == PlanQuantity::particles && !vs.info.particle_box_m)
+    throw UsageError("--view particles needs a particle solver: the SPH scenes (pool, sph_dam_break)");
   if (o.benchmark) return run_benchmark(std::move(vs), settings, o.subsample);
   if (o.headless) return run_headless(std::move(vs), o, settings, plan, quantity);
   WindowOptions wo;

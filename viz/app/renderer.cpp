@@ -1,7 +1,5 @@
 #include "renderer.hpp"
 
-#include <stb_easy_font.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,6 +10,7 @@
 #include <string>
 
 #include "caustics_stage.hpp"
+#include "plot.hpp"
 
 namespace huygens {
 
@@ -670,78 +669,6 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   gl::check("WaterRenderer::render");
 }
 
-}  // namespace huygens
-
-// ---------------------------------------------------------------------------------
-// Plan view: exact values as colours, a colour bar and axes (docs/viz.md "Plan view")
-
-namespace huygens {
-
-// Piecewise-linear colour maps through a few control colours (t in [0, 1]): a diverging
-// blue-white-red for heights about rest (ColorBrewer RdBu), viridis for depths.
-glm::vec3 plan_colour(double t, bool diverging) {
-  static const glm::vec3 rdbu[] = {{0.02f, 0.19f, 0.38f},
-                                   {0.26f, 0.58f, 0.76f},
-                                   {0.97f, 0.97f, 0.97f},
-                                   {0.84f, 0.38f, 0.30f},
-                                   {0.40f, 0.00f, 0.12f}};
-  static const glm::vec3 viridis[] = {{0.267f, 0.005f, 0.329f},
-                                      {0.229f, 0.322f, 0.546f},
-                                      {0.128f, 0.567f, 0.551f},
-                                      {0.369f, 0.789f, 0.383f},
-                                      {0.993f, 0.906f, 0.144f}};
-  const glm::vec3* c = diverging ? rdbu : viridis;
-  const double x = std::clamp(t, 0.0, 1.0) * 4.0;
-  const int k = std::min(static_cast<int>(x), 3);
-  return glm::mix(c[k], c[k + 1], static_cast<float>(x - k));
-}
-
-namespace {
-
-// A "nice" step (1, 2 or 5 times a power of ten) giving about `n` intervals over `range`.
-double nice_step(double range, int n) {
-  if (!(range > 0.0)) return 1.0;
-  const double raw = range / n, p = std::pow(10.0, std::floor(std::log10(raw))), f = raw / p;
-  return (f < 1.5 ? 1.0 : f < 3.5 ? 2.0 : f < 7.5 ? 5.0 : 10.0) * p;
-}
-
-std::string tick_label(double v, double step) {
-  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, std::abs(v) < 0.5 * step ? 0.0 : v);
-  return buf;
-}
-
-// Filled rectangles (pixels, y down from the top) drawn by scissored clears into the bound
-// framebuffer of height `fb_h`.
-struct Painter {
-  int fb_h = 0;
-  void rect(double x, double y, double w, double h, glm::vec3 c) const {
-    const int x0 = static_cast<int>(std::floor(x)), x1 = static_cast<int>(std::floor(x + w));
-    const int y0 = static_cast<int>(std::floor(y)), y1 = static_cast<int>(std::floor(y + h));
-    if (x1 <= x0 || y1 <= y0) return;
-    glScissor(x0, fb_h - y1, x1 - x0, y1 - y0);
-    glClearColor(c.r, c.g, c.b, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-  }
-  // stb_easy_font's glyph quads scaled by `s`; (x, y) = the text's top-left corner
-  void text(double x, double y, const std::string& str, double s, glm::vec3 c = glm::vec3(0.0f)) const {
-    static char buf[64 * 1024];
-    unsigned char col[4] = {0, 0, 0, 255};
-    const int quads = stb_easy_font_print(0, 0, const_cast<char*>(str.c_str()), col, buf, sizeof buf);
-    for (int q = 0; q < quads; ++q) {
-      const float* v0 = reinterpret_cast<const float*>(buf + 64 * q);
-      const float* v2 = reinterpret_cast<const float*>(buf + 64 * q + 32);
-      rect(x + s * v0[0], y + s * v0[1], s * (v2[0] - v0[0]), s * (v2[1] - v0[1]), c);
-    }
-  }
-  static double text_width(const std::string& str, double s) {
-    return s * stb_easy_font_width(const_cast<char*>(str.c_str()));
-  }
-};
-
-}  // namespace
-
 void WaterRenderer::render_plan(std::span<const float> values, const std::string& quantity, double unit_scale,
                                 const std::string& unit, bool diverging, const std::string& title,
                                 const RenderTarget& target) {
@@ -754,86 +681,21 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
     lo = std::min(lo, unit_scale * values[k]);
     hi = std::max(hi, unit_scale * values[k]);
   }
-  if (lo > hi) lo = hi = 0.0;
-  if (diverging) hi = std::max(std::abs(lo), std::abs(hi)), lo = -hi;
-  if (hi - lo < 1e-12) hi = lo + 1.0;
-  const double cstep = nice_step(hi - lo, 6);
-  lo = std::floor(lo / cstep + 1e-9) * cstep;  // a value on a tick stays the end
-  hi = std::ceil(hi / cstep - 1e-9) * cstep;
+  PlotSpec spec;
+  spec.x0_m = grid_.x0 - 0.5 * grid_.dx, spec.y0_m = grid_.y0 - 0.5 * grid_.dx;  // the corner of cell (0, 0)
+  spec.width_m = C * grid_.dx, spec.height_m = R * grid_.dx;
+  spec.quantity = quantity, spec.unit = unit, spec.title = title;
+  plot_range(lo, hi, diverging, spec);
   std::vector<std::uint8_t> px(R * C * 4);
   for (std::size_t k = 0; k < R * C; ++k) {
     const bool solid = !fill_from_.empty() && fill_from_[k] != k;
-    const glm::vec3 c = solid ? glm::vec3(0.55f) : plan_colour((unit_scale * values[k] - lo) / (hi - lo), diverging);
+    const glm::vec3 c =
+        solid ? glm::vec3(0.55f) : plan_colour((unit_scale * values[k] - spec.lo) / (spec.hi - spec.lo), diverging);
     for (int ch = 0; ch < 3; ++ch) px[4 * k + ch] = static_cast<std::uint8_t>(std::lround(255.0f * c[ch]));
     px[4 * k + 3] = 255;
   }
-  gl::Texture tex(static_cast<int>(C), static_cast<int>(R), GL_RGBA8);
-  tex.upload(px.data(), GL_RGBA, GL_UNSIGNED_BYTE);
-  const gl::Framebuffer src(tex);
-
-  // layout (pixels, y down): title on top, the plot keeping the region's aspect, the colour
-  // bar on the right, axis labels left and below
-  const int W = target.width(), H = target.height();
-  const double s = std::max(1.0, std::round(H / 300.0));  // text scale (glyphs ~7 px high at 1)
-  const double left = 40 * s, right = 84 * s + plan_reserve_right, top = 30 * s, bottom = 26 * s;
-  const double ext_x = C * grid_.dx, ext_y = R * grid_.dx;
-  const double avail_w = std::max(1.0, W - left - right), avail_h = std::max(1.0, H - top - bottom);
-  const double ppm = std::min(avail_w / ext_x, avail_h / ext_y);  // pixels per metre
-  const double pw = ext_x * ppm, ph = ext_y * ppm;
-  const double px0 = left + 0.5 * (avail_w - pw), py0 = top + 0.5 * (avail_h - ph);
-  plan.x0 = px0, plan.y0 = py0, plan.width = pw, plan.height = ph, plan.lo = lo, plan.hi = hi;
-
-  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
-  glViewport(0, 0, W, H);
-  glDisable(GL_SCISSOR_TEST);
-  glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, src.id());
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.fbo());
-  glBlitFramebuffer(0, 0, static_cast<GLint>(C), static_cast<GLint>(R), static_cast<GLint>(std::lround(px0)),
-                    static_cast<GLint>(std::lround(H - py0 - ph)), static_cast<GLint>(std::lround(px0 + pw)),
-                    static_cast<GLint>(std::lround(H - py0)), GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
-  glEnable(GL_SCISSOR_TEST);
-  const Painter p{H};
-  const glm::vec3 ink(0.0f);
-  // frame and axes in metres (the scene's frame: the corner of cell (0, 0) at x0 - dx/2)
-  const double lw = std::max(1.0, s * 0.5);
-  p.rect(px0 - lw, py0 - lw, pw + 2 * lw, lw, ink);
-  p.rect(px0 - lw, py0 + ph, pw + 2 * lw, lw, ink);
-  p.rect(px0 - lw, py0, lw, ph, ink);
-  p.rect(px0 + pw, py0, lw, ph, ink);
-  const double ax0 = grid_.x0 - 0.5 * grid_.dx, ay0 = grid_.y0 - 0.5 * grid_.dx;
-  const double mstep = nice_step(std::max(ext_x, ext_y), 6);
-  for (double v = std::ceil(ax0 / mstep) * mstep; v <= ax0 + ext_x + 1e-9; v += mstep) {
-    const double x = px0 + (v - ax0) * ppm;
-    p.rect(x - 0.5 * lw, py0 + ph, lw, 4 * s, ink);
-    const std::string l = tick_label(v, mstep);
-    p.text(x - 0.5 * Painter::text_width(l, s), py0 + ph + 6 * s, l, s);
-  }
-  for (double v = std::ceil(ay0 / mstep) * mstep; v <= ay0 + ext_y + 1e-9; v += mstep) {
-    const double y = py0 + ph - (v - ay0) * ppm;
-    p.rect(px0 - 4 * s, y - 0.5 * lw, 4 * s, lw, ink);
-    const std::string l = tick_label(v, mstep);
-    p.text(px0 - 6 * s - Painter::text_width(l, s), y - 3 * s, l, s);
-  }
-  p.text(px0 + 0.5 * pw - Painter::text_width("x (m)", s) / 2, py0 + ph + 16 * s, "x (m)", s);
-  p.text(px0 - 0.5 * Painter::text_width("y (m)", s), py0 - 16 * s, "y (m)", s);  // above the y axis
-  // colour bar: one row per pixel through the map, ticks at the nice steps
-  const double bx = px0 + pw + 12 * s, bw = 12 * s;
-  for (int row = 0; row < static_cast<int>(ph); ++row)
-    p.rect(bx, py0 + ph - row - 1, bw, 1, plan_colour((row + 0.5) / ph, diverging));
-  for (double v = lo; v <= hi + 1e-9 * cstep; v += cstep) {
-    const double y = py0 + ph - (v - lo) / (hi - lo) * ph;
-    p.rect(bx + bw, y - 0.5 * lw, 3 * s, lw, ink);
-    p.text(bx + bw + 5 * s, y - 3 * s, tick_label(v, cstep), s);
-  }
-  const std::string qlabel = quantity + " (" + unit + ")";
-  p.text(bx, py0 - 12 * s, qlabel, s);
-  p.text(px0, 5 * s, title, s);
-  glDisable(GL_SCISSOR_TEST);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  gl::check("WaterRenderer::render_plan");
+  plan = plot_layout(target.width(), target.height(), spec, plan_reserve_right);
+  draw_plot(plan, spec, px, static_cast<int>(C), static_cast<int>(R), target);
 }
 
 }  // namespace huygens

@@ -161,9 +161,6 @@ struct RenderTimes {
   double prepare = 0, upload = 0, caustics = 0, ground = 0, surface = 0, ship = 0, tonemap = 0;
 };
 
-/// The plan view's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
-glm::vec3 plan_colour(double t, bool diverging);
-
 class CausticsStage;  // wraps the caustics pass (viz/caustics.hpp) when it is built
 
 class WaterRenderer {

@@ -4,7 +4,9 @@
 // default.json through parse_scene_text) and the solver made by make_solver; the viewer never
 // parses the scene's JSON and has no physics of its own. A ship is drawn where the frames put it
 // (FrameInfo::ships, the solver's poses: a ship steered by cmd::ShipTarget too) with its hull.
+#include <array>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +31,10 @@ struct SceneView {
   double frame_dt = 1.0 / 60.0;
   std::vector<RenderHull> hulls;
   std::vector<RenderObstacle> obstacles;
+  /// A particle solver's container (0, 0, 0)-(particle_box) and particle spacing (unit: m;
+  /// RenderInfo): the particle view's extent and disc size; nullopt for grid solvers.
+  std::optional<std::array<double, 3>> particle_box;
+  double particle_spacing = 0.0;
   /// The kind of picture (RenderInfo's request, else from what the solver is: a height above
   /// a floor with an adaptive step is SPH, with a fixed step shallow water (LBM); an elevation
   /// field with a wind sea is the open ocean, without one a pool).
@@ -94,16 +100,28 @@ struct ViewSetup {
 ViewSetup view_setup(const ViewerSolver& vs, double aspect);
 
 /// What the plan view shows: the level (the height about rest, or the depth for LBM/SPH), the
-/// flow's speed |u| or the dye it carries (both need the frames' velocity: LBM scenes).
-enum class PlanQuantity { level, speed, dye };
+/// flow's speed |u| or the dye it carries (both need the frames' velocity: LBM scenes), or the
+/// particles seen from the side coloured by speed (particle solvers: SPH scenes).
+enum class PlanQuantity { level, speed, dye, particles };
 
-/// Plan view at time `t_s` (WaterRenderer::render_plan): the level of `field` (the solver's
-/// height(), rows x cols; the height about rest with a diverging map, or the depth, sequential),
-/// the speed of `velocity` (rows x cols x 2) or `dye` (rows x cols, in [0, 1]), in mm, cm or m
-/// (mm/s, cm/s, m/s) by its range, titled with the scene's name and the time.
-void render_plan_view(WaterRenderer& renderer, const SceneView& view, std::span<const float> field,
-                      std::span<const float> velocity, std::span<const float> dye, PlanQuantity quantity, double t_s,
-                      const std::string& name, const RenderTarget& target);
+/// The frame's data a plan view may show (empty spans: not there).
+struct PlanData {
+  /// The solver's height() (rows x cols; unit: m).
+  std::span<const float> field;
+  /// The flow's velocity (rows x cols x 2; unit: m/s; Frame::velocity).
+  std::span<const float> velocity;
+  /// The dye (rows x cols, in [0, 1]; dye.hpp).
+  std::span<const float> dye;
+  /// x, y, z, speed per particle (Frame::particles).
+  std::span<const float> particles;
+};
+
+/// Plan view at time `t_s` (WaterRenderer::render_plan): the level of data.field (the height
+/// about rest with a diverging map, or the depth, sequential), the speed of data.velocity, the dye,
+/// in mm, cm or m (mm/s, cm/s, m/s) by its range; or the particle view (render_particles); titled
+/// with the scene's name and the time.
+void render_plan_view(WaterRenderer& renderer, const SceneView& view, const PlanData& data, PlanQuantity quantity,
+                      double t_s, const std::string& name, const RenderTarget& target);
 
 /// True when the solver's outputs include a velocity on the visible grid (an LBM's "u"): its
 /// frames carry it (Frame::velocity) for the speed and dye views.

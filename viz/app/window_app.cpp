@@ -190,6 +190,8 @@ void on_key(App& a, int key) {
         a.plan = true, a.plan_quantity = PlanQuantity::level;
       } else if (a.has_velocity && a.plan_quantity != PlanQuantity::dye) {
         a.plan_quantity = a.plan_quantity == PlanQuantity::level ? PlanQuantity::speed : PlanQuantity::dye;
+      } else if (a.view.particle_box && a.plan_quantity == PlanQuantity::level) {
+        a.plan_quantity = PlanQuantity::particles;  // SPH: level, then the particles from the side
       } else {
         a.plan = false;
       }
@@ -322,6 +324,11 @@ void panel_features(App& a) {
     ImGui::SameLine();
     ImGui::Combo("shows", &q, "depth\0speed\0dye\0");
     a.plan_quantity = static_cast<PlanQuantity>(q);
+  } else if (a.plan && a.view.particle_box) {
+    int q = a.plan_quantity == PlanQuantity::particles ? 1 : 0;
+    ImGui::SameLine();
+    ImGui::Combo("shows", &q, "depth\0particles\0");
+    a.plan_quantity = q == 1 ? PlanQuantity::particles : PlanQuantity::level;
   }
   ImGui::SameLine();
   ImGui::Checkbox("time interpolation", &a.interpolate);
@@ -434,7 +441,7 @@ void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   if (!a.last_screenshot.empty()) ImGui::Text("last screenshot: %s", a.last_screenshot.c_str());
   ImGui::TextWrapped(
       "left click: stone; left drag on a ship: move it; right drag: orbit; shift+right or "
-      "middle drag: pan; wheel: zoom; P: plan view; F1: hide this panel");
+      "middle drag: pan; wheel: zoom; P: plan view (again: speed, dye or particles); F1: hide this panel");
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -503,9 +510,12 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
     if (a.follow && !a.ships_drawn.empty()) follow_ship(a.view, a.ships_drawn[0], a.camera);
     renderer.plan_reserve_right = a.show_panel ? a.panel_width + 10.0 : 0.0;
     if (a.plan)
-      render_plan_view(renderer, a.view, a.field,
-                       a.has_velocity ? std::span<const float>(a.velocity) : std::span<const float>{}, a.dye->values(),
-                       a.plan_quantity, fp ? fp.newest->info.time_s : 0.0, a.scene_name, target);
+      render_plan_view(
+          renderer, a.view,
+          PlanData{a.field, a.has_velocity ? std::span<const float>(a.velocity) : std::span<const float>{},
+                   a.dye->values(),
+                   fp && fp.newest->has_particles ? fp.newest->particles.span() : std::span<const float>{}},
+          a.plan_quantity, fp ? fp.newest->info.time_s : 0.0, a.scene_name, target);
     else
       renderer.render(a.camera, a.settings, target);
     ++a.frames_drawn;

@@ -13,7 +13,7 @@
 namespace huygens {
 
 FrameRing::FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count, std::size_t slots, bool with_rate,
-                     bool with_velocity)
+                     bool with_velocity, std::size_t particle_floats)
     : rows_(rows), cols_(cols), state_(pack(kNone, kNone, 0)) {
   if (slots < kMinSlots || slots > kMaxSlots)
     throw std::invalid_argument("FrameRing: slots must be in [5, 32], got " + std::to_string(slots));
@@ -24,6 +24,7 @@ FrameRing::FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count
     f.eta = AlignedBuffer<float>(rows * cols);
     if (with_rate) f.eta_dot = AlignedBuffer<float>(rows * cols);
     if (with_velocity) f.velocity = AlignedBuffer<float>(2 * rows * cols);
+    if (particle_floats > 0) f.particles = AlignedBuffer<float>(particle_floats);
     f.stages.resize(stage_count);
   }
 }
@@ -55,7 +56,8 @@ void FrameRing::publish() {
 }
 
 void FrameRing::publish(const FrameInfo& info, std::span<const float> eta, std::span<const float> eta_dot,
-                        std::span<const StageStat> stages, std::span<const float> velocity) {
+                        std::span<const StageStat> stages, std::span<const float> velocity,
+                        std::span<const float> particles) {
   const std::size_t n = rows_ * cols_;
   if (eta.size() != n || (!eta_dot.empty() && eta_dot.size() != n) || (!velocity.empty() && velocity.size() != 2 * n))
     throw std::invalid_argument("FrameRing::publish: field size " + std::to_string(eta.size()) + "/" +
@@ -66,6 +68,11 @@ void FrameRing::publish(const FrameInfo& info, std::span<const float> eta, std::
     throw std::invalid_argument("FrameRing::publish: ring was built without eta_dot buffers");
   if (!velocity.empty() && f.velocity.size() != 2 * n)
     throw std::invalid_argument("FrameRing::publish: ring was built without velocity buffers");
+  if (!particles.empty() && f.particles.size() != particles.size())
+    throw std::invalid_argument("FrameRing::publish: " + std::to_string(particles.size()) +
+                                " particle floats for buffers of " + std::to_string(f.particles.size()));
+  f.has_particles = !particles.empty();
+  if (f.has_particles) std::memcpy(f.particles.data(), particles.data(), particles.size() * sizeof(float));
   f.has_velocity = !velocity.empty();
   if (f.has_velocity) std::memcpy(f.velocity.data(), velocity.data(), 2 * n * sizeof(float));
   f.info = info;

@@ -46,7 +46,7 @@ Runner::Runner(std::unique_ptr<Solver> solver, RunnerParams params, Factory rese
       commands_(params.command_capacity),
       refused_(params.command_capacity),
       ring_(solver_->height_rows(), solver_->height_cols(), solver_->stats().all().size(), params.frame_slots,
-            !solver_->height_rate().empty(), !velocity_output(*solver_).empty()) {
+            !solver_->height_rate().empty(), !velocity_output(*solver_).empty(), solver_->particles().size()) {
   if (!(params.time_scale > 0) || !std::isfinite(params.time_scale))
     throw std::invalid_argument("Runner: time_scale must be a positive number");
   if (!(params.poll_s > 0)) throw std::invalid_argument("Runner: poll_s must be positive");
@@ -150,7 +150,10 @@ void Runner::publish() {
   info.ship_count = static_cast<std::uint32_t>(std::min(solver_->ship_poses(info.ships), info.ships.size()));
   // (a solver with a velocity output: the frames' buffers exist, Runner's constructor)
   const std::span<const float> velocity = ring_.with_velocity() ? velocity_output(*solver_) : std::span<const float>{};
-  ring_.publish(info, solver_->height(), solver_->height_rate(), solver_->stats().all(), velocity);
+  // (a particle solver: the frames' buffers have its size, unless a reset changed the count)
+  std::span<const float> particles = ring_.particle_floats() > 0 ? solver_->particles() : std::span<const float>{};
+  if (particles.size() != ring_.particle_floats()) particles = {};
+  ring_.publish(info, solver_->height(), solver_->height_rate(), solver_->stats().all(), velocity, particles);
 }
 
 void Runner::apply_commands() {

@@ -32,6 +32,7 @@ class SphSolver final : public Solver {
     sph_heightfield_init(scene_.surface, sc.params.container_m[0], sc.params.container_m[1], hf_);
     sys_.stats()[surface_stage_].bytes = (hf_.height.size() + hf_.normal.size()) * sizeof(float);
     pos_.assign(sys_.count() * 3, 0.f);
+    particles_.assign(sys_.count() * 4, 0.f);
   }
   MemoryEstimate memory() const override { return sph_memory(scene_); }
 
@@ -47,6 +48,15 @@ class SphSolver final : public Solver {
     auto h = height();
     return {OutputField{"pos", {sys_.count(), 3}, std::span<const float>(pos_)},
             OutputField{"eta", {hf_.rows, hf_.cols}, h}};
+  }
+
+  std::span<const float> particles() override {
+    const auto x = sys_.x(), y = sys_.y(), z = sys_.z(), u = sys_.vx(), v = sys_.vy(), w = sys_.vz();
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      float* p = &particles_[4 * i];
+      p[0] = x[i], p[1] = y[i], p[2] = z[i], p[3] = std::sqrt(u[i] * u[i] + v[i] * v[i] + w[i] * w[i]);
+    }
+    return particles_;
   }
 
   nlohmann::json meta() const override {
@@ -141,6 +151,9 @@ class SphSolver final : public Solver {
       r.obstacles.push_back(ro);
     }
     r.frame_dt_s = 1.0 / 60.0;
+    const auto& box = sys_.params().container_m;
+    r.particle_box_m = std::array<double, 3>{box[0], box[1], box[2]};
+    r.particle_spacing_m = sys_.params().spacing_m;
     return r;
   }
 
@@ -149,6 +162,7 @@ class SphSolver final : public Solver {
   SphSystem sys_;
   SphHeightfield hf_;
   std::vector<float> pos_;
+  std::vector<float> particles_;  // x, y, z, |v| per particle (particles())
   int surface_stage_ = -1;
   bool surface_valid_ = false;
 };

@@ -79,6 +79,11 @@ struct Frame {
   /// Horizontal velocity (u, v) per point, rows x cols x 2, C order (unit: m/s); for flow
   /// visualisation (dye, speed maps); meaningful only when has_velocity.
   AlignedBuffer<float> velocity;
+  /// True when `particles` holds the solver's particles (Solver::particles()).
+  bool has_particles = false;
+  /// x, y, z (unit: m) and speed (unit: m/s) per particle, 4 floats each; meaningful only when
+  /// has_particles.
+  AlignedBuffer<float> particles;
   /// Per-stage counters, one per stage of the solver's StageStats, same order.
   std::vector<StageCounter> stages;
 };
@@ -116,10 +121,11 @@ class FrameRing {
   static constexpr std::size_t kMaxSlots = 32;
 
   /// Allocates `slots` frames of rows x cols (with an eta_dot buffer when `with_rate`, a
-  /// velocity buffer of rows x cols x 2 when `with_velocity`) and `stage_count` counters each.
-  /// Throws std::invalid_argument for slots outside [5, 32].
+  /// velocity buffer of rows x cols x 2 when `with_velocity`, a particle buffer of
+  /// `particle_floats` floats) and `stage_count` counters each. Throws std::invalid_argument for
+  /// slots outside [5, 32].
   FrameRing(std::size_t rows, std::size_t cols, std::size_t stage_count, std::size_t slots = kMinSlots,
-            bool with_rate = true, bool with_velocity = false);
+            bool with_rate = true, bool with_velocity = false, std::size_t particle_floats = 0);
   FrameRing(const FrameRing&) = delete;
   FrameRing& operator=(const FrameRing&) = delete;
 
@@ -128,6 +134,8 @@ class FrameRing {
   std::size_t slots() const { return frames_.size(); }
   /// The frames have velocity buffers.
   bool with_velocity() const { return !frames_.empty() && frames_[0].velocity.size() > 0; }
+  /// Floats of each frame's particle buffer (0: none).
+  std::size_t particle_floats() const { return frames_.empty() ? 0 : frames_[0].particles.size(); }
 
   // ---- producer (one thread) ----
   /// A free slot to fill (never blocks; the same slot until publish()).
@@ -135,11 +143,12 @@ class FrameRing {
   /// Publishes the slot begin_write() returned as the newest frame (sets its seq).
   void publish();
   /// begin_write + one memcpy per field + publish. `eta_dot` may be empty (has_rate = false),
-  /// `velocity` too (has_velocity = false); stage counters beyond the ring's stage_count are not
-  /// copied. Throws std::invalid_argument, before touching the ring, when a field has the wrong
+  /// `velocity` and `particles` too (has_velocity / has_particles = false); stage counters beyond the ring's
+  /// stage_count are not copied. Throws std::invalid_argument, before touching the ring, when a field has the wrong
   /// size or the ring has no buffer for it.
   void publish(const FrameInfo& info, std::span<const float> eta, std::span<const float> eta_dot,
-               std::span<const StageStat> stages = {}, std::span<const float> velocity = {});
+               std::span<const StageStat> stages = {}, std::span<const float> velocity = {},
+               std::span<const float> particles = {});
   /// Frames published so far (producer's count; readable from any thread).
   std::uint64_t published() const { return published_.load(std::memory_order_acquire); }
 

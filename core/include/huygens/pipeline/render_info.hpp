@@ -118,6 +118,11 @@ struct RenderInfo {
   std::vector<RenderObstacle> obstacles;
   /// Hull i belongs to ship i of the frames.
   std::vector<RenderHull> hulls;
+  /// A particle solver's container, the box from (0, 0, 0) to box_m (unit: m): the particle
+  /// view's extent (Solver::particles()); nullopt for grid solvers.
+  std::optional<std::array<double, 3>> particle_box_m;
+  /// The particles' spacing at rest (unit: m): the particle view draws discs of this diameter.
+  double particle_spacing_m = 0.0;
   /// Full step (unit: s); 0 when the step is adaptive (SPH).
   double dt_s = 0.0;
   /// Displayed frames per full step (unit: 1; Solver::display_per_step()).

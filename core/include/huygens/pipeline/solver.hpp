@@ -56,6 +56,10 @@ class Solver {
   /// Time derivative of height() (unit: m/s), same shape, for the renderer's cubic time
   /// interpolation; empty when the solver has none (the default).
   virtual std::span<const float> height_rate() { return {}; }
+  /// A particle solver's particles for the viewer's particle view: x, y, z (unit: m) and speed
+  /// |v| (unit: m/s), 4 floats per particle, in storage the solver sized at construction (filled
+  /// on each call, valid until the next step; the same size every call). Empty for grid solvers.
+  virtual std::span<const float> particles() { return {}; }
   /// Applies a UI command (drop, ship target, parameter, feature) between steps, never inside
   /// step(); returns false when the solver does not support it (the default: none).
   virtual bool apply(const Command&) { return false; }

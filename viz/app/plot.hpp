@@ -1,0 +1,57 @@
+#pragma once
+// Plots drawn by the viewer for people who measure (docs/viz.md "Plan view", "Particle view"): an
+// image of exact values placed in a rectangle that keeps the physical aspect, axes in metres, a
+// colour bar in physical units and a title. The plan view draws the grid's values seen from
+// above; the particle view draws a particle solver's particles seen from the side, coloured by
+// speed.
+#include <glm/glm.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "huygens/pipeline/render_info.hpp"
+#include "renderer.hpp"
+
+namespace huygens {
+
+/// The plot's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
+glm::vec3 plan_colour(double t, bool diverging);
+
+/// A "nice" step (1, 2 or 5 times a power of ten) giving about `n` intervals over `range`.
+double nice_step(double range, int n);
+
+/// What a plot shows: the image's extent in metres, the axis names, and the colour bar.
+struct PlotSpec {
+  /// Lower-left corner of the image and its size (unit: m).
+  double x0_m = 0, y0_m = 0, width_m = 1, height_m = 1;
+  /// Axis names, e.g. "x (m)" and "y (m)".
+  std::string x_label = "x (m)", y_label = "y (m)";
+  /// The colour bar: quantity, unit, range [lo, hi] (unit: the plot's unit), tick step, map.
+  std::string quantity, unit;
+  double lo = 0, hi = 1, step = 0.2;
+  bool diverging = false;
+  std::string title;
+};
+
+/// Where a plot goes in a W x H image (pixels from the top-left corner): the rectangle keeping
+/// the aspect of width_m x height_m, leaving `reserve_right` pixels free on the right.
+WaterRenderer::PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right);
+
+/// The colour bar's range of values in [lo, hi] rounded out to nice ticks (symmetric about 0
+/// when `diverging`); sets spec.lo, hi and step.
+void plot_range(double lo, double hi, bool diverging, PlotSpec& spec);
+
+/// Draws the plot into `target`: white background, the RGBA image (iw x ih, row 0 at the bottom)
+/// stretched over `rect`, the frame, axes with ticks in metres, the colour bar and the title.
+void draw_plot(const WaterRenderer::PlanPlot& rect, const PlotSpec& spec, const std::vector<std::uint8_t>& rgba, int iw,
+               int ih, const RenderTarget& target);
+
+/// A particle solver's particles (x, y, z, speed per particle: Solver::particles()) seen from the
+/// side (-y), as discs of `radius_m` coloured by speed, nearer particles over farther ones and
+/// shaded darker with distance, the obstacles as grey silhouettes at their depth, inside the
+/// container box (0, 0, 0)-(box_m) drawn as the plot's frame. Returns the plot's rectangle.
+WaterRenderer::PlanPlot render_particles(std::span<const float> particles, const std::array<double, 3>& box_m,
+                                         double radius_m, std::span<const RenderObstacle> obstacles,
+                                         const std::string& title, double reserve_right, const RenderTarget& target);
+
+}  // namespace huygens
