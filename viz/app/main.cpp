@@ -21,6 +21,7 @@
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "scene_view.hpp"
 
@@ -251,10 +252,13 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
 // The viewer's memory beyond the solver's: the frame ring's heights and rates, the surface and
 // caustic meshes and the GL buffers (llvmpipe keeps its own copies), about 96 bytes per visible
 // cell (measured: 452 MB more peak RSS for 1024^2 -> 2048^2 headless), plus ~150 MB of GL
-// driver and program.
+// driver and program; a particle solver's frames also carry 16 bytes per particle in each of
+// the ring's slots, plus the solver's own copy (Solver::particles()).
 MemoryEstimate viewer_memory(const ViewerSolver& vs) {
   MemoryEstimate m = vs.solver->memory();
   m.add("viewer", static_cast<std::uint64_t>(vs.info.grid.rows) * vs.info.grid.cols * 96 + (150ull << 20));
+  if (const std::size_t floats = vs.solver->particles().size(); floats > 0)
+    m.add("particle frames", (RunnerParams{}.frame_slots + 1) * floats * sizeof(float));
   if (m.size_key.empty()) m.size_key = "the scene's grid";
   return m;
 }

@@ -32,7 +32,6 @@ class SphSolver final : public Solver {
     sph_heightfield_init(scene_.surface, sc.params.container_m[0], sc.params.container_m[1], hf_);
     sys_.stats()[surface_stage_].bytes = (hf_.height.size() + hf_.normal.size()) * sizeof(float);
     pos_.assign(sys_.count() * 3, 0.f);
-    particles_.assign(sys_.count() * 4, 0.f);
   }
   MemoryEstimate memory() const override { return sph_memory(scene_); }
 
@@ -50,7 +49,10 @@ class SphSolver final : public Solver {
             OutputField{"eta", {hf_.rows, hf_.cols}, h}};
   }
 
+  // made on the first call (a viewer's runner, when it is built), so a run without a viewer
+  // does not pay the 16 bytes per particle (huygens-viz counts them in its memory estimate)
   std::span<const float> particles() override {
+    if (particles_.empty()) particles_.assign(4 * sys_.count(), 0.0f);
     const auto x = sys_.x(), y = sys_.y(), z = sys_.z(), u = sys_.vx(), v = sys_.vy(), w = sys_.vz();
     for (std::size_t i = 0; i < x.size(); ++i) {
       float* p = &particles_[4 * i];
