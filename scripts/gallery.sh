@@ -25,6 +25,7 @@ shots=(
   "sph_dam_break 0.15 particles"
   "dam_break 10 perspective,plan,dye"
   "channel 20 perspective,plan,speed,dye"
+  "flood 12 perspective,plan"
 )
 for shot in "${shots[@]}"; do
   read -r scene t views <<<"$shot"

@@ -1,12 +1,24 @@
 // (#version and ground_common.glsl are prepended by the renderer)
 // The ground seen directly (no water in between): the floor, or the pool deck around the water
 // (pale stone, lit by the sun without caustics).
+// Terrain (a bed) is lit by its slope: n . sun relative to a flat floor's, n from the screen-space
+// derivatives of the position.
 in vec2 v_xy;
+in vec3 v_p;
 in float v_deck;
 out vec4 o_color;
+uniform int u_terrain;
 void main() {
-  if (v_deck > 0.5)
+  if (v_deck > 0.5) {
     o_color = vec4(deck_colour(v_xy), 1.0);
-  else
-    o_color = vec4(lit_ground(v_xy), 1.0);
+    return;
+  }
+  vec3 c = lit_ground(v_xy);
+  if (u_terrain != 0) {
+    vec3 n = normalize(cross(dFdx(v_p), dFdy(v_p)));
+    if (n.z < 0.0) n = -n;
+    vec3 s = normalize(u_sun_dir);
+    c *= clamp(max(dot(n, s), 0.0) / max(s.z, 0.05), 0.35, 1.4);
+  }
+  o_color = vec4(c, 1.0);
 }

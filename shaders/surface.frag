@@ -16,6 +16,9 @@ uniform sampler2D u_diffs;  // RG32F: eta_u, eta_v at the grid points
 uniform sampler2D u_coef;   // RGBA32F: c, d, e, f at the grid points
 uniform sampler2D u_dye;    // R32F: dye in [0, 1] at the grid points (u_use_dye)
 uniform int u_use_dye;
+uniform sampler2D u_bed;    // R32F: the bed's height at the grid points (u_use_bed; m, drawn frame)
+uniform int u_use_bed;
+uniform float u_dry_depth;  // water thinner than this over a bed is not drawn (m)
 uniform vec3 u_dye_colour;
 // (u_eye, u_ortho, u_view_dir, u_index, u_water_colour, u_sky*, u_sun_dir, u_deep: ground_common.glsl)
 uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
@@ -38,12 +41,18 @@ void main() {
   vec3 n = normalize(vec3(-d / (2.0 * u_dx), 1.0));
   vec3 dir = u_ortho != 0 ? u_view_dir : normalize(v_pos - u_eye);
 
+  // over a bed: dry land is not water; the floor is the bed here (locally flat), refracted exactly
+  float floor_z = u_ground_z;
+  if (u_use_bed != 0) {
+    floor_z = texture(u_bed, tc).r;
+    if (v_pos.z - floor_z < u_dry_depth) discard;
+  }
   vec2 G;
-  if (u_exact != 0) {
+  if (u_exact != 0 || u_use_bed != 0) {
     vec3 nn = dot(n, dir) > 0.0 ? -n : n;
     vec3 t = refract(dir, nn, 1.0 / u_index);
     t.z = min(t.z, -1e-6);
-    G = v_pos.xy + t.xy * ((u_ground_z - v_pos.z) / t.z);
+    G = v_pos.xy + t.xy * ((floor_z - v_pos.z) / t.z);
   } else {
     vec4 c = texture(u_coef, tc);
     G = v_base + vec2(c.x * d.x + c.y * d.y, c.z * d.x + c.w * d.y);
@@ -51,7 +60,7 @@ void main() {
 
   vec3 refr = u_deep != 0 ? deep_water_colour(n) : seen_under_water(G);
   if (u_absorption != 0 && u_deep == 0) {
-    float path = length(vec3(G, u_ground_z) - v_pos);
+    float path = length(vec3(G, floor_z) - v_pos);
     vec3 T = exp(-u_absorb * path);
     refr = refr * T + u_water_colour * (1.0 - T);
   }

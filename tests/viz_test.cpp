@@ -152,6 +152,63 @@ TEST_F(VizRender, FlatSurfaceAtIndexOneShowsTheGroundUnchanged) {
   }
 }
 
+// Water over terrain (WaterRenderer::set_bed): a bed ramp from 1 m below the rest level to 0.5 m
+// above it along x, water at the rest level where the bed is below it and none (the height is the
+// bed) where it is above. Seen from above with white opaque water and black ground, the middle
+// row of the image is white over the wet two thirds (x below the shoreline) and black over the
+// dry third, with one transition; all dry shows no water at all, all flooded only water.
+TEST_F(VizRender, WaterOverTerrainLeavesDryLandVisible) {
+  const GridPlacement g = test_grid();
+  std::vector<float> bed(kN * kN), shore(kN * kN), dry(kN * kN), flooded(kN * kN, 1.0f);
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j) {
+      const std::size_t k = i * kN + j;
+      bed[k] = static_cast<float>(-1.0 + 1.5 * j / (kN - 1.0));
+      shore[k] = std::max(bed[k], 0.0f);
+      dry[k] = bed[k];
+    }
+  WaterRenderer r(g, -kDepth, 1);
+  r.set_bed(bed);
+  OrbitCamera cam = default_camera(g.x0, g.y0, kWidth, kWidth);
+  cam.pitch = 1.5;  // nearly straight down
+  cam.distance = 6.0;
+  RenderSettings m = plain_settings();
+  m.pool_deck = false;
+  m.ground = GroundPattern::uniform;
+  m.ground_uniform = glm::vec3(0.0f);
+  m.absorption = true;
+  m.absorb_rgb = glm::vec3(1e4f);  // opaque water of the water colour
+  m.water_colour = glm::vec3(1.0f);
+  const int W = 256, H = 256;
+  auto row_counts = [&](const std::vector<float>& heights, int& white, int& black, int& transitions) {
+    r.set_heights(heights);
+    const gl::Image8 img = render(r, cam, m, W, H);
+    white = black = transitions = 0;
+    int last = -1;
+    for (int x = 0; x < W; ++x) {
+      const double v = channel(img, x, H / 2, 0);
+      const int now = v > 0.5 ? 1 : v < 0.1 ? 0 : -1;
+      if (now < 0) continue;
+      (now ? white : black) += 1;
+      if (last >= 0 && now != last) ++transitions;
+      last = now;
+    }
+    if (transitions != 1) write_debug("terrain.png", img);
+  };
+  int white, black, transitions;
+  row_counts(shore, white, black, transitions);
+  std::printf("terrain: %d water and %d dry-land pixels in the middle row, %d transitions\n", white, black,
+              transitions);
+  EXPECT_EQ(transitions, 1) << "one shoreline";
+  EXPECT_NEAR(static_cast<double>(white) / (white + black), 2.0 / 3.0, 0.05)
+      << "the shoreline where the bed meets the rest level";
+  row_counts(dry, white, black, transitions);
+  EXPECT_EQ(white, 0) << "dry land everywhere: no water drawn";
+  row_counts(flooded, white, black, transitions);
+  EXPECT_GT(white, W / 3);
+  EXPECT_EQ(transitions, 0) << "all flooded: water only";
+}
+
 // Looking straight down through still water of depth d from height H, the ground appears
 // at depth d/n: a square of the ground is magnified by M = (H + d) / (H + d/n) (paraxial;
 // the square subtends < 4 degrees, where the exact value differs by < 0.1 %).

@@ -216,6 +216,7 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
       view.grid.rows, view.grid.cols, subsample, step_ms, vs.info.display_per_step);
   WaterRenderer renderer(view.grid, view.ground_z, subsample);
   renderer.set_height_offset(view.height_offset);
+  renderer.set_bed(view.bed);
   renderer.set_obstacles(view.obstacles);
   std::array<ShipState, kMaxFrameShips> states{};
   std::vector<ShipPose> ships;

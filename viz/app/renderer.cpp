@@ -273,10 +273,11 @@ WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int sub
 WaterRenderer::~WaterRenderer() {
   glUseProgram(0);  // a deleted program must not stay current (others restore "the previous program")
   caustics_.reset();
-  GLuint bufs[] = {surface_static_vbo_, surface_h_vbo_, surface_lin_vbo_, surface_ibo_, ground_vbo_, ship_vbo_};
-  glDeleteBuffers(6, bufs);
-  GLuint vaos[] = {surface_vao_, ground_vao_, ship_vao_, empty_vao_};
-  glDeleteVertexArrays(4, vaos);
+  GLuint bufs[] = {surface_static_vbo_, surface_h_vbo_, surface_lin_vbo_, surface_ibo_,
+                   ground_vbo_,         ship_vbo_,      terrain_vbo_};
+  glDeleteBuffers(7, bufs);
+  GLuint vaos[] = {surface_vao_, ground_vao_, ship_vao_, empty_vao_, terrain_vao_};
+  glDeleteVertexArrays(5, vaos);
   if (GLenum e = glGetError(); e != GL_NO_ERROR) std::fprintf(stderr, "~WaterRenderer: GL error 0x%04X\n", e);
 }
 
@@ -305,6 +306,32 @@ void WaterRenderer::set_dye(std::span<const float> dye) {
     dye_tex_.set_filter(GL_LINEAR, GL_LINEAR);
   }
   dye_tex_.upload(dye.data(), GL_RED, GL_FLOAT);
+}
+
+void WaterRenderer::set_bed(std::span<const float> bed) {
+  has_bed_ = bed.size() == grid_.rows * grid_.cols;
+  if (!has_bed_) return;
+  std::vector<float> z(bed.begin(), bed.end());
+  for (float& b : z) b -= offset_;
+  bed_tex_ = gl::Texture(static_cast<int>(grid_.cols), static_cast<int>(grid_.rows), GL_R32F);
+  bed_tex_.set_filter(GL_LINEAR, GL_LINEAR);
+  bed_tex_.upload(z.data(), GL_RED, GL_FLOAT);
+  // the terrain: the surface mesh's points at the bed's height, the surface's triangles
+  std::vector<float> xyz;
+  for (std::size_t l = 0; l < layout_.vertex_rows(); ++l)
+    for (std::size_t k = 0; k < layout_.vertex_cols(); ++k)
+      xyz.insert(xyz.end(),
+                 {static_cast<float>(grid_.x(layout_.col_idx[k])), static_cast<float>(grid_.y(layout_.row_idx[l])),
+                  z[layout_.row_idx[l] * grid_.cols + layout_.col_idx[k]]});
+  if (terrain_vao_ == 0) glGenVertexArrays(1, &terrain_vao_), glGenBuffers(1, &terrain_vbo_);
+  glBindVertexArray(terrain_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, terrain_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(xyz.size() * sizeof(float)), xyz.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, surface_ibo_);
+  glBindVertexArray(0);
+  gl::check("WaterRenderer::set_bed");
 }
 
 void WaterRenderer::update_linearisation(const OrbitCamera& camera, float index) {
@@ -367,8 +394,11 @@ void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
   fill_from_.clear();
   if (obstacles.empty()) return;
   // solids: from the floor (or the obstacle's bottom) to its top, or for a 2D solver's
-  // obstacle (infinite z) to a quarter of the depth above the water at rest
-  const double floor_z = ground_z_, rise = 0.25 * std::abs(ground_z_);
+  // obstacle (infinite z) to a quarter of the depth above the water at rest; over terrain
+  // (set_bed first), where water runs deeper than the rest level, at least 3 % of the region's
+  // size (houses in a flood)
+  const double extent = std::max(grid_.cols, grid_.rows) * grid_.dx;
+  const double floor_z = ground_z_, rise = std::max(0.25 * std::abs(ground_z_), has_bed_ ? 0.03 * extent : 0.0);
   auto zr = [&](double z, double fallback) { return std::isfinite(z) ? z - offset_ : fallback; };
   auto tri = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
     for (const glm::dvec3& p : {a, b, c})
@@ -561,6 +591,10 @@ void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings
   glUniform3fv(p.loc("u_dye_colour"), 1, glm::value_ptr(s.dye_colour));
   if (dye) dye_tex_.bind(4);
   coef_tex_.bind(3);
+  glUniform1i(p.loc("u_use_bed"), has_bed_ ? 1 : 0);
+  glUniform1i(p.loc("u_bed"), 5);
+  glUniform1f(p.loc("u_dry_depth"), kDryDepth);
+  if (has_bed_) bed_tex_.bind(5);
   glUniform1i(p.loc("u_diffs"), 2);
   glUniform1i(p.loc("u_coef"), 3);
   glUniform2f(p.loc("u_grid_origin"), static_cast<float>(grid_.x0), static_cast<float>(grid_.y0));
@@ -576,6 +610,20 @@ void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings
   glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
   glBindVertexArray(surface_vao_);
   glDrawElements(GL_TRIANGLES, surface_index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+// The bed as terrain (set_bed), lit with its slope, and the deck around it (no flat floor).
+void WaterRenderer::draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
+  set_common_uniforms(ground_prog_, s, camera);
+  glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform1i(ground_prog_.loc("u_terrain"), 1);
+  glBindVertexArray(terrain_vao_);
+  glDrawElements(GL_TRIANGLES, surface_index_count_, GL_UNSIGNED_INT, nullptr);
+  glUniform1i(ground_prog_.loc("u_terrain"), 0);
+  if (s.pool_deck) {
+    glBindVertexArray(ground_vao_);
+    glDrawArrays(GL_TRIANGLES, 12, ground_vertex_count_ - 12);
+  }
 }
 
 // The hulls at their poses (Wigley hulls below the waterline).
@@ -648,9 +696,12 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   lap(times.ship);
   // ground seen directly, drawn last so the depth test skips what the water and ships cover;
   // deep water has no floor (the background is the clear colour)
-  if (!s.deep_water || s.pool_deck) {
+  if (has_bed_) {
+    draw_terrain(camera, s, mvp);
+  } else if (!s.deep_water || s.pool_deck) {
     set_common_uniforms(ground_prog_, s, camera);
     glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+    glUniform1i(ground_prog_.loc("u_terrain"), 0);
     glBindVertexArray(ground_vao_);
     if (s.pool_deck)
       glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,

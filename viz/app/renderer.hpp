@@ -182,6 +182,13 @@ class WaterRenderer {
   void set_ships(std::span<const ShipPose> ships) { ships_.assign(ships.begin(), ships.end()); }
   /// Dye per grid point (rows x cols, in [0, 1]; dye.hpp) that tints the water; empty = none.
   void set_dye(std::span<const float> dye);
+  /// The bed under the water (rows x cols, m, the heights' frame before the offset; RenderInfo::
+  /// bed_m) for shallow water over terrain: drawn as lit terrain, the water refracted down to it
+  /// and left out where it is thinner than kDryDepth (dry land shows). Empty = a flat floor.
+  /// Call after set_height_offset and before set_obstacles.
+  void set_bed(std::span<const float> bed);
+  /// Water thinner than this is not drawn over a bed (unit: m).
+  static constexpr float kDryDepth = 0.002f;
   /// Obstacles: drawn as solids, and the heights inside them (a solver leaves them dry or
   /// empty) replaced by the nearest water point's, so the surface closes around them.
   void set_obstacles(std::span<const RenderObstacle> obstacles);
@@ -209,6 +216,7 @@ class WaterRenderer {
   void update_linearisation(const OrbitCamera& camera, float index);
   void build_ground_texture(const RenderSettings& s);
   void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void tone_map(const RenderSettings& s, const RenderTarget& target);
   void set_common_uniforms(const gl::Program& p, const RenderSettings& s, const OrbitCamera& cam) const;
@@ -221,8 +229,9 @@ class WaterRenderer {
   std::vector<ShipPose> ships_;
 
   gl::Program surface_prog_, ground_prog_, ship_prog_;
-  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_;
-  bool has_dye_ = false;
+  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_, bed_tex_;
+  bool has_dye_ = false, has_bed_ = false;
+  GLuint terrain_vao_ = 0, terrain_vbo_ = 0;
   GLuint surface_vao_ = 0, surface_static_vbo_ = 0, surface_h_vbo_ = 0, surface_lin_vbo_ = 0, surface_ibo_ = 0;
   GLsizei surface_index_count_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0;

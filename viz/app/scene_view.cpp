@@ -47,6 +47,9 @@ SceneView scene_view(const RenderInfo& info) {
   v.hulls = info.hulls;
   v.obstacles = info.obstacles;
   v.particle_box = info.particle_box_m;
+  if (!info.bed_m.empty() &&
+      std::any_of(info.bed_m.begin(), info.bed_m.end(), [&](float b) { return b != info.bed_m[0]; }))
+    v.bed = info.bed_m;
   v.particle_spacing = info.particle_spacing_m;
   const RenderRequest& rq = info.request;
   if (rq.look) {
@@ -148,6 +151,12 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
     case Look::shallow:
     case Look::sph:
       s.pool_deck = !view.slab;  // a slab is seen from the side: its profile, not a pool
+      if (!view.bed.empty()) {
+        // water over terrain: shaded by its depth (absorption), dry land shows; no dye tint
+        // (--view dye shows it) and no caustics (their mesh assumes a flat floor)
+        s.dye = false;
+        s.caustics = false;
+      }
       break;
   }
   s.clear_colour = s.sky_colour;
@@ -221,11 +230,14 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
     renderer.render_plan(dye, "dye", 1.0, "1", false, title, target);
     return;
   }
-  // a height about rest (m); LBM/SPH: the depth above the bed (the height itself on a flat bed)
+  // a height about rest (m); LBM/SPH: the depth above the bed (the height itself on a flat bed,
+  // the surface minus the bed over terrain)
   v.assign(field.begin(), field.end());
   double range = 0.0;
   if (!view.plan_depth)
     for (float& x : v) x -= static_cast<float>(view.height_offset);
+  else if (view.bed.size() == v.size())
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = std::max(0.0f, v[k] - view.bed[k]);
   for (float x : v) range = std::max(range, static_cast<double>(std::abs(x)));
   const double scale = range < 0.02 ? 1000.0 : range < 2.0 ? 100.0 : 1.0;
   const std::string unit = scale == 1000.0 ? "mm" : scale == 100.0 ? "cm" : "m";

@@ -34,6 +34,9 @@ struct SceneView {
   /// A particle solver's container (0, 0, 0)-(particle_box) and particle spacing (unit: m;
   /// RenderInfo): the particle view's extent and disc size; nullopt for grid solvers.
   std::optional<std::array<double, 3>> particle_box;
+  /// The bed (rows x cols, m; RenderInfo::bed_m) when it is not flat: drawn as terrain
+  /// (WaterRenderer::set_bed); empty for a flat floor.
+  std::vector<float> bed;
   double particle_spacing = 0.0;
   /// The kind of picture (RenderInfo's request, else from what the solver is: a height above
   /// a floor with an adaptive step is SPH, with a fixed step shallow water (LBM); an elevation
