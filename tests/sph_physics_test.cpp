@@ -13,8 +13,8 @@ using huygens::test::expect_rows_pass;
 
 TEST(SphPhysics, HydrostaticColumnShort) {
   // 6 x 6 x 12 column, settled 0.5 s damped + 5 s free, held 1 s (validate: 6 x 6 x 16, held 10 s):
-  // bottom pressure and pressure gradient within 2 % of the weight per area and rho0 g (mirror-image
-  // walls with the hydrostatic image pressure, gradient correction), density error below 1 %, max
+  // bottom pressure and pressure gradient within 2 % of the weight per area and rho0 g (boundary
+  // particles with Adami's extrapolated wall pressure, gradient correction), density error below 1 %, max
   // speed below 1 % of sqrt(g H).
   expect_rows_pass(sph_hydrostatic_rows(6, 12, 0.5, 5.0, 1.0));
 }
@@ -30,3 +30,8 @@ TEST(SphPhysics, DamBreakFrontCoarse) {
 // when the surge hits it (t ~ 0.19 s): 1.09 here with the impact viscosity, 1.49 without it. The bound
 // is not met everywhere (12 and 24 across in an 8a box: 1.51, 1.54; docs/sph.md).
 TEST(SphPhysics, NoLeakageShort) { expect_rows_pass(sph_leakage_rows(8, 1.0, 4.f)); }
+
+// Boundary particles of every obstacle type keep the fluid out without a clamp: a dam break at
+// dx = 0.02 m onto a wedge read as an OBJ mesh, a sphere, a cylinder and a box, 0.5 s (validate:
+// dx = 0.01 m, 1 s).
+TEST(SphPhysics, NoParticleEntersAnObstacleShort) { expect_rows_pass(sph_obstacle_rows(0.02f, 0.5)); }
