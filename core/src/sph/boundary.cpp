@@ -187,7 +187,8 @@ bool SphObstacle::blocks(float x, float y, float z, float margin) const {
       if (!(x > min_m[0] - e && x < max_m[0] + e && y > min_m[1] - e && y < max_m[1] + e && z > min_m[2] - e &&
             z < max_m[2] + e))
         return false;
-      return mesh_inside(*mesh, {x, y, z}) || mesh_dist2(*mesh, {x, y, z}) < e * e;
+      if (e >= 0.f) return mesh_inside(*mesh, {x, y, z}) || mesh_dist2(*mesh, {x, y, z}) < e * e;
+      return mesh_inside(*mesh, {x, y, z}) && mesh_dist2(*mesh, {x, y, z}) > e * e;
   }
   return false;
 }

@@ -51,7 +51,8 @@ struct SphObstacle {
   float z0_m = 0.f, z1_m = 0.f;
   /// Mesh, placed (unit: m); min_m / max_m hold its bounding box.
   std::shared_ptr<const SphMesh> mesh;
-  /// True where (x, y, z) lies inside the obstacle or within `margin` of it (unit: m).
+  /// True where (x, y, z) lies inside the obstacle or within `margin` of it; a negative margin: deeper
+  /// than -margin inside (unit: m).
   bool blocks(float x, float y, float z, float margin) const;
 };
 
