@@ -123,6 +123,9 @@ TEST(SphScene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "sphere", "centre_m": [0.05, 0.05], "radius_m": 0.01} ])")),
             "$.sph.obstacles[0].centre_m");
   EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "mesh"} ])")), "$.sph.obstacles[0].file");
+  // a surface that would take more than 2e7 boundary particles is refused before sampling
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "sphere", "centre_m": [0, 0, 0], "radius_m": 1000} ])")),
+            "$.sph.obstacles");
   // unstable settings are refused before the run, with the reason
   EXPECT_EQ(path_of(with(R"(, "artificial_viscosity": 0.001)")), "$.sph.artificial_viscosity");
   EXPECT_EQ(path_of(with(R"(, "sound_speed_mps": 1.0)")), "$.sph.sound_speed_mps");

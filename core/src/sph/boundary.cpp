@@ -109,7 +109,7 @@ SphMesh sph_read_obj(const std::string& file) {
 
 namespace {
 
-// Moeller-Trumbore: does the ray o + t d (t > 0) cross triangle (a, b, c)?
+// Moeller and Trumbore 1997: does the ray o + t d (t > 0) cross triangle (a, b, c)?
 bool ray_hits(const V3& o, const V3& d, const V3& a, const V3& b, const V3& c) {
   const V3 e1 = sub(b, a), e2 = sub(c, a), pv = cross(d, e2);
   const float det = dot(e1, pv);

@@ -325,6 +325,38 @@ SphSurfaceParams parse_surface(const JsonIn& s, const SphParams& p) {
 
 }  // namespace
 
+namespace {
+
+// Boundary particles a set-up samples, from the surface areas (unit: 1): layers per dx^2 of every
+// wall and obstacle surface, meshes at up to 3 points per dx^2 (their sub-triangle sampling).
+double boundary_estimate(const SphParams& p) {
+  const double dx = p.spacing_m, K = sph_boundary_layers(p.support(), p.spacing_m), pi = 3.14159265358979;
+  const auto& c = p.container_m;
+  double area = 2.0 * (double(c[0]) * c[1] + double(c[1]) * c[2] + double(c[0]) * c[2]);
+  for (const auto& o : p.obstacles) {
+    const double R = o.radius_m;
+    if (o.type == SphObstacle::Type::box) {
+      const double e[3] = {double(o.max_m[0]) - o.min_m[0], double(o.max_m[1]) - o.min_m[1],
+                           double(o.max_m[2]) - o.min_m[2]};
+      area += 2.0 * (e[0] * e[1] + e[1] * e[2] + e[0] * e[2]);
+    } else if (o.type == SphObstacle::Type::cylinder) {
+      area += 2.0 * pi * R * (double(o.z1_m) - o.z0_m) + 2.0 * pi * R * R;
+    } else if (o.type == SphObstacle::Type::sphere) {
+      area += 4.0 * pi * R * R;
+    } else {
+      for (const auto& t : o.mesh->triangles) {
+        const auto &a = o.mesh->vertices[t[0]], &b = o.mesh->vertices[t[1]], &d = o.mesh->vertices[t[2]];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        area += 3.0 * 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      }
+    }
+  }
+  return area * K / (dx * dx);
+}
+
+}  // namespace
+
 SphScene parse_sph_scene(const Scene& scene) {
   const JsonIn root = scene.root();
   root.allow_only({"solver", "sph", "description"});
@@ -342,6 +374,11 @@ SphScene parse_sph_scene(const Scene& scene) {
   check_sound_speed(s, p);
   for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o, scene.file));
   parse_time(s, p);
+  const double nb = boundary_estimate(p);
+  if (nb > 2e7)
+    s.fail(p.obstacles.empty() ? "container_m" : "obstacles",
+           "the walls and obstacles would take about " + std::to_string(long(nb)) +
+               " boundary particles; more than 2e7 is refused (memory)");
   out.surface = parse_surface(s, p);
   require_memory(sph_memory(out));
   return out;
@@ -364,6 +401,8 @@ MemoryEstimate sph_memory(const SphScene& scene) {
   m.add("particles", static_cast<std::uint64_t>(particles * (22 * 4 + 2 * 4 + 3 * 4)));
   m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4));
   m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4));
+  // 9 float arrays per boundary particle (system.hpp) and the 7 of its sample
+  m.add("boundary particles", static_cast<std::uint64_t>(boundary_estimate(p) * 16 * 4));
   return m;
 }
 
