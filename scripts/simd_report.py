@@ -5,9 +5,9 @@ usage: simd_report.py OBJECT_OR_ARCHIVE [--min-bits 128|256|512] [--objdump objd
 
 Disassembles the object (or static library, e.g. libhuygens_core.a) with objdump and, for the
 functions of the SPH density and force passes (SphSystem::compute_density / compute_forces and
-their OpenMP bodies, and the range sums sph_poly6_range / sph_force_range, kept out of line),
-counts the single-precision arithmetic instructions (add, sub, mul, fused multiply-add, min,
-max) by register width: scalar (ss), 128-bit (xmm ps), 256-bit (ymm ps), 512-bit (zmm ps); and
+their OpenMP bodies, and the range sums sph_poly6_range / sph_force_range / sph_wall_range, kept
+out of line), counts the single-precision arithmetic instructions (add, sub, mul, fused
+multiply-add, min, max) by register width: scalar (ss), 128-bit (xmm ps), 256-bit (ymm ps), 512-bit (zmm ps); and
 the innermost loops (a backward jump and its target) holding six or more of them, each by the
 widest register its arithmetic uses.
 
@@ -22,8 +22,8 @@ import re
 import subprocess
 import sys
 
-HOT = re.compile(r"SphSystem::compute_(density|forces)\(|sph_(poly6|force)_range<")
-LOOP = re.compile(r"sph_(poly6|force)_range<")  # the functions that hold a neighbour loop
+HOT = re.compile(r"SphSystem::compute_(density|forces)\(|sph_(poly6|force)_range<|sph_wall_range\(")
+LOOP = re.compile(r"sph_(poly6|force)_range<|sph_wall_range\(")  # the functions that hold a neighbour loop
 ARITH = re.compile(r"^v?(add|sub|mul|min|max|f[n]?m(add|sub)(132|213|231))(ss|ps)$")
 WIDTH = {"xmm": 128, "ymm": 256, "zmm": 512}
 

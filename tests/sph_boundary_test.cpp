@@ -1,132 +1,170 @@
-// SPH walls and obstacles (huygens/sph/boundary.hpp): the mirror images at faces, edges and
-// corners with the hydrostatic image pressure of Adami, Hu and Adams 2012 eq. 27, the obstacles'
-// signed distance and ghost tables, and the rest density and energy of a fluid in a closed box.
+// SPH boundary particles (huygens/sph/boundary.hpp): the container walls and the obstacles sampled
+// in layers (their sampled volume is the shell's), the fluid lattice at the walls has rho0, the
+// extrapolated wall pressure of Adami, Hu and Adams 2012 eq. 27, and the OBJ reader (v and f only,
+// errors name the file and line, open meshes refused).
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <vector>
+#include <numbers>
+#include <stdexcept>
+#include <string>
 
 #include "huygens/sph/boundary.hpp"
 #include "huygens/sph/system.hpp"
 
 using namespace huygens;
 
-TEST(SphBoundary, MirrorImagesAtFacesEdgesAndCorners) {
-  const std::array<float, 3> box{1.f, 1.f, 1.f}, g{0.f, 0.f, -9.81f};
-  const float h = 0.1f;
-  SphImage im[8];
-  EXPECT_EQ(sph_container_images(0.5f, 0.5f, 0.5f, h, box, g, im), 0);
-  // one face (x = 0): d = x_i - x_j' with x_j' = -X_j, so o_x = x_i, s = (+1, -1, -1)
-  ASSERT_EQ(sph_container_images(0.05f, 0.5f, 0.5f, h, box, g, im), 1);
-  EXPECT_FLOAT_EQ(im[0].o[0], 0.05f);
-  EXPECT_EQ(im[0].s[0], 1.f);
-  EXPECT_EQ(im[0].s[1], -1.f);
-  EXPECT_EQ(im[0].s[2], -1.f);
-  EXPECT_EQ(im[0].floor, 0);
-  EXPECT_EQ(im[0].G0, 0.f);  // g has no x component: no hydrostatic difference across x planes
-  // the far face x = 1: x_j' = 2 - X_j
-  ASSERT_EQ(sph_container_images(0.95f, 0.5f, 0.5f, h, box, g, im), 1);
-  EXPECT_FLOAT_EQ(im[0].o[0], 0.95f - 2.f);
-  // an edge: 3 images (two faces and the edge)
-  EXPECT_EQ(sph_container_images(0.05f, 0.95f, 0.5f, h, box, g, im), 3);
-  // a floor corner: 7 images, the 4 across the floor flagged
-  ASSERT_EQ(sph_container_images(0.05f, 0.05f, 0.05f, h, box, g, im), 7);
-  int floors = 0;
-  for (int k = 0; k < 7; ++k) floors += im[k].floor;
-  EXPECT_EQ(floors, 4);
-  // the lid z = 1: p_j' - p_j = rho_j g . (x_j' - x_j) = rho_j g_z (2 - 2 Z_j) = rho_j (G0 + gs_z Z_j)
-  ASSERT_EQ(sph_container_images(0.5f, 0.5f, 0.95f, h, box, g, im), 1);
-  const float Zj = 0.97f;
-  EXPECT_NEAR(im[0].G0 + im[0].gs[2] * Zj, -9.81f * (2.f - 2.f * Zj), 1e-5f);
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+
+double volume(const SphBoundarySample& s, float dx) {
+  double v = 0;
+  for (float w : s.w) v += double(w) * dx * dx * dx;
+  return v;
 }
 
-TEST(SphBoundary, ObstacleSignedDistanceAndNormal) {
+const char* kCube =
+    "# unit cube, outward faces\n"
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2/1 3/2 7/3 6/4\nf 3//1 4//1 8//1 7//1\nf -8 -4 -1 -5\n";
+
+SphObstacle cube_mesh(float lo, float size) {
+  SphMesh m = sph_parse_obj(kCube, "cube.obj");
+  for (auto& v : m.vertices)
+    for (float& c : v) c = lo + size * c;
+  SphObstacle o;
+  o.type = SphObstacle::Type::mesh;
+  o.min_m = {lo, lo, lo};
+  o.max_m = {lo + size, lo + size, lo + size};
+  o.mesh = std::make_shared<const SphMesh>(std::move(m));
+  return o;
+}
+
+}  // namespace
+
+TEST(SphBoundary, LayersCoverTheSupport) {
+  EXPECT_EQ(sph_boundary_layers(0.02f, 0.01f), 2);
+  EXPECT_EQ(sph_boundary_layers(0.025f, 0.01f), 3);
+  EXPECT_EQ(sph_boundary_layers(0.01f, 0.01f), 1);
+}
+
+// The container shell: K layers outside [0, L] on the fluid lattice, edges and corners included.
+TEST(SphBoundary, ContainerShellIsTheLatticeOutsideTheBox) {
+  SphBoundarySample s;
+  const float dx = 0.01f;
+  sph_sample_container({0.1f, 0.06f, 0.05f}, dx, 2, s);
+  EXPECT_EQ(s.size(), std::size_t(14 * 10 * 9 - 10 * 6 * 5));
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const bool inside = s.x[i] > 0 && s.x[i] < 0.1f && s.y[i] > 0 && s.y[i] < 0.06f && s.z[i] > 0 && s.z[i] < 0.05f;
+    EXPECT_FALSE(inside) << i;
+    EXPECT_NEAR(s.w[i], 1.f, 1e-5f);
+    const float fx = s.x[i] / dx - 0.5f;
+    EXPECT_NEAR(fx, std::round(fx), 1e-3f);
+  }
+}
+
+// Every shape's layers hold the volume of a shell `layers` dx deep inside its surface (a regular
+// sampling: mass ratios w = sampled volume / dx^3).
+TEST(SphBoundary, ObstacleShellsHoldTheShellVolume) {
+  const float dx = 0.01f;
+  const int K = 2;
+  const float d = K * dx;
   SphObstacle box;
-  box.min_m = {0.4f, 0.4f, 0.4f};
-  box.max_m = {0.6f, 0.6f, 0.6f};
-  float n[3];
-  EXPECT_NEAR(box.distance(0.5f, 0.5f, 0.7f, n), 0.1f, 1e-6f);
-  EXPECT_EQ(n[2], 1.f);
-  EXPECT_NEAR(box.distance(0.5f, 0.5f, 0.55f, n), -0.05f, 1e-6f);
-  EXPECT_EQ(n[2], 1.f);
-  EXPECT_NEAR(box.distance(0.7f, 0.7f, 0.5f, n), std::sqrt(0.02f), 1e-6f);  // outside an edge
-  EXPECT_NEAR(n[0], std::sqrt(0.5f), 1e-6f);
-  EXPECT_TRUE(box.near(0.65f, 0.5f, 0.5f, 0.1f));
-  EXPECT_FALSE(box.near(0.75f, 0.5f, 0.5f, 0.1f));
+  box.min_m = {0.1f, 0.1f, 0.1f};
+  box.max_m = {0.2f, 0.18f, 0.16f};
   SphObstacle cyl;
   cyl.type = SphObstacle::Type::cylinder;
-  cyl.centre_m = {0.5f, 0.5f};
-  cyl.radius_m = 0.1f;
+  cyl.centre_m = {0.3f, 0.3f};
+  cyl.radius_m = 0.05f;
   cyl.z0_m = 0.f;
-  cyl.z1_m = 1.f;
-  EXPECT_NEAR(cyl.distance(0.7f, 0.5f, 0.5f, n), 0.1f, 1e-6f);
-  EXPECT_EQ(n[0], 1.f);
-  EXPECT_NEAR(cyl.distance(0.5f, 0.45f, 0.5f, n), -0.05f, 1e-6f);
-  EXPECT_NEAR(n[1], -1.f, 1e-6f);
-  EXPECT_NEAR(cyl.distance(0.5f, 0.5f, 1.2f, n), 0.2f, 1e-6f);  // above the top
-  EXPECT_EQ(n[2], 1.f);
+  cyl.z1_m = 0.1f;
+  SphObstacle sph;
+  sph.type = SphObstacle::Type::sphere;
+  sph.sphere_centre_m = {0.3f, 0.3f, 0.3f};
+  sph.radius_m = 0.06f;
+  const SphObstacle mesh = cube_mesh(0.1f, 0.1f);
+  struct Case {
+    const SphObstacle* o;
+    double want;
+  } cases[] = {
+      {&box, 0.1 * 0.08 * 0.06 - (0.1 - 2 * d) * (0.08 - 2 * d) * (0.06 - 2 * d)},
+      {&cyl, kPi * (0.05 * 0.05 * 0.1 - (0.05 - d) * (0.05 - d) * (0.1 - 2 * d))},
+      {&sph, 4.0 / 3.0 * kPi * (std::pow(0.06, 3) - std::pow(0.06 - d, 3))},
+      {&mesh, 1e-3 - std::pow(0.1 - 2 * d, 3)},
+  };
+  for (const auto& c : cases) {
+    SphBoundarySample s;
+    sph_sample_obstacle(*c.o, dx, K, s);
+    ASSERT_GT(s.size(), 0u);
+    EXPECT_NEAR(volume(s, dx), c.want, 0.06 * c.want) << int(c.o->type);
+    for (std::size_t i = 0; i < s.size(); ++i) EXPECT_TRUE(c.o->blocks(s.x[i], s.y[i], s.z[i], 0.f)) << i;
+  }
 }
 
-TEST(SphBoundary, ObstacleGhostDensityAndForceActOnlyNearTheSurface) {
-  SphObstacle box;
-  box.min_m = {0.4f, 0.4f, 0.f};
-  box.max_m = {0.6f, 0.6f, 1.f};
-  const float dx = 0.01f, h = 2 * dx;
-  const SphKernels k(h);
-  const SphObstacleWalls walls({box}, k, dx, 1e-3f);
-  float rho = 1000.f;
-  walls.add_density(0.2f, 0.5f, 0.5f, rho);  // farther than h
-  EXPECT_EQ(rho, 1000.f);
-  walls.add_density(0.6f + 0.5f * dx, 0.5f, 0.5f, rho);  // half a spacing from the +x face
-  EXPECT_GT(rho, 1000.f);
-  float ax = 0, ay = 0, az = 0;
-  walls.add_force(0.6f + 0.5f * dx, 0.5f, 0.5f, 1.f, ax, ay, az);
-  EXPECT_GT(ax, 0.f);  // pushed out along the face normal
-  EXPECT_EQ(ay, 0.f);
-  EXPECT_EQ(az, 0.f);
-  float bx = 0, by = 0, bz = 0;
-  walls.add_force(0.6f + 0.5f * dx, 0.5f, 0.5f, 0.f, bx, by, bz);  // no pressure, no force
-  EXPECT_EQ(bx, 0.f);
-}
-
-TEST(SphBoundary, RestLatticeInAClosedBoxHasRestDensityEverywhere) {
-  // mirror images at the walls, edges and corners complete every particle's density
+// A lattice filling the container: every particle, at faces, edges and corners too, has rho0.
+TEST(SphBoundary, LatticeAtTheWallsHasRestDensity) {
   SphParams p;
-  p.spacing_m = 0.005f;
-  p.container_m = {0.04f, 0.03f, 0.035f};
-  p.fluid.push_back({{0, 0, 0}, p.container_m});
-  SphSystem s(p);
+  p.spacing_m = 0.01f;
+  p.container_m = {0.08f, 0.06f, 0.05f};
+  p.fluid.push_back({{0.f, 0.f, 0.f}, {0.08f, 0.06f, 0.05f}});
+  const SphSystem s(p);
   for (float r : s.density()) EXPECT_NEAR(r, p.rest_density_kgpm3, 1e-3f * p.rest_density_kgpm3);
 }
 
-TEST(SphBoundary, ClosedBoxDoesNotPumpEnergy) {
-  // a 1 % compressed block in a closed box: total energy must not grow (the mirrored-pressure wall
-  // force and too little viscosity both made it grow to 10 m/s)
+// Adami et al. 2012 eq. 27 at rest: the floor particles carry p_f + rho g (z_f - z_b) (a fluid
+// lattice at rho0 has p_f = 0), the walls above the fluid carry nothing.
+TEST(SphBoundary, WallPressureIsTheHydrostaticExtrapolation) {
   SphParams p;
-  p.spacing_m = 0.005f;
-  p.container_m = {0.04f, 0.04f, 0.04f};
-  p.gravity_mps2 = {0, 0, 0};
-  p.fluid.push_back({{0, 0, 0}, p.container_m});
-  SphSystem s(p);
-  std::vector<float> X(s.x().begin(), s.x().end()), Y(s.y().begin(), s.y().end()), Z(s.z().begin(), s.z().end());
-  for (std::size_t i = 0; i < X.size(); ++i) {
-    X[i] = 0.02f + (X[i] - 0.02f) * 0.99f;
-    Y[i] = 0.02f + (Y[i] - 0.02f) * 0.99f;
-  }
-  s.set_particles(X, Y, Z);
-  auto energy = [&]() {
-    double e = 0;
-    const double B = p.rest_density_kgpm3 * s.sound_speed() * s.sound_speed() / 7.0;
-    for (std::size_t i = 0; i < s.count(); ++i) {
-      e += 0.5 * (s.vx()[i] * s.vx()[i] + s.vy()[i] * s.vy()[i] + s.vz()[i] * s.vz()[i]);
-      const double r = s.density()[i] / p.rest_density_kgpm3;
-      if (r > 1) e += B / p.rest_density_kgpm3 * (std::pow(r, 6) / 6 + 1 / r - 7.0 / 6);
+  p.spacing_m = 0.01f;
+  p.container_m = {0.06f, 0.06f, 0.1f};
+  p.fluid.push_back({{0.f, 0.f, 0.f}, {0.06f, 0.06f, 0.05f}});
+  const SphSystem s(p);
+  const float g = 9.81f, rho0 = p.rest_density_kgpm3, dx = p.spacing_m;
+  int floor = 0;
+  for (std::size_t b = 0; b < s.boundary_count(); ++b) {
+    const float x = s.boundary_x()[b], y = s.boundary_y()[b], z = s.boundary_z()[b], pb = s.boundary_pressure()[b];
+    const bool under = x > 0 && x < 0.06f && y > 0 && y < 0.06f;
+    if (under && std::fabs(z + 0.5f * dx) < 1e-4f) {
+      // within h = 2 dx of a floor particle at -0.5 dx lies only the first fluid layer, dx above
+      EXPECT_NEAR(pb, rho0 * g * dx, 1e-3f * rho0 * g * dx) << b;
+      ++floor;
     }
-    return e;
+    if (z > 0.06f) {
+      EXPECT_EQ(pb, 0.f) << b;
+    }
+  }
+  EXPECT_EQ(floor, 36);
+}
+
+TEST(SphBoundary, ObjReadsVerticesAndFacesAndTriangulates) {
+  const SphMesh m = sph_parse_obj(kCube, "cube.obj");
+  EXPECT_EQ(m.vertices.size(), 8u);
+  EXPECT_EQ(m.triangles.size(), 12u);
+  EXPECT_EQ(m.triangles[10][0], 0);  // "f -8 -4 -1 -5": -8 is the first vertex
+  const SphObstacle o = cube_mesh(0.f, 1.f);
+  EXPECT_TRUE(o.blocks(0.5f, 0.5f, 0.5f, 0.f));
+  EXPECT_FALSE(o.blocks(1.5f, 0.5f, 0.5f, 0.f));
+  EXPECT_TRUE(o.blocks(1.05f, 0.5f, 0.5f, 0.1f));
+  EXPECT_FALSE(o.blocks(1.05f, 0.5f, 0.5f, 0.01f));
+}
+
+TEST(SphBoundary, BadObjNamesTheFileAndLine) {
+  auto message = [](const std::string& text) {
+    try {
+      sph_parse_obj(text, "hull.obj");
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
   };
-  const double e0 = energy();
-  ASSERT_GT(e0, 0);
-  for (int k = 0; k < 800; ++k) s.step();
-  EXPECT_LT(energy(), e0);
-  EXPECT_LT(s.max_speed(), 0.5f);
+  EXPECT_EQ(message("v 0 0 0\nv 1 0\n"), "hull.obj:2: a vertex needs three finite coordinates");
+  EXPECT_EQ(message("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n"),
+            "hull.obj:5: face vertex 4 outside the 3 vertices so far");
+  EXPECT_EQ(message("v 0 0 0\nf 1 x 1\n"), "hull.obj:2: face vertex 'x' is not an index");
+  EXPECT_EQ(message("v 0 0 0\nv 1 0 0\nf 1 2\n"), "hull.obj:3: a face needs at least three vertices");
+  EXPECT_EQ(message("l 1 2\n"), "hull.obj:1: 'l' lines are not read (only v and f)");
+  EXPECT_EQ(message("# nothing\n"), "hull.obj: no faces");
+  EXPECT_EQ(message("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").find("hull.obj: the mesh is not closed"), 0u);
+  EXPECT_THROW(sph_read_obj("/nonexistent/hull.obj"), std::runtime_error);
 }

@@ -20,19 +20,22 @@ namespace {
 
 struct Arrays {
   explicit Arrays(std::size_t n) {
-    for (auto* b : {&x, &y, &z, &vx, &vy, &vz, &pp, &ir, &lr}) *b = AlignedBuffer<float>(n + 8);
+    for (auto* b : {&x, &y, &z, &vx, &vy, &vz, &pp, &ir, &lr, &w, &nx, &ny, &nz}) *b = AlignedBuffer<float>(n + 8);
     std::uint32_t s = 777;
     auto rnd = [&]() { return (s = s * 1664525u + 1013904223u) / 4294967296.f; };
     for (std::size_t i = 0; i < n; ++i) {
       x[i] = 0.1f * rnd(), y[i] = 0.1f * rnd(), z[i] = 0.1f * rnd();
       vx[i] = rnd() - 0.5f, vy[i] = rnd() - 0.5f, vz[i] = rnd() - 0.5f;
-      pp[i] = rnd(), ir[i] = 1e-3f * (0.9f + 0.2f * rnd()), lr[i] = ir[i];
+      pp[i] = rnd(), ir[i] = 1e-3f * (0.9f + 0.2f * rnd()), lr[i] = ir[i], w[i] = 0.5f + rnd();
+      const float a = rnd() - 0.5f, b = rnd() - 0.5f, c = rnd() - 0.5f, l = std::sqrt(a * a + b * b + c * c);
+      nx[i] = a / l, ny[i] = b / l, nz[i] = c / l;
     }
   }
   SphView view() const {
-    return {x.data(), y.data(), z.data(), vx.data(), vy.data(), vz.data(), pp.data(), ir.data(), lr.data()};
+    return {x.data(),  y.data(),  z.data(), vx.data(), vy.data(), vz.data(), pp.data(),
+            ir.data(), lr.data(), w.data(), nx.data(), ny.data(), nz.data()};
   }
-  AlignedBuffer<float> x, y, z, vx, vy, vz, pp, ir, lr;
+  AlignedBuffer<float> x, y, z, vx, vy, vz, pp, ir, lr, w, nx, ny, nz;
 };
 
 }  // namespace
@@ -44,33 +47,52 @@ TEST(SphForces, RsqrtWithinFiveMillionths) {
   }
 }
 
-TEST(SphForces, DensitySumCoversExactlyTheRangeAndItsImage) {
+TEST(SphForces, DensitySumCoversExactlyTheRangeWeightedForBoundaries) {
   const Arrays a(100);
   const float h = 0.04f, h2 = h * h;
-  SphImage self = sph_self_image(0.05f, 0.05f, 0.05f);
-  // the image across the floor z = 0: d = (x - X, y - Y, z + Z)
-  SphImage floor = self;
-  floor.s[0] = floor.s[1] = -1.f;
-  floor.s[2] = 1.f;
   for (const auto& [b, e] : {std::pair{3u, 61u}, std::pair{0u, 100u}, std::pair{17u, 18u}, std::pair{40u, 40u}}) {
-    for (const SphImage* im : {&self, &floor}) {
+    for (const bool bnd : {false, true}) {
       float sum = 0.f, msum = 0.f;
-      if (im == &self)
-        sph_poly6_range<false, true>(a.view(), b, e, *im, h, h2, sum, msum);
+      if (bnd)
+        sph_poly6_range<true, true>(a.view(), b, e, 0.05f, 0.05f, 0.05f, h, h2, sum, msum);
       else
-        sph_poly6_range<true, true>(a.view(), b, e, *im, h, h2, sum, msum);
+        sph_poly6_range<false, true>(a.view(), b, e, 0.05f, 0.05f, 0.05f, h, h2, sum, msum);
       double want = 0, wantm = 0;
       for (std::uint32_t j = b; j < e; ++j) {
-        const double dx = 0.05 - a.x[j], dy = 0.05 - a.y[j], dz = im == &self ? 0.05 - a.z[j] : 0.05 + a.z[j];
+        const double dx = 0.05 - a.x[j], dy = 0.05 - a.y[j], dz = 0.05 - a.z[j];
         const double r2 = dx * dx + dy * dy + dz * dz;
         if (r2 >= h2) continue;
-        want += std::pow(h2 - r2, 3);
-        wantm += (h - std::sqrt(r2)) * (h - std::sqrt(r2)) * std::sqrt(r2);
+        const double w = bnd ? a.w[j] : 1.0;
+        want += w * std::pow(h2 - r2, 3);
+        wantm += w * (h - std::sqrt(r2)) * (h - std::sqrt(r2)) * std::sqrt(r2);
       }
       EXPECT_NEAR(sum, want, 1e-5 * want + 1e-20) << b << " " << e;
       EXPECT_NEAR(msum, wantm, 1e-4 * wantm + 1e-12) << b << " " << e;
     }
   }
+}
+
+// The wall sums of Adami et al. 2012 eq. 27: sum W, sum p W, sum rho (x_b - x_f) W, sum l W.
+TEST(SphForces, WallSumsAreTheShepardSumsOfTheRange) {
+  const Arrays a(100);
+  const float h = 0.04f, h2 = h * h, xb = 0.05f, yb = 0.04f, zb = 0.06f;
+  float s[6] = {0, 0, 0, 0, 0, 0};
+  sph_wall_range(a.view(), 7, 93, xb, yb, zb, h2, s);
+  double want[6] = {0, 0, 0, 0, 0, 0};
+  for (std::uint32_t j = 7; j < 93; ++j) {
+    const double d[3] = {xb - a.x[j], yb - a.y[j], zb - a.z[j]};
+    const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (r2 >= h2) continue;
+    const double w = std::pow(h2 - r2, 3);
+    want[0] += w;
+    want[1] += a.pp[j] * w;
+    for (int k = 0; k < 3; ++k) want[2 + k] += a.ir[j] * d[k] * w;
+    want[5] += a.lr[j] * w;
+  }
+  ASSERT_GT(want[0], 0.0);
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR(s[k], want[k], 1e-4 * std::fabs(want[0] * (k == 1 ? 1 : 1e-3)) + 1e-4 * std::fabs(want[k]) + 1e-30)
+        << k;
 }
 
 // sph_keep, the branch-free select of the vectorised loops: x or +0, bit for bit, for any x.
@@ -89,10 +111,9 @@ TEST(SphForces, NonFiniteCandidateLeavesTheDensitySum) {
   a.x[10] = std::numeric_limits<float>::quiet_NaN();
   far.x[10] = 1e3f;
   const float h = 0.04f, h2 = h * h;
-  const SphImage self = sph_self_image(0.05f, 0.05f, 0.05f);
   float sum = 0.f, msum = 0.f, sum_far = 0.f, msum_far = 0.f;
-  sph_poly6_range<false, false>(a.view(), 0, 64, self, h, h2, sum, msum);
-  sph_poly6_range<false, false>(far.view(), 0, 64, self, h, h2, sum_far, msum_far);
+  sph_poly6_range<false, false>(a.view(), 0, 64, 0.05f, 0.05f, 0.05f, h, h2, sum, msum);
+  sph_poly6_range<false, false>(far.view(), 0, 64, 0.05f, 0.05f, 0.05f, h, h2, sum_far, msum_far);
   EXPECT_GT(sum, 0.f);
   EXPECT_EQ(sum, sum_far);
 }
@@ -101,25 +122,34 @@ TEST(SphForces, ForceSumIsPressureViscosityAndImpactOfTheRange) {
   const Arrays a(64);
   const float h = 0.05f, h2 = h * h, pik = 0.3f, pbk = 0.7f, Pi = 0.4f;
   const float xi = 0.05f, yi = 0.05f, zi = 0.05f, vi[3] = {0.1f, -0.2f, 0.3f};
-  const SphImage self = sph_self_image(xi, yi, zi);
-  float acc[7] = {0, 0, 0, 0, 0, 0, 0};
-  sph_force_range<false>(a.view(), 5, 59, self, vi, Pi, h, h2, 1e-6f * h, pik, pbk, acc);
-  double want[7] = {0, 0, 0, 0, 0, 0, 0};
-  for (std::uint32_t j = 5; j < 59; ++j) {
-    const double d[3] = {xi - a.x[j], yi - a.y[j], zi - a.z[j]};
-    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    if (r >= h) continue;
-    const double vj[3] = {a.vx[j], a.vy[j], a.vz[j]};
-    const double vr = (vi[0] - vj[0]) * d[0] + (vi[1] - vj[1]) * d[1] + (vi[2] - vj[2]) * d[2];
-    const double mu = std::max(-vr, 0.0) / (r * r + 0.01 * h2);
-    const double fp = (Pi + a.pp[j] + (pik + pbk * mu) * mu) * (h - r) * (h - r) / r;
-    for (int k = 0; k < 3; ++k) {
-      want[k] += fp * d[k];
-      want[3 + k] += (h - r) * a.ir[j] * (vj[k] - vi[k]);
+  for (const bool bnd : {false, true}) {
+    float acc[7] = {0, 0, 0, 0, 0, 0, 0};
+    if (bnd)
+      sph_force_range<true>(a.view(), 5, 59, xi, yi, zi, vi, Pi, h, h2, 1e-6f * h, pik, pbk, acc);
+    else
+      sph_force_range<false>(a.view(), 5, 59, xi, yi, zi, vi, Pi, h, h2, 1e-6f * h, pik, pbk, acc);
+    double want[7] = {0, 0, 0, 0, 0, 0, 0};
+    for (std::uint32_t j = 5; j < 59; ++j) {
+      const double d[3] = {xi - a.x[j], yi - a.y[j], zi - a.z[j]};
+      const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (r >= h) continue;
+      // a boundary candidate: weighted by W, no viscous term, the impact term on the velocity
+      // 2 (v_i . n) n relative to particle i's mirror image
+      const double vj[3] = {a.vx[j], a.vy[j], a.vz[j]};
+      const double w = bnd ? a.w[j] : 1.0;
+      const double n[3] = {a.nx[j], a.ny[j], a.nz[j]};
+      const double vn = vi[0] * n[0] + vi[1] * n[1] + vi[2] * n[2], dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+      const double vr = bnd ? 2 * vn * dn : (vi[0] - vj[0]) * d[0] + (vi[1] - vj[1]) * d[1] + (vi[2] - vj[2]) * d[2];
+      const double mu = std::max(-vr, 0.0) / (r * r + 0.01 * h2);
+      const double fp = w * (Pi + a.pp[j] + (pik + pbk * mu) * mu) * (h - r) * (h - r) / r;
+      for (int k = 0; k < 3; ++k) {
+        want[k] += fp * d[k];
+        if (!bnd) want[3 + k] += (h - r) * a.ir[j] * (vj[k] - vi[k]);
+      }
+      want[6] += w * (h - r) * (h - r) * r;
     }
-    want[6] += (h - r) * (h - r) * r;
+    for (int k = 0; k < 7; ++k) EXPECT_NEAR(acc[k], want[k], 1e-4 * std::fabs(want[k]) + 1e-9) << k << " " << bnd;
   }
-  for (int k = 0; k < 7; ++k) EXPECT_NEAR(acc[k], want[k], 1e-4 * std::fabs(want[k]) + 1e-9) << k;
 }
 
 TEST(SphForces, GridPathEqualsBruteForceAllPairs) {

@@ -92,41 +92,53 @@ TEST(SphGrid, RowsAroundACellHoldExactlyItsNeighbourCells) {
   EXPECT_EQ(calls, 2);
 }
 
-TEST(SphCellGather, CopiesTheCandidatesWithTheBottomLayerFirst) {
+TEST(SphCellGather, CopiesTheFluidAndTheBoundaryCandidates) {
   SphGrid g({0.5f, 0.4f, 0.3f}, 0.1f, 2000);
   const Cloud c = random_cloud(2000, 0.5f, 0.4f, 0.3f);
   g.build(c.x.data(), c.y.data(), c.z.data(), 2000);
-  std::vector<float> sx(2000), sz(2000);
+  // static particles: another cloud, partly outside the grid (clamped into the edge cells)
+  Cloud st = random_cloud(500, 0.7f, 0.4f, 0.3f);
+  for (float& x : st.x) x -= 0.1f;
+  std::vector<std::uint32_t> so(500);
+  g.build_static(st.x.data(), st.y.data(), st.z.data(), 500, so.data());
+  std::vector<float> sx(2000), sz(2000), bx(500);
   for (std::size_t k = 0; k < 2000; ++k) {
     sx[k] = c.x[g.order()[k]];
     sz[k] = c.z[g.order()[k]];
   }
+  for (std::size_t k = 0; k < 500; ++k) bx[k] = st.x[so[k]];
   SphCellGather gather(2000);
   const float* src[2] = {sx.data(), sz.data()};
-  SphCellGather::Cursor cur(g, gather, 0, src, 2);
-  std::vector<float> want_x;
-  g.for_each_row(2, 1, 0, [&](std::uint32_t b, std::uint32_t e, int) {
+  const float* bsrc[1] = {bx.data()};
+  SphCellGather::Cursor cur(g, gather, 0, src, 2, bsrc, 1);
+  std::vector<float> want_x, want_b;
+  g.for_each_row(0, 1, 0, [&](std::uint32_t b, std::uint32_t e, int) {
     want_x.insert(want_x.end(), sx.begin() + b, sx.begin() + e);
     return true;
   });
+  g.for_each_row<true>(0, 1, 0, [&](std::uint32_t b, std::uint32_t e, int) {
+    want_b.insert(want_b.end(), bx.begin() + b, bx.begin() + e);
+    return true;
+  });
   int calls = 0;
-  std::uint32_t count = 0, floor_end = 0;
-  const bool gathered = cur.visit(2, 1, 0, [&](bool gath, std::uint32_t b, std::uint32_t e, std::uint32_t fe) {
+  std::uint32_t count = 0, bcount = 0;
+  const bool gathered = cur.visit(0, 1, 0, [&](bool gath, bool bnd, std::uint32_t b, std::uint32_t e) {
     ++calls;
     EXPECT_TRUE(gath);
     EXPECT_EQ(b, 0u);
-    count = e;
-    floor_end = fe;
+    (bnd ? bcount : count) = e;
   });
   EXPECT_TRUE(gathered);
-  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(calls, 2);
   ASSERT_EQ(count, want_x.size());
-  for (std::uint32_t k = 0; k < count; ++k) {
-    EXPECT_EQ(cur.scratch(0)[k], want_x[k]);
-    EXPECT_EQ(g.iz(cur.scratch(1)[k]), k < floor_end ? 0 : 1) << k;
-  }
-  EXPECT_GT(floor_end, 0u);
-  EXPECT_LT(floor_end, count);
+  ASSERT_EQ(bcount, want_b.size());
+  ASSERT_GT(bcount, 0u);
+  for (std::uint32_t k = 0; k < count; ++k) EXPECT_EQ(cur.scratch(0)[k], want_x[k]);
+  for (std::uint32_t k = 0; k < bcount; ++k) EXPECT_EQ(cur.scratch(2)[k], want_b[k]);
+  // every static particle is in the cell of its clamped coordinates
+  for (std::size_t c0 = 0; c0 < g.cells(); ++c0)
+    for (std::uint32_t k = g.static_start(c0); k < g.static_start(c0 + 1); ++k)
+      EXPECT_EQ(g.index(g.ix(bx[k]), g.iy(st.y[so[k]]), g.iz(st.z[so[k]])), c0);
 }
 
 TEST(SphCellGather, FallsBackToTheNineRangesWhenACellOverflows) {
@@ -138,9 +150,9 @@ TEST(SphCellGather, FallsBackToTheNineRangesWhenACellOverflows) {
   const float* src[1] = {sx.data()};
   SphCellGather::Cursor cur(g, gather, 0, src, 1);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges, want;
-  const bool gathered = cur.visit(2, 1, 1, [&](bool gath, std::uint32_t b, std::uint32_t e, std::uint32_t fe) {
+  const bool gathered = cur.visit(2, 1, 1, [&](bool gath, bool bnd, std::uint32_t b, std::uint32_t e) {
     EXPECT_FALSE(gath);
-    EXPECT_EQ(fe, e);
+    EXPECT_FALSE(bnd);
     ranges.emplace_back(b, e);
   });
   g.for_each_row(2, 1, 1, [&](std::uint32_t b, std::uint32_t e, int) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -31,6 +32,15 @@ SceneError error_of(const std::string& text) {
 
 std::string path_of(const std::string& text) { return error_of(text).path(); }
 
+SceneError error_of_file(const std::string& file) {
+  try {
+    make_solver(load_scene(file));
+  } catch (const SceneError& e) {
+    return e;
+  }
+  return SceneError("<no error>", "");
+}
+
 std::string with(const std::string& extra) {
   return R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1], )" + kOkFluid + extra + "}}";
 }
@@ -40,11 +50,12 @@ std::string with(const std::string& extra) {
 TEST(SphScene, EveryKeyLandsInItsParameter) {
   const SphScene sc = parse_sph_scene(parse_scene_text(R"({"solver": "sph", "sph": {
       "spacing_m": 0.02, "support_factor": 1.8, "rest_density_kgpm3": 998, "viscosity_m2s": 2e-6,
-      "artificial_viscosity": 0.02, "impact_alpha": 0.1, "impact_beta": 3, "sound_speed_mps": 20,
+      "artificial_viscosity": 0.02, "impact_alpha": 0.1, "impact_beta": 3, "wall_alpha": 0.5, "sound_speed_mps": 20,
       "gravity_mps2": [1, 0, -9], "container_m": [0.4, 0.3, 0.2],
       "fluid": [ { "min_m": [0, 0, 0], "max_m": [0.2, 0.3, 0.1] } ],
       "obstacles": [ { "type": "box", "min_m": [0.3, 0, 0], "max_m": [0.35, 0.1, 0.2] },
-                     { "type": "cylinder", "centre_m": [0.3, 0.2], "radius_m": 0.03, "z1_m": 0.15 } ],
+                     { "type": "cylinder", "centre_m": [0.3, 0.2], "radius_m": 0.03, "z1_m": 0.15 },
+                     { "type": "sphere", "centre_m": [0.1, 0.2, 0.05], "radius_m": 0.04 } ],
       "time": { "cfl": 0.2, "force": 0.1, "viscous": 0.02, "dt_max_s": 5e-4 },
       "surface": { "cell_m": 0.01, "radius_factor": 1.5, "iso": 2.5 } }})"));
   const SphParams& p = sc.params;
@@ -60,7 +71,11 @@ TEST(SphScene, EveryKeyLandsInItsParameter) {
   EXPECT_EQ(p.container_m, (std::array<float, 3>{0.4f, 0.3f, 0.2f}));
   ASSERT_EQ(p.fluid.size(), 1u);
   EXPECT_FLOAT_EQ(p.fluid[0].max_m[1], 0.3f);
-  ASSERT_EQ(p.obstacles.size(), 2u);
+  ASSERT_EQ(p.obstacles.size(), 3u);
+  EXPECT_FLOAT_EQ(p.wall_alpha, 0.5f);
+  EXPECT_EQ(p.obstacles[2].type, SphObstacle::Type::sphere);
+  EXPECT_FLOAT_EQ(p.obstacles[2].sphere_centre_m[2], 0.05f);
+  EXPECT_FLOAT_EQ(p.obstacles[2].radius_m, 0.04f);
   EXPECT_EQ(p.obstacles[0].type, SphObstacle::Type::box);
   EXPECT_FLOAT_EQ(p.obstacles[0].min_m[0], 0.3f);
   EXPECT_EQ(p.obstacles[1].type, SphObstacle::Type::cylinder);
@@ -105,14 +120,51 @@ TEST(SphScene, ErrorsNameTheJsonPath) {
       path_of(with(R"(, "obstacles": [ {"type": "cylinder", "centre_m": [0.05], "radius_m": 0.01, "z1_m": 0.1} ])")),
       "$.sph.obstacles[0].centre_m");
   EXPECT_EQ(path_of(with(R"(, "time": {"cfl": 2})")), "$.sph.time.cfl");
+  // walls are boundary particles; the mirror images are gone
+  EXPECT_EQ(path_of(with(R"(, "boundary": "mirror")")), "$.sph.boundary");
+  EXPECT_EQ(path_of(with(R"(, "boundary": "particles")")), "<no error>");
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "sphere", "centre_m": [0.05, 0.05], "radius_m": 0.01} ])")),
+            "$.sph.obstacles[0].centre_m");
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "mesh"} ])")), "$.sph.obstacles[0].file");
+  // a surface that would take more than 2e7 boundary particles is refused before sampling
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "sphere", "centre_m": [0, 0, 0], "radius_m": 1000} ])")),
+            "$.sph.obstacles");
   // unstable settings are refused before the run, with the reason
   EXPECT_EQ(path_of(with(R"(, "artificial_viscosity": 0.001)")), "$.sph.artificial_viscosity");
   EXPECT_EQ(path_of(with(R"(, "sound_speed_mps": 1.0)")), "$.sph.sound_speed_mps");
   EXPECT_EQ(path_of(with("")), "<no error>");
 }
 
+// A mesh obstacle's OBJ is read relative to the scene file; a bad one names the file and line.
+TEST(SphScene, MeshObstacleFromAnObjFile) {
+  const std::string dir = ::testing::TempDir();
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir + "/" + name) << text;
+    return dir + "/" + name;
+  };
+  write("tet.obj", "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  write("bad.obj", "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nf 1 2 9\n");
+  const std::string ok =
+      write("mesh.json", with(R"(, "obstacles": [ {"type": "mesh", "file": "tet.obj", "position_m": [0.03, 0.03, 0.0],
+                                                  "scale": 2.0} ])"));
+  const SphScene sc = parse_sph_scene(load_scene(ok));
+  ASSERT_EQ(sc.params.obstacles.size(), 1u);
+  const SphObstacle& o = sc.params.obstacles[0];
+  EXPECT_EQ(o.type, SphObstacle::Type::mesh);
+  EXPECT_FLOAT_EQ(o.min_m[0], 0.03f);
+  EXPECT_FLOAT_EQ(o.max_m[2], 0.08f);
+  EXPECT_TRUE(o.blocks(0.04f, 0.04f, 0.01f, 0.f));
+  auto solver = make_solver(load_scene(ok));
+  solver->step();
+  const std::string bad = write("bad.json", with(R"(, "obstacles": [ {"type": "mesh", "file": "bad.obj"} ])"));
+  const SceneError e = error_of_file(bad);
+  EXPECT_EQ(e.path(), "$.sph.obstacles[0].file");
+  EXPECT_NE(std::string(e.what()).find("bad.obj:4: face vertex 9 outside the 3 vertices so far"), std::string::npos)
+      << e.what();
+}
+
 TEST(SphScene, ShippedScenesBuildAndRun) {
-  for (const char* name : {"pool.json", "sph_dam_break.json"}) {
+  for (const char* name : {"pool.json", "sph_dam_break.json", "sph_wedge.json"}) {
     auto solver = make_solver(load_scene(huygens::test::scenes_dir() + "/" + name));
     for (int k = 0; k < 3; ++k) solver->step();
     const auto out = solver->outputs();

@@ -4,7 +4,9 @@
 #include "huygens/validation/sph_cases.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
 #include <numbers>
 
 #include "huygens/common/report.hpp"
@@ -156,9 +158,21 @@ namespace {
 
 struct DamRun {
   std::vector<double> T, Z;
-  bool inside = true, finite = true;
+  bool finite = true;
   double vmax_ratio = 0;
+  std::size_t outside = 0;  // most particle centres outside the container at any step
+  std::size_t through = 0;  // most particle centres past the first boundary layer (dx/2 beyond a wall)
 };
+
+// particles whose centre lies outside the box [-e, L + e] (no clamp: only the boundary particles
+// keep them in; e = 0: beyond a wall face, e = dx/2: past the first layer of boundary particles)
+std::size_t count_outside(const SphSystem& s, const std::array<float, 3>& L, float e = 0.f) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < s.count(); ++i)
+    n += !(s.x()[i] >= -e && s.x()[i] <= L[0] + e && s.y()[i] >= -e && s.y()[i] <= L[1] + e && s.z()[i] >= -e &&
+           s.z()[i] <= L[2] + e);
+  return n;
+}
 
 // dam break: column width a, height 2a, `na` particles across, 4 layers thick between free-slip walls
 DamRun run_dam(int na, double T_end, double t_end, float container_len) {
@@ -184,14 +198,11 @@ DamRun run_dam(int na, double T_end, double t_end, float container_len) {
       // every step: an impact's speed peak lasts a few steps (sampling every 8th step read 1.44 at
       // 8 across where every step reads 1.49)
       out.vmax_ratio = std::max(out.vmax_ratio, s.max_speed() / vref);
+      out.outside = std::max(out.outside, count_outside(s, p.container_m));
+      out.through = std::max(out.through, count_outside(s, p.container_m, 0.5f * dx));
       if (s.steps() % 8 == 0) {
         out.T.push_back(s.time() * Ts);
         out.Z.push_back(front());
-        for (std::size_t i = 0; i < s.count(); ++i) {
-          const bool in = s.x()[i] >= 0 && s.x()[i] <= p.container_m[0] && s.y()[i] >= 0 &&
-                          s.y()[i] <= p.container_m[1] && s.z()[i] >= 0 && s.z()[i] <= p.container_m[2];
-          out.inside = out.inside && in;
-        }
       }
     }
   } catch (const std::exception&) {
@@ -244,11 +255,73 @@ std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float containe
   const std::string at =
       " (" + std::to_string(na) + " across a, box " + num(container_len, 3) + " a long, " + num(t_end, 3) + " s)";
   std::vector<ValidationRow> rows;
-  rows.push_back(
-      check(c, "particles outside the container (count > 0 = 1)" + at, run.inside ? 0 : 1, 0, run.inside ? 0 : 1, 0));
+  const double out = double(run.outside), through = double(run.through);
+  rows.push_back(check(c, "most particle centres beyond a wall face at any step (no clamp)" + at, out, 0, out, 0));
+  rows.push_back(check(c, "most particle centres past the first boundary layer (dx/2 beyond a wall)" + at, through, 0,
+                       through, 0));
   rows.push_back(check(c, "non-finite values (1 = yes)" + at, run.finite ? 0 : 1, 0, run.finite ? 0 : 1, 0));
   rows.push_back(check(c, "max speed / sqrt(2 g H)" + at, run.vmax_ratio, 0, run.vmax_ratio, 1.5));
   return rows;
+}
+
+std::vector<ValidationRow> sph_obstacle_rows(float dx, double t_end) {
+  const std::string c = "sph_no_leakage";
+  SphParams p;
+  p.spacing_m = dx;
+  p.container_m = {0.6f, 0.2f, 0.3f};
+  p.fluid.push_back({{0.f, 0.f, 0.f}, {0.15f, 0.2f, 0.2f}});
+  // the wedge of scenes/meshes/wedge.obj, 0.1 m long and wide, 0.08 m high, ridge along y
+  const char* wedge =
+      "v 0 0 0\nv 0.1 0 0\nv 0.05 0 0.08\nv 0 0.1 0\nv 0.1 0.1 0\nv 0.05 0.1 0.08\n"
+      "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 1 3 6 4\nf 2 5 6 3\n";
+  SphObstacle mesh;
+  mesh.type = SphObstacle::Type::mesh;
+  SphMesh m = sph_parse_obj(wedge, "wedge.obj");
+  for (auto& v : m.vertices) v = {v[0] + 0.25f, v[1] + 0.f, v[2]};
+  mesh.min_m = {0.25f, 0.f, 0.f};
+  mesh.max_m = {0.35f, 0.1f, 0.08f};
+  mesh.mesh = std::make_shared<const SphMesh>(std::move(m));
+  SphObstacle sphere;
+  sphere.type = SphObstacle::Type::sphere;
+  sphere.sphere_centre_m = {0.3f, 0.15f, 0.05f};
+  sphere.radius_m = 0.04f;
+  SphObstacle cyl;
+  cyl.type = SphObstacle::Type::cylinder;
+  cyl.centre_m = {0.45f, 0.1f};
+  cyl.radius_m = 0.03f;
+  cyl.z1_m = 0.12f;
+  SphObstacle box;
+  box.min_m = {0.52f, 0.f, 0.f};
+  box.max_m = {0.56f, 0.2f, 0.04f};
+  p.obstacles = {mesh, sphere, cyl, box};
+  SphSystem s(p);
+  std::size_t inside = 0, deep = 0, outside = 0, through = 0;
+  bool finite = true;
+  try {
+    while (s.time() < t_end) {
+      s.step();
+      std::size_t in = 0, dp = 0;
+      for (std::size_t i = 0; i < s.count(); ++i)
+        for (const auto& o : p.obstacles) {
+          in += o.blocks(s.x()[i], s.y()[i], s.z()[i], 0.f);
+          dp += o.blocks(s.x()[i], s.y()[i], s.z()[i], -0.5f * dx);
+        }
+      inside = std::max(inside, in);
+      deep = std::max(deep, dp);
+      outside = std::max(outside, count_outside(s, p.container_m));
+      through = std::max(through, count_outside(s, p.container_m, 0.5f * dx));
+    }
+  } catch (const std::exception&) {
+    finite = false;
+  }
+  const std::string at = " (dam break onto a mesh wedge, sphere, cylinder, box; " + std::to_string(s.count()) +
+                         " particles, dx " + num(dx, 3) + " m, " + num(t_end, 3) + " s)";
+  auto row = [&](const std::string& what, std::size_t v) { return check(c, what + at, double(v), 0, double(v), 0); };
+  return {row("most particle centres inside an obstacle's surface at any step", inside),
+          row("most particle centres past an obstacle's first boundary layer (deeper than dx/2)", deep),
+          row("most particle centres beyond a container wall face at any step", outside),
+          row("most particle centres past the container's first boundary layer (dx/2 beyond a wall)", through),
+          row("non-finite values (1 = yes)", finite ? 0 : 1)};
 }
 
 namespace {
@@ -366,6 +439,8 @@ std::vector<ValidationCase> sph_validation_cases() {
          auto rows = sph_leakage_rows(8, 10.0, 4.f);
          auto shipped = sph_leakage_rows(16, 1.0, 8.f);
          rows.insert(rows.end(), shipped.begin(), shipped.end());
+         auto obstacles = sph_obstacle_rows(0.01f, 1.0);
+         rows.insert(rows.end(), obstacles.begin(), obstacles.end());
          return rows;
        }},
       {"sph_heightfield", "sph", "heightfield of eq. 5-6: flat settled pool height = volume/area, tilted slope",

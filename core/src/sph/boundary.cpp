@@ -1,194 +1,345 @@
-// Container mirror images and obstacle ghost tables: see huygens/sph/boundary.hpp.
+// Boundary particles of the container and the obstacles, and the OBJ reader: see huygens/sph/boundary.hpp.
 #include "huygens/sph/boundary.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
 
 namespace huygens {
 
-float SphObstacle::distance(float px, float py, float pz, float n[3]) const {
-  if (type == Type::box) {
-    const float c[3] = {0.5f * (min_m[0] + max_m[0]), 0.5f * (min_m[1] + max_m[1]), 0.5f * (min_m[2] + max_m[2])};
-    const float e[3] = {0.5f * (max_m[0] - min_m[0]), 0.5f * (max_m[1] - min_m[1]), 0.5f * (max_m[2] - min_m[2])};
-    const float p[3] = {px - c[0], py - c[1], pz - c[2]};
-    float q[3], outside2 = 0.f, inside = -1e30f;
-    int axis = 0;
-    for (int k = 0; k < 3; ++k) {
-      q[k] = std::fabs(p[k]) - e[k];
-      if (q[k] > 0.f) outside2 += q[k] * q[k];
-      if (q[k] > inside) {
-        inside = q[k];
-        axis = k;
-      }
-    }
-    if (outside2 > 0.f) {
-      const float d = std::sqrt(outside2);
-      for (int k = 0; k < 3; ++k) n[k] = q[k] > 0.f ? std::copysign(q[k], p[k]) / d : 0.f;
-      return d;
-    }
-    for (int k = 0; k < 3; ++k) n[k] = 0.f;
-    n[axis] = std::copysign(1.f, p[axis]);
-    return inside;
-  }
-  // vertical cylinder between z0 and z1
-  const float dx = px - centre_m[0], dy = py - centre_m[1];
-  const float rho = std::sqrt(dx * dx + dy * dy);
-  const float dr = rho - radius_m;
-  const float zc = 0.5f * (z0_m + z1_m), ez = 0.5f * (z1_m - z0_m);
-  const float dz = std::fabs(pz - zc) - ez;
-  const float nr[2] = {rho > 1e-12f ? dx / rho : 1.f, rho > 1e-12f ? dy / rho : 0.f};
-  if (dr > 0.f && dz > 0.f) {
-    const float d = std::sqrt(dr * dr + dz * dz);
-    n[0] = nr[0] * dr / d;
-    n[1] = nr[1] * dr / d;
-    n[2] = std::copysign(dz, pz - zc) / d;
-    return d;
-  }
-  if (dr >= dz) {
-    n[0] = nr[0];
-    n[1] = nr[1];
-    n[2] = 0.f;
-    return dr;
-  }
-  n[0] = n[1] = 0.f;
-  n[2] = std::copysign(1.f, pz - zc);
-  return dz;
-}
-
-// The images of every subset of the planes within h that holds at most one plane per axis: a
-// per-axis sign flip x_a' = 2 w_a - x_a (see the header for o, s, G0 and gs).
-int sph_container_images(float x, float y, float z, float h, const std::array<float, 3>& container_m,
-                         const std::array<float, 3>& g, SphImage* out) {
-  struct Pl {
-    int axis;
-    float w;
-  } pl[6];
-  int np = 0;
-  const float pos[3] = {x, y, z};
-  for (int a = 0; a < 3; ++a) {
-    if (pos[a] < h) pl[np++] = {a, 0.f};
-    if (container_m[a] - pos[a] < h) pl[np++] = {a, container_m[a]};
-  }
-  int n = 0;
-  for (int mask = 1; mask < (1 << np); ++mask) {
-    int axes = 0;
-    bool ok = true;
-    for (int k = 0; k < np && ok; ++k)
-      if (mask & (1 << k)) {
-        ok = !(axes & (1 << pl[k].axis));
-        axes |= 1 << pl[k].axis;
-      }
-    if (!ok) continue;
-    SphImage im{};
-    for (int a = 0; a < 3; ++a) {
-      im.o[a] = pos[a];
-      im.s[a] = -1.f;
-      im.gs[a] = 0.f;
-    }
-    im.G0 = 0.f;
-    for (int k = 0; k < np; ++k)
-      if (mask & (1 << k)) {
-        const int a = pl[k].axis;
-        im.o[a] = pos[a] - 2.f * pl[k].w;
-        im.s[a] = 1.f;
-        if (a == 2 && pl[k].w == 0.f) im.floor = 1;
-        im.G0 += 2.f * g[a] * pl[k].w;
-        im.gs[a] = -2.f * g[a];
-      }
-    out[n++] = im;
-  }
-  return n;
-}
-
 // ---------------------------------------------------------------------------------------------
-// obstacles: ghost lattices behind one plane, tabulated over the distance
+// OBJ (v and f lines only)
 
 namespace {
 
-// Sums over the ghost lattice beyond `np` perpendicular planes at distances d[0..np-1] from the
-// particle (particle at the origin, plane a normal to axis a, ghosts at -(d_a + dx/2 + k dx) on
-// plane axes and at i dx on the others). D = m sum W_poly6 and F = 2 (-dD/dd_0) = 2 m sum 6 K (h^2 - r^2)^2 r_0:
-// the mirrored pressure (factor 2) along the first plane's normal of minus the gradient of D.
-void ghost_sums(const SphKernels& k, float dx, float m, int np, const double* d, double& D, double& F) {
-  const double h = k.h, h2 = double(k.h) * k.h;
-  const int M = static_cast<int>(std::ceil(h / dx)) + 1;
-  D = F = 0;
-  int lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = a < np ? 0 : -M;
-    hi[a] = M;
-  }
-  for (int i = lo[0]; i <= hi[0]; ++i)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int l = lo[2]; l <= hi[2]; ++l) {
-        const int idx[3] = {i, j, l};
-        double c[3];
-        for (int a = 0; a < 3; ++a) c[a] = a < np ? d[a] + dx * (0.5 + idx[a]) : double(dx) * idx[a];
-        const double r2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
-        if (r2 >= h2) continue;
-        D += m * double(k.poly6(static_cast<float>(r2)));
-        F += 2.0 * m * 6.0 * double(k.poly6_k) * (h2 - r2) * (h2 - r2) * c[0];
-      }
+using V3 = std::array<float, 3>;
+
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 cross(const V3& a, const V3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+float dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+[[noreturn]] void obj_fail(const std::string& name, int line, const std::string& why) {
+  throw std::runtime_error(name + (line > 0 ? ":" + std::to_string(line) : "") + ": " + why);
 }
 
-struct Plane {
-  float d;     // distance from the particle (>= 0)
-  float n[3];  // unit normal into the fluid
-};
-
-inline float lerp1(const std::vector<float>& t, float inv, int n, float d) {
-  const float u = std::min(std::max(d, 0.f) * inv, float(n));
-  const int i = std::min(static_cast<int>(u), n);
-  const float f = u - i;
-  return (1.f - f) * t[i] + f * t[i + 1];
+// the vertex index of one face token ("a", "a/b", "a//c", "a/b/c"); 1-based, negative from the end
+int face_index(const std::string& tok, int nv, const std::string& name, int line) {
+  std::size_t used = 0;
+  long v = 0;
+  try {
+    v = std::stol(tok.substr(0, tok.find('/')), &used);
+  } catch (const std::exception&) {
+    obj_fail(name, line, "face vertex '" + tok + "' is not an index");
+  }
+  if (used != tok.substr(0, tok.find('/')).size()) obj_fail(name, line, "face vertex '" + tok + "' is not an index");
+  const long i = v < 0 ? nv + v : v - 1;
+  if (v == 0 || i < 0 || i >= nv)
+    obj_fail(name, line,
+             "face vertex " + std::to_string(v) + " outside the " + std::to_string(nv) + " vertices so far");
+  return static_cast<int>(i);
 }
 
-// the obstacle surfaces within the support radius h of a particle (at most 16)
-inline int near_obstacles(const std::vector<SphObstacle>& obs, float h, float x, float y, float z, Plane* out) {
-  int n = 0;
-  for (const auto& o : obs) {
-    if (n >= 16) break;
-    if (!o.near(x, y, z, h)) continue;
-    Plane p{};
-    p.d = o.distance(x, y, z, p.n);
-    if (p.d < h) out[n++] = p;
+void parse_obj_line(const std::string& text, const std::string& name, int line, SphMesh& m) {
+  std::istringstream in(text);
+  std::string key;
+  if (!(in >> key) || key[0] == '#') return;
+  if (key == "vn" || key == "vt" || key == "o" || key == "g" || key == "s" || key == "usemtl" || key == "mtllib")
+    return;
+  if (key == "v") {
+    V3 p{};
+    for (float& c : p)
+      if (!(in >> c) || !std::isfinite(c)) obj_fail(name, line, "a vertex needs three finite coordinates");
+    m.vertices.push_back(p);
+    return;
   }
-  return n;
+  if (key != "f") obj_fail(name, line, "'" + key + "' lines are not read (only v and f)");
+  std::vector<int> f;
+  std::string tok;
+  while (in >> tok) f.push_back(face_index(tok, static_cast<int>(m.vertices.size()), name, line));
+  if (f.size() < 3) obj_fail(name, line, "a face needs at least three vertices");
+  for (std::size_t k = 1; k + 1 < f.size(); ++k) m.triangles.push_back({f[0], f[k], f[k + 1]});
+}
+
+// closed: every undirected edge belongs to exactly two triangles
+void check_closed(const SphMesh& m, const std::string& name) {
+  if (m.triangles.empty()) obj_fail(name, 0, "no faces");
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& t : m.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (a == b) obj_fail(name, 0, "a face repeats a vertex");
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  for (const auto& [e, n] : edges)
+    if (n != 2)
+      obj_fail(name, 0,
+               "the mesh is not closed: edge " + std::to_string(e.first + 1) + "-" + std::to_string(e.second + 1) +
+                   " belongs to " + std::to_string(n) + " faces (2 expected)");
 }
 
 }  // namespace
 
-SphObstacleWalls::SphObstacleWalls(const std::vector<SphObstacle>& obstacles, const SphKernels& k, float spacing,
-                                   float mass)
-    : obstacles_(obstacles), h_(k.h) {
-  n1_ = 256;
-  inv1_ = n1_ / h_;
-  const int s1 = n1_ + 2;
-  d1_.assign(s1, 0.f);
-  f1_.assign(s1, 0.f);
-  double D, F;
-  for (int a = 0; a < s1; ++a) {
-    const double d[1] = {double(a) / inv1_};
-    ghost_sums(k, spacing, mass, 1, d, D, F);
-    d1_[a] = static_cast<float>(D);
-    f1_[a] = static_cast<float>(F);
+SphMesh sph_parse_obj(const std::string& text, const std::string& name) {
+  SphMesh m;
+  std::istringstream in(text);
+  std::string l;
+  int line = 0;
+  while (std::getline(in, l)) parse_obj_line(l, name, ++line, m);
+  check_closed(m, name);
+  return m;
+}
+
+SphMesh sph_read_obj(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(file + ": cannot be read");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return sph_parse_obj(s.str(), file);
+}
+
+// ---------------------------------------------------------------------------------------------
+// mesh geometry: inside test by ray parity, distance to the surface
+
+namespace {
+
+// Moeller and Trumbore 1997: does the ray o + t d (t > 0) cross triangle (a, b, c)?
+bool ray_hits(const V3& o, const V3& d, const V3& a, const V3& b, const V3& c) {
+  const V3 e1 = sub(b, a), e2 = sub(c, a), pv = cross(d, e2);
+  const float det = dot(e1, pv);
+  if (std::fabs(det) < 1e-20f) return false;
+  const float inv = 1.f / det;
+  const V3 tv = sub(o, a);
+  const float u = dot(tv, pv) * inv;
+  if (u < 0.f || u > 1.f) return false;
+  const V3 qv = cross(tv, e1);
+  const float v = dot(d, qv) * inv;
+  if (v < 0.f || u + v > 1.f) return false;
+  return dot(e2, qv) * inv > 0.f;
+}
+
+bool mesh_inside(const SphMesh& m, const V3& p) {
+  // a direction off every axis and diagonal, so rays through edges are unlikely
+  const V3 d{0.8017f, 0.4721f, 0.3667f};
+  int hits = 0;
+  for (const auto& t : m.triangles) hits += ray_hits(p, d, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]);
+  return hits % 2 == 1;
+}
+
+// squared distance from p to triangle (a, b, c) (Ericson 2005, Real-Time Collision Detection, 5.1.5)
+float tri_dist2(const V3& p, const V3& a, const V3& b, const V3& c) {
+  const V3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+  const float d1 = dot(ab, ap), d2 = dot(ac, ap);
+  auto d2to = [&](const V3& q) { return dot(sub(p, q), sub(p, q)); };
+  auto lerp = [](const V3& x, const V3& y, float t) {
+    return V3{x[0] + t * (y[0] - x[0]), x[1] + t * (y[1] - x[1]), x[2] + t * (y[2] - x[2])};
+  };
+  if (d1 <= 0.f && d2 <= 0.f) return d2to(a);
+  const V3 bp = sub(p, b);
+  const float d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.f && d4 <= d3) return d2to(b);
+  const float vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.f && d1 >= 0.f && d3 <= 0.f) return d2to(lerp(a, b, d1 / (d1 - d3)));
+  const V3 cp = sub(p, c);
+  const float d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.f && d5 <= d6) return d2to(c);
+  const float vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.f && d2 >= 0.f && d6 <= 0.f) return d2to(lerp(a, c, d2 / (d2 - d6)));
+  const float va = d3 * d6 - d5 * d4;
+  if (va <= 0.f && (d4 - d3) >= 0.f && (d5 - d6) >= 0.f) return d2to(lerp(b, c, (d4 - d3) / ((d4 - d3) + (d5 - d6))));
+  const float den = 1.f / (va + vb + vc), v = vb * den, w = vc * den;
+  const V3 q{a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w};
+  return d2to(q);
+}
+
+float mesh_dist2(const SphMesh& m, const V3& p) {
+  float best = 1e30f;
+  for (const auto& t : m.triangles)
+    best = std::min(best, tri_dist2(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]));
+  return best;
+}
+
+}  // namespace
+
+bool SphObstacle::blocks(float x, float y, float z, float margin) const {
+  const float e = margin;
+  switch (type) {
+    case Type::box:
+      return x > min_m[0] - e && x < max_m[0] + e && y > min_m[1] - e && y < max_m[1] + e && z > min_m[2] - e &&
+             z < max_m[2] + e;
+    case Type::cylinder: {
+      const float dx = x - centre_m[0], dy = y - centre_m[1];
+      const float r = radius_m + e;
+      return dx * dx + dy * dy < r * r && z > z0_m - e && z < z1_m + e;
+    }
+    case Type::sphere: {
+      const float dx = x - sphere_centre_m[0], dy = y - sphere_centre_m[1], dz = z - sphere_centre_m[2];
+      const float r = radius_m + e;
+      return dx * dx + dy * dy + dz * dz < r * r;
+    }
+    case Type::mesh:
+      if (!(x > min_m[0] - e && x < max_m[0] + e && y > min_m[1] - e && y < max_m[1] + e && z > min_m[2] - e &&
+            z < max_m[2] + e))
+        return false;
+      if (e >= 0.f) return mesh_inside(*mesh, {x, y, z}) || mesh_dist2(*mesh, {x, y, z}) < e * e;
+      return mesh_inside(*mesh, {x, y, z}) && mesh_dist2(*mesh, {x, y, z}) > e * e;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// sampling
+
+int sph_boundary_layers(float h, float dx) { return std::max(1, static_cast<int>(std::ceil(h / dx - 1e-3f))); }
+
+namespace {
+
+// A lattice of spacing s_a = (hi_a - lo_a) / round((hi_a - lo_a) / dx) per axis, points at
+// lo + (i + 1/2) s for i in [-ext, n + ext): with ext = layers and `outside`, the points outside
+// [lo, hi] (the container walls); with ext = 0, the points within layers dx of the box faces.
+void sample_box_lattice(const V3& lo, const V3& hi, float dx, int layers, bool outside, SphBoundarySample& out) {
+  int n[3];
+  float s[3];
+  for (int a = 0; a < 3; ++a) {
+    n[a] = std::max(1, static_cast<int>(std::lround((hi[a] - lo[a]) / dx)));
+    s[a] = (hi[a] - lo[a]) / n[a];
+  }
+  const float w = s[0] * s[1] * s[2] / (dx * dx * dx);
+  const int ext = outside ? layers : 0;
+  for (int k = -ext; k < n[2] + ext; ++k)
+    for (int j = -ext; j < n[1] + ext; ++j)
+      for (int i = -ext; i < n[0] + ext; ++i) {
+        const int idx[3] = {i, j, k};
+        bool out_of_box = false;
+        float depth = 1e30f;  // distance to the nearest face, inside (m)
+        const V3 p{lo[0] + (i + 0.5f) * s[0], lo[1] + (j + 0.5f) * s[1], lo[2] + (k + 0.5f) * s[2]};
+        for (int a = 0; a < 3; ++a) {
+          out_of_box = out_of_box || idx[a] < 0 || idx[a] >= n[a];
+          depth = std::min(depth, std::min(idx[a] + 0.5f, n[a] - idx[a] - 0.5f) * s[a]);
+        }
+        if (outside ? !out_of_box : depth > layers * dx) continue;
+        // normal into the fluid: toward the box from outside, out of the nearest faces from inside
+        V3 nr{};
+        for (int a = 0; a < 3; ++a) {
+          if (outside) nr[a] = std::clamp(p[a], lo[a], hi[a]) - p[a];
+          if (!outside && std::fabs((idx[a] + 0.5f) * s[a] - depth) < 1e-3f * dx) nr[a] = -1.f;
+          if (!outside && std::fabs((n[a] - idx[a] - 0.5f) * s[a] - depth) < 1e-3f * dx) nr[a] = 1.f;
+        }
+        const float len = std::sqrt(dot(nr, nr));
+        out.add(p[0], p[1], p[2], w, nr[0] / len, nr[1] / len, nr[2] / len);
+      }
+}
+
+// ring of radius r at height z, points ~dx apart, each standing for (2 pi r / count) x dz x dr;
+// normal radial (cap = 0) or (0, 0, cap)
+void sample_ring(float cx, float cy, float r, float z, float dz, float dr, float dx, float cap,
+                 SphBoundarySample& out) {
+  const int cnt = std::max(1, static_cast<int>(std::lround(2.f * std::numbers::pi_v<float> * r / dx)));
+  const float w = 2.f * std::numbers::pi_v<float> * r / cnt * dz * dr / (dx * dx * dx);
+  for (int q = 0; q < cnt; ++q) {
+    const float t = 2.f * std::numbers::pi_v<float> * (q + 0.5f * (std::lround(z / dx) % 2)) / cnt;
+    const float c = std::cos(t), sn = std::sin(t);
+    out.add(cx + r * c, cy + r * sn, z, w, cap == 0.f ? c : 0.f, cap == 0.f ? sn : 0.f, cap);
   }
 }
 
-void SphObstacleWalls::add_density_near(float x, float y, float z, float& rho) const {
-  Plane pl[16];
-  const int n = near_obstacles(obstacles_, h_, x, y, z, pl);
-  for (int a = 0; a < n; ++a) rho += lerp1(d1_, inv1_, n1_, pl[a].d);
+void sample_cylinder(const SphObstacle& o, float dx, int layers, SphBoundarySample& out) {
+  const float R = o.radius_m, H = o.z1_m - o.z0_m, cx = o.centre_m[0], cy = o.centre_m[1];
+  const int nz = std::max(1, static_cast<int>(std::lround(H / dx)));
+  const float sz = H / nz;
+  // the side: `layers` rings per height level, over the whole height
+  for (int k = 0; k < layers && R - (k + 0.5f) * dx > 0.f; ++k)
+    for (int j = 0; j < nz; ++j)
+      sample_ring(cx, cy, R - (k + 0.5f) * dx, o.z0_m + (j + 0.5f) * sz, sz, dx, dx, 0.f, out);
+  // the caps inside the side layers: `layers` discs of rings of width rin / round(rin / dx) (a
+  // cylinder thinner than the layers gets discs of half a spacing, overlapping the side rings)
+  const float rin = std::max(R - layers * dx, std::min(R, 0.5f * dx));
+  const int nq = std::max(1, static_cast<int>(std::lround(rin / dx)));
+  const float sr = rin / nq;
+  for (int k = 0; k < layers && (k + 0.5f) * dx < 0.5f * H; ++k)
+    for (const float cap : {1.f, -1.f}) {
+      const float z = cap > 0.f ? o.z1_m - (k + 0.5f) * dx : o.z0_m + (k + 0.5f) * dx;
+      for (int q = 0; q < nq; ++q) sample_ring(cx, cy, (q + 0.5f) * sr, z, dx, sr, dx, cap, out);
+    }
 }
 
-void SphObstacleWalls::add_force_near(float x, float y, float z, float P, float& ax, float& ay, float& az) const {
-  Plane pl[16];
-  const int n = near_obstacles(obstacles_, h_, x, y, z, pl);
-  for (int a = 0; a < n; ++a) {
-    const float f = P * lerp1(f1_, inv1_, n1_, pl[a].d);
-    ax += f * pl[a].n[0];
-    ay += f * pl[a].n[1];
-    az += f * pl[a].n[2];
+// Fibonacci spheres of radius R - (k + 1/2) dx, ~one point per dx^2
+void sample_sphere(const SphObstacle& o, float dx, int layers, SphBoundarySample& out) {
+  const float golden = std::numbers::pi_v<float> * (3.f - std::sqrt(5.f));
+  for (int k = 0; k < layers; ++k) {
+    const float r = o.radius_m - (k + 0.5f) * dx;
+    if (r <= 0.f) break;
+    const float area = 4.f * std::numbers::pi_v<float> * r * r;
+    const int cnt = std::max(1, static_cast<int>(std::lround(area / (dx * dx))));
+    const float w = area / cnt / (dx * dx);
+    for (int q = 0; q < cnt; ++q) {
+      const float zz = 1.f - 2.f * (q + 0.5f) / cnt, rr = std::sqrt(std::max(0.f, 1.f - zz * zz));
+      const float t = golden * q;
+      const auto& c = o.sphere_centre_m;
+      out.add(c[0] + r * rr * std::cos(t), c[1] + r * rr * std::sin(t), c[2] + r * zz, w, rr * std::cos(t),
+              rr * std::sin(t), zz);
+    }
+  }
+}
+
+// Every triangle split into n^2 similar sub-triangles (n = ceil(longest edge / dx)), one point per
+// sub-triangle centroid, offset inward by (k + 1/2) dx along the outward face normal. A point is
+// kept only if it lies inside the mesh and no other face is nearer than its own depth: at convex
+// edges and corners the layers of the faces meeting there would overlap; each keeps its own part.
+void sample_mesh(const SphMesh& m, float dx, int layers, SphBoundarySample& out) {
+  double vol = 0;
+  for (const auto& t : m.triangles) vol += dot(m.vertices[t[0]], cross(m.vertices[t[1]], m.vertices[t[2]]));
+  const float orient = vol >= 0 ? 1.f : -1.f;
+  for (const auto& t : m.triangles) {
+    const V3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
+    const V3 ab = sub(b, a), ac = sub(c, a), nn = cross(ab, ac);
+    const float len = std::sqrt(dot(nn, nn));
+    if (len <= 0.f) continue;
+    const V3 nrm{orient * nn[0] / len, orient * nn[1] / len, orient * nn[2] / len};
+    const float edge = std::sqrt(std::max({dot(ab, ab), dot(ac, ac), dot(sub(c, b), sub(c, b))}));
+    const int n = std::max(1, static_cast<int>(std::ceil(edge / dx)));
+    const float w = 0.5f * len / float(n * n) / (dx * dx);
+    for (int k = 0; k < layers; ++k)
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; i + j < n; ++j)
+          for (int up = 0; up < 2; ++up) {
+            if (up == 1 && i + j + 2 > n) continue;
+            const float f = up ? 2.f / 3.f : 1.f / 3.f;
+            const float u = (i + f) / n, v = (j + f) / n, d = (k + 0.5f) * dx;
+            const V3 p{a[0] + u * ab[0] + v * ac[0] - d * nrm[0], a[1] + u * ab[1] + v * ac[1] - d * nrm[1],
+                       a[2] + u * ab[2] + v * ac[2] - d * nrm[2]};
+            if (mesh_dist2(m, p) >= d * d * (1.f - 1e-3f) && mesh_inside(m, p))
+              out.add(p[0], p[1], p[2], w, nrm[0], nrm[1], nrm[2]);
+          }
+  }
+}
+
+}  // namespace
+
+void sph_sample_container(const std::array<float, 3>& container_m, float dx, int layers, SphBoundarySample& out) {
+  sample_box_lattice({0.f, 0.f, 0.f}, container_m, dx, layers, true, out);
+}
+
+void sph_sample_obstacle(const SphObstacle& o, float dx, int layers, SphBoundarySample& out) {
+  switch (o.type) {
+    case SphObstacle::Type::box:
+      sample_box_lattice(o.min_m, o.max_m, dx, layers, false, out);
+      return;
+    case SphObstacle::Type::cylinder:
+      sample_cylinder(o, dx, layers, out);
+      return;
+    case SphObstacle::Type::sphere:
+      sample_sphere(o, dx, layers, out);
+      return;
+    case SphObstacle::Type::mesh:
+      sample_mesh(*o.mesh, dx, layers, out);
+      return;
   }
 }
 

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
@@ -23,6 +25,25 @@ std::array<float, N> vecf(const JsonIn& in, const std::string& key, double lo, d
   std::array<float, N> out{};
   for (std::size_t k = 0; k < N; ++k) out[k] = static_cast<float>(v[k]);
   return out;
+}
+
+// The viewer draws boxes and vertical cylinders: a sphere as the cylinder around it, a mesh as its
+// bounding box.
+RenderObstacle render_obstacle(const SphObstacle& o) {
+  RenderObstacle ro;
+  using T = SphObstacle::Type;
+  ro.kind = o.type == T::box || o.type == T::mesh ? RenderObstacle::Kind::box : RenderObstacle::Kind::cylinder;
+  for (int a = 0; a < 3; ++a) ro.min_m[a] = o.min_m[a], ro.max_m[a] = o.max_m[a];
+  ro.centre_m = {o.centre_m[0], o.centre_m[1]};
+  ro.radius_m = o.radius_m;
+  ro.z0_m = o.z0_m;
+  ro.z1_m = o.z1_m;
+  if (o.type == T::sphere) {
+    ro.centre_m = {o.sphere_centre_m[0], o.sphere_centre_m[1]};
+    ro.z0_m = o.sphere_centre_m[2] - o.radius_m;
+    ro.z1_m = o.sphere_centre_m[2] + o.radius_m;
+  }
+  return ro;
 }
 
 class SphSolver final : public Solver {
@@ -143,14 +164,7 @@ class SphSolver final : public Solver {
     r.rest_level_m = mean_level(height());
     if (r.rest_level_m > 0.0) r.depth_m = r.rest_level_m;
     for (const SphObstacle& o : sys_.params().obstacles) {
-      RenderObstacle ro;
-      ro.kind = o.type == SphObstacle::Type::box ? RenderObstacle::Kind::box : RenderObstacle::Kind::cylinder;
-      for (int a = 0; a < 3; ++a) ro.min_m[a] = o.min_m[a], ro.max_m[a] = o.max_m[a];
-      ro.centre_m = {o.centre_m[0], o.centre_m[1]};
-      ro.radius_m = o.radius_m;
-      ro.z0_m = o.z0_m;
-      ro.z1_m = o.z1_m;
-      r.obstacles.push_back(ro);
+      r.obstacles.push_back(render_obstacle(o));
     }
     r.frame_dt_s = 1.0 / 60.0;
     const auto& box = sys_.params().container_m;
@@ -185,6 +199,7 @@ void parse_fluid_params(const JsonIn& s, SphParams& p) {
                                        " the poly6/spiky kernel mix pumps energy into the fluid (unstable); refused");
   p.impact_alpha = static_cast<float>(s.number("impact_alpha", p.impact_alpha, 0.0, 1.0));
   p.impact_beta = static_cast<float>(s.number("impact_beta", p.impact_beta, 0.0, 10.0));
+  p.wall_alpha = static_cast<float>(s.number("wall_alpha", p.wall_alpha, 0.0, 10.0));
   if (auto c = s.optional_number("sound_speed_mps", 1e-3, 1e5)) p.sound_speed_mps = static_cast<float>(*c);
   if (s.has("gravity_mps2")) p.gravity_mps2 = vecf<3>(s, "gravity_mps2", -1000.0, 1000.0);
   p.container_m = vecf<3>(s, "container_m", 1e-4, 1e4);
@@ -230,9 +245,35 @@ void check_sound_speed(const JsonIn& s, const SphParams& p) {
                                   " m/s the Mach number exceeds 0.3 and density errors exceed 10 %; refused");
 }
 
-SphObstacle parse_obstacle(const JsonIn& o) {
+// "mesh": a closed OBJ triangle mesh (path relative to the scene file), scaled then moved by position_m.
+void parse_mesh(const JsonIn& o, const std::string& scene_file, SphObstacle& ob) {
+  o.allow_only({"type", "file", "position_m", "scale"});
+  ob.type = SphObstacle::Type::mesh;
+  const std::string file = o.string("file", "");
+  if (file.empty()) o.fail("file", "the OBJ file of the mesh is required");
+  const std::array<float, 3> pos = o.has("position_m") ? vecf<3>(o, "position_m", -1e4, 1e4) : std::array<float, 3>{};
+  const float scale = static_cast<float>(o.number("scale", 1.0, 1e-6, 1e6));
+  const std::filesystem::path path = std::filesystem::path(scene_file).parent_path() / file;
+  SphMesh m;
+  try {
+    m = sph_read_obj(path.string());
+  } catch (const std::runtime_error& e) {
+    o.fail("file", e.what());
+  }
+  ob.min_m = {1e30f, 1e30f, 1e30f};
+  ob.max_m = {-1e30f, -1e30f, -1e30f};
+  for (auto& v : m.vertices)
+    for (int a = 0; a < 3; ++a) {
+      v[a] = v[a] * scale + pos[a];
+      ob.min_m[a] = std::min(ob.min_m[a], v[a]);
+      ob.max_m[a] = std::max(ob.max_m[a], v[a]);
+    }
+  ob.mesh = std::make_shared<const SphMesh>(std::move(m));
+}
+
+SphObstacle parse_obstacle(const JsonIn& o, const std::string& scene_file) {
   SphObstacle ob;
-  const std::string type = o.string("type", "", {"box", "cylinder"});
+  const std::string type = o.string("type", "", {"box", "cylinder", "sphere", "mesh"});
   if (type == "box") {
     o.allow_only({"type", "min_m", "max_m"});
     ob.type = SphObstacle::Type::box;
@@ -240,6 +281,17 @@ SphObstacle parse_obstacle(const JsonIn& o) {
     ob.max_m = vecf<3>(o, "max_m", -1e4, 1e4);
     for (int a = 0; a < 3; ++a)
       if (ob.max_m[a] <= ob.min_m[a]) o.fail("max_m", "max_m must exceed min_m on every axis");
+    return ob;
+  }
+  if (type == "sphere") {
+    o.allow_only({"type", "centre_m", "radius_m"});
+    ob.type = SphObstacle::Type::sphere;
+    ob.sphere_centre_m = vecf<3>(o, "centre_m", -1e4, 1e4);
+    ob.radius_m = static_cast<float>(o.number("radius_m", 1e-6, 1e4));
+    return ob;
+  }
+  if (type == "mesh") {
+    parse_mesh(o, scene_file, ob);
     return ob;
   }
   o.allow_only({"type", "centre_m", "radius_m", "z0_m", "z1_m"});
@@ -289,21 +341,60 @@ SphSurfaceParams parse_surface(const JsonIn& s, const SphParams& p) {
 
 }  // namespace
 
+namespace {
+
+// Boundary particles a set-up samples, from the surface areas (unit: 1): layers per dx^2 of every
+// wall and obstacle surface, meshes at up to 3 points per dx^2 (their sub-triangle sampling).
+double boundary_estimate(const SphParams& p) {
+  const double dx = p.spacing_m, K = sph_boundary_layers(p.support(), p.spacing_m), pi = 3.14159265358979;
+  const auto& c = p.container_m;
+  double area = 2.0 * (double(c[0]) * c[1] + double(c[1]) * c[2] + double(c[0]) * c[2]);
+  for (const auto& o : p.obstacles) {
+    const double R = o.radius_m;
+    if (o.type == SphObstacle::Type::box) {
+      const double e[3] = {double(o.max_m[0]) - o.min_m[0], double(o.max_m[1]) - o.min_m[1],
+                           double(o.max_m[2]) - o.min_m[2]};
+      area += 2.0 * (e[0] * e[1] + e[1] * e[2] + e[0] * e[2]);
+    } else if (o.type == SphObstacle::Type::cylinder) {
+      area += 2.0 * pi * R * (double(o.z1_m) - o.z0_m) + 2.0 * pi * R * R;
+    } else if (o.type == SphObstacle::Type::sphere) {
+      area += 4.0 * pi * R * R;
+    } else {
+      for (const auto& t : o.mesh->triangles) {
+        const auto &a = o.mesh->vertices[t[0]], &b = o.mesh->vertices[t[1]], &d = o.mesh->vertices[t[2]];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+        const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        area += 3.0 * 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      }
+    }
+  }
+  return area * K / (dx * dx);
+}
+
+}  // namespace
+
 SphScene parse_sph_scene(const Scene& scene) {
   const JsonIn root = scene.root();
   root.allow_only({"solver", "sph", "description"});
   const JsonIn s = root.object("sph");
   s.reject_renamed({{"viscosity_m2ps", "viscosity_m2s"}});
   s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
-                "impact_alpha", "impact_beta", "sound_speed_mps", "gravity_mps2", "container_m", "fluid", "obstacles",
-                "time", "surface"});
+                "impact_alpha", "impact_beta", "wall_alpha", "sound_speed_mps", "gravity_mps2", "container_m", "fluid",
+                "obstacles", "boundary", "time", "surface"});
+  // walls and obstacles are boundary particles (the mirror images and the position clamp are gone)
+  s.string("boundary", "particles", {"particles"});
   SphScene out;
   SphParams& p = out.params;
   parse_fluid_params(s, p);
   parse_fluid_blocks(s, p);
   check_sound_speed(s, p);
-  for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o));
+  for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o, scene.file));
   parse_time(s, p);
+  const double nb = boundary_estimate(p);
+  if (nb > 2e7)
+    s.fail(p.obstacles.empty() ? "container_m" : "obstacles",
+           "the walls and obstacles would take about " + std::to_string(long(nb)) +
+               " boundary particles; more than 2e7 is refused (memory)");
   out.surface = parse_surface(s, p);
   require_memory(sph_memory(out));
   return out;
@@ -326,6 +417,8 @@ MemoryEstimate sph_memory(const SphScene& scene) {
   m.add("particles", static_cast<std::uint64_t>(particles * (22 * 4 + 2 * 4 + 3 * 4)));
   m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4));
   m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4));
+  // 9 float arrays per boundary particle (system.hpp) and the 7 of its sample
+  m.add("boundary particles", static_cast<std::uint64_t>(boundary_estimate(p) * 16 * 4));
   return m;
 }
 

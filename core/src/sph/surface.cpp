@@ -62,7 +62,8 @@ namespace {
 
 // The evaluation points whose phi adds up to the phi of the particles AND their mirror images across
 // the container walls x = 0, x = lx, y = 0, y = ly and the floor z = 0 within R (phi of an image
-// at p equals phi of the particle at the mirrored point): the same mirror walls as the solver, so a
+// at p equals phi of the particle at the mirrored point): for the surface only (the solver samples
+// the walls with boundary particles, which the heightfield does not see), so a
 // column next to a wall sees the fluid continue instead of dipping. Returns the count (<= 12).
 int mirror_points(float xc, float yc, float R, float lx, float ly, float* mx, float* my) {
   float xs[3] = {xc, 0.f, 0.f}, ys[3] = {yc, 0.f, 0.f};

@@ -21,10 +21,29 @@ void SphSystem::allocate(std::size_t n) {
   id_.assign(n, 0);
   tid_.assign(n, 0);
   grid_ = SphGrid(p_.container_m, h_, n);
+  place_boundary();
   // candidate scratch per thread: 27 cells at up to 4x the rest occupancy (h/dx)^3 (denser cells
   // take the direct path)
   const double occ = std::pow(double(p_.support_factor), 3);
-  gather_ = SphCellGather(static_cast<std::size_t>(std::min(double(n) + 8.0, 27.0 * 4.0 * occ + 64.0)));
+  gather_ = SphCellGather(static_cast<std::size_t>(std::min(double(std::max(n, nb_)) + 8.0, 27.0 * 4.0 * occ + 64.0)));
+}
+
+// The boundary particles into the grid's static table, their arrays in that order.
+void SphSystem::place_boundary() {
+  nb_ = bsample_.size();
+  for (auto* b : {&bx_, &by_, &bz_, &bw_, &bP_, &bp_, &bnx_, &bny_, &bnz_}) *b = AlignedBuffer<float>(nb_ + 8);
+  std::vector<std::uint32_t> order(nb_);
+  grid_.build_static(bsample_.x.data(), bsample_.y.data(), bsample_.z.data(), nb_, order.data());
+  for (std::size_t k = 0; k < nb_; ++k) {
+    const std::uint32_t o = order[k];
+    bx_[k] = bsample_.x[o];
+    by_[k] = bsample_.y[o];
+    bz_[k] = bsample_.z[o];
+    bw_[k] = bsample_.w[o];
+    bnx_[k] = bsample_.nx[o];
+    bny_[k] = bsample_.ny[o];
+    bnz_[k] = bsample_.nz[o];
+  }
 }
 
 // The fluid blocks on the lattice of cell centres (i + 1/2) dx, leaving out positions outside the
@@ -44,8 +63,7 @@ void SphSystem::place_fluid(std::vector<float>& px, std::vector<float>& py, std:
           const auto& c = p_.container_m;
           if (X < 0 || Y < 0 || Z < 0 || X > c[0] || Y > c[1] || Z > c[2]) continue;
           bool blocked = false;
-          float nrm[3];
-          for (const auto& o : p_.obstacles) blocked = blocked || o.distance(X, Y, Z, nrm) < 0.5f * dx;
+          for (const auto& o : p_.obstacles) blocked = blocked || o.blocks(X, Y, Z, 0.5f * dx);
           if (blocked) continue;
           px.push_back(X);
           py.push_back(Y);
@@ -85,8 +103,11 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   mvol_ = p_.gradient_correction ? mass_ / rho0 * k_.spiky_k / 3.f : 0.f;
   nu_ = p_.viscosity_m2s + p_.artificial_viscosity * c0_ * h_;
   pik_ = p_.impact_alpha * c0_ * h_ / rho0;
+  pikw_ = std::max(p_.impact_alpha, p_.wall_alpha) * c0_ * h_ / rho0;
   pbk_ = p_.impact_beta * h_ * h_ / rho0;
-  walls_ = SphObstacleWalls(p_.obstacles, k_, dx, mass_);
+  const int layers = sph_boundary_layers(h_, dx);
+  sph_sample_container(p_.container_m, dx, layers, bsample_);
+  for (const auto& o : p_.obstacles) sph_sample_obstacle(o, dx, layers, bsample_);
 
   dt_hist_.assign(std::max<std::size_t>(dt_history, 1), 0.0);
   sid_.neighbours = stats_.add("neighbour search");
@@ -168,6 +189,7 @@ double SphSystem::step() {
   {
     StageTimer t(stats_[sid_.density]);
     compute_density(false);
+    compute_boundary_pressure();
   }
   if (!all_finite(density())) throw NonFiniteError("density", steps_);
   {
@@ -182,7 +204,7 @@ double SphSystem::step() {
     dt = sph_choose_dt(p_, h_, c0_, nu_, vmax_, amax_, dts_.limiter);
     const SphMotion m{x_.data(),  y_.data(),  z_.data(),  vx_.data(), vy_.data(),
                       vz_.data(), ax_.data(), ay_.data(), az_.data(), n_};
-    sph_integrate(p_, damping_, static_cast<float>(dt), m);
+    sph_integrate(damping_, static_cast<float>(dt), m);
   }
   if (!all_finite(x()) || !all_finite(y()) || !all_finite(z()) || !all_finite(vx()) || !all_finite(vy()) ||
       !all_finite(vz()))
@@ -203,6 +225,7 @@ double SphSystem::step() {
 void SphSystem::refresh() {
   sort_particles();
   compute_density(true);
+  compute_boundary_pressure();
   compute_forces();
   dts_.limiter = "dt_max";
 }

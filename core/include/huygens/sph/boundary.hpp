@@ -1,23 +1,41 @@
 #pragma once
-// Walls and obstacles of the SPH container [0, Lx] x [0, Ly] x [0, Lz] (docs/sph.md "Walls").
-// Container walls are mirror images: for each plane within h of particle i, every neighbour j has
-// an image x_j' reflected across it (and across each pair and the triple of planes of different
-// axes at edges and corners) carrying j's density, its mirrored velocity (free slip) and
-//   p_j' = p_j + rho_j g . (x_j' - x_j)     (Adami, Hu and Adams 2012 eq. 27, wall at rest).
-// With d = x_i - x_j' = o + s X_j (s_a = +1 on reflected axes, else -1) the image's pressure term
-// is P_j' = p_j'/rho_j^2 = P_j + (G0 + gs . X_j) / rho_j, G0 = sum_a 2 g_a w_a, gs_a = -2 g_a.
-// Obstacles (box, vertical cylinder) use a tabulated one-plane ghost lattice on their signed
-// distance d: density D1(d) = m sum W_poly6, force 2 (p_i/rho_i^2) |dD1/dd| along the normal.
+// Walls and obstacles of the SPH container [0, Lx] x [0, Ly] x [0, Lz] as boundary particles
+// (docs/sph.md "Walls"): dummy particles after Adami, Hu and Adams 2012 (J. Comput. Phys. 231),
+// static, K = ceil(h / dx) layers deep so a fluid particle at a wall has a full kernel support.
+// Each boundary particle b has a mass m_b = w_b m (m the fluid particle mass, w_b its sampled
+// volume over dx^3) and enters the fluid density like a fluid particle. Its pressure is
+// extrapolated from the fluid around it (Adami et al. 2012 eq. 27, wall at rest, a_w = 0):
+//   p_b = max(0, (sum_f p_f W_bf + g . sum_f rho_f (x_b - x_f) W_bf) / sum_f W_bf)
+// and its density from the equation of state inverted (eq. 28): rho_b = rho0 (1 + p_b / B)^(1/gamma).
+// Sampling: the container walls and box obstacles on a lattice of spacing ~dx (per axis L / round(L / dx)),
+// cylinders and spheres on rings / Fibonacci spheres of spacing ~dx per layer, meshes by a regular
+// area sampling of every triangle (n^2 sub-triangle centroids, n = ceil(longest edge / dx)) offset
+// inward along the face normal by (k + 1/2) dx for layer k.
 #include <array>
+#include <memory>
+#include <string>
 #include <vector>
-
-#include "huygens/sph/kernels.hpp"
 
 namespace huygens {
 
-/// A static rigid obstacle: an axis-aligned box, or a vertical cylinder standing on z0_m.
+/// A closed triangle mesh (vertices in m after placement; triangles as vertex indices).
+struct SphMesh {
+  std::vector<std::array<float, 3>> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+/// Reads the "v x y z" and "f a b c ..." lines of an OBJ file (faces fan-triangulated; "a/b/c"
+/// uses a; negative indices count from the end; comments, blank lines and vn, vt, o, g, s, usemtl,
+/// mtllib lines are skipped). Throws std::runtime_error naming the file and line of a bad line, and
+/// the file when the mesh is empty or not closed (every edge in exactly two triangles).
+SphMesh sph_read_obj(const std::string& file);
+/// The same from text (`name` stands for the file in messages).
+SphMesh sph_parse_obj(const std::string& text, const std::string& name);
+
+/// A static rigid obstacle: an axis-aligned box, a vertical cylinder standing on z0_m, a sphere, or
+/// a closed triangle mesh.
 struct SphObstacle {
-  enum class Type { box, cylinder };
+  enum class Type { box, cylinder, sphere, mesh };
   Type type = Type::box;
   /// Box lower corner (unit: m).
   std::array<float, 3> min_m{0.f, 0.f, 0.f};
@@ -25,72 +43,41 @@ struct SphObstacle {
   std::array<float, 3> max_m{0.f, 0.f, 0.f};
   /// Cylinder axis position x, y (unit: m).
   std::array<float, 2> centre_m{0.f, 0.f};
-  /// Cylinder radius (unit: m).
+  /// Sphere centre (unit: m).
+  std::array<float, 3> sphere_centre_m{0.f, 0.f, 0.f};
+  /// Cylinder or sphere radius (unit: m).
   float radius_m = 0.f;
   /// Cylinder bottom and top heights (unit: m).
   float z0_m = 0.f, z1_m = 0.f;
-  /// Signed distance (unit: m; negative inside) and outward unit normal at p.
-  float distance(float px, float py, float pz, float n[3]) const;
-  /// False when (x, y, z) is farther than `margin` (unit: m) from the bounding box (then the signed
-  /// distance exceeds margin too): skips distance() for most particles.
-  bool near(float x, float y, float z, float margin) const {
-    const bool box = type == Type::box;
-    const float x0 = box ? min_m[0] : centre_m[0] - radius_m, x1 = box ? max_m[0] : centre_m[0] + radius_m;
-    const float y0 = box ? min_m[1] : centre_m[1] - radius_m, y1 = box ? max_m[1] : centre_m[1] + radius_m;
-    const float zl = box ? min_m[2] : z0_m, zh = box ? max_m[2] : z1_m;
-    return x > x0 - margin && x < x1 + margin && y > y0 - margin && y < y1 + margin && z > zl - margin &&
-           z < zh + margin;
+  /// Mesh, placed (unit: m); min_m / max_m hold its bounding box.
+  std::shared_ptr<const SphMesh> mesh;
+  /// True where (x, y, z) lies inside the obstacle or within `margin` of it; a negative margin: deeper
+  /// than -margin inside (unit: m).
+  bool blocks(float x, float y, float z, float margin) const;
+};
+
+/// The boundary particles of a set-up, in any order: positions (m), mass ratios w = m_b / m (1)
+/// and unit normals of the surface they sample, pointing into the fluid (1).
+struct SphBoundarySample {
+  std::vector<float> x, y, z, w, nx, ny, nz;
+  std::size_t size() const { return x.size(); }
+  void add(float px, float py, float pz, float pw, float n0, float n1, float n2) {
+    x.push_back(px);
+    y.push_back(py);
+    z.push_back(pz);
+    w.push_back(pw);
+    nx.push_back(n0);
+    ny.push_back(n1);
+    nz.push_back(n2);
   }
 };
 
-/// A mirror image of the neighbours across container planes: d = o + s X_j (unit: m; s: 1).
-struct SphImage {
-  float o[3], s[3];
-  /// Hydrostatic pressure of the image: P_j' = P_j + (G0 + gs . X_j) / rho_j (G0: m^2/s^2, gs: m/s^2).
-  float G0, gs[3];
-  /// 1 if the image is reflected across the floor z = 0 (its partners lie in the bottom cell layer).
-  int floor;
-};
+/// Number of boundary layers for support h and spacing dx: ceil(h / dx - 1/1000) (unit: 1).
+int sph_boundary_layers(float h, float dx);
 
-/// The particle itself as an "image": d = x_i - X_j.
-inline SphImage sph_self_image(float x, float y, float z) {
-  SphImage im{};
-  im.o[0] = x;
-  im.o[1] = y;
-  im.o[2] = z;
-  return im;
-}
-
-/// The mirror images (at most 7) for a particle at (x, y, z) in a container of `container_m`
-/// with walls within `h` (unit: m), for gravity `g` (unit: m/s^2); returns their count.
-int sph_container_images(float x, float y, float z, float h, const std::array<float, 3>& container_m,
-                         const std::array<float, 3>& g, SphImage* out);
-
-/// The obstacles' ghost-lattice density and pressure force, tabulated over the signed distance.
-class SphObstacleWalls {
- public:
-  SphObstacleWalls() = default;
-  /// Tables for particles of mass `mass` (unit: kg) on a lattice of `spacing` (unit: m).
-  SphObstacleWalls(const std::vector<SphObstacle>& obstacles, const SphKernels& k, float spacing, float mass);
-  bool empty() const { return obstacles_.empty(); }
-  /// Adds D1(d) of every obstacle within h of (x, y, z) to rho (unit: kg/m^3).
-  void add_density(float x, float y, float z, float& rho) const {
-    if (!obstacles_.empty()) add_density_near(x, y, z, rho);
-  }
-  /// Adds P |dD1/dd| along each near obstacle's normal (P = l p / rho^2: m^5/(kg s^2); a: m/s^2).
-  void add_force(float x, float y, float z, float P, float& ax, float& ay, float& az) const {
-    if (P > 0.f && !obstacles_.empty()) add_force_near(x, y, z, P, ax, ay, az);
-  }
-
- private:
-  // the checks above inline (most scenes have no obstacle), the table look-ups out of line
-  void add_density_near(float x, float y, float z, float& rho) const;
-  void add_force_near(float x, float y, float z, float P, float& ax, float& ay, float& az) const;
-  std::vector<SphObstacle> obstacles_;
-  float h_ = 0.f;
-  int n1_ = 0;
-  float inv1_ = 0.f;
-  std::vector<float> d1_, f1_;
-};
+/// Samples `layers` layers outside the container [0, L]^3 (edges and corners included).
+void sph_sample_container(const std::array<float, 3>& container_m, float dx, int layers, SphBoundarySample& out);
+/// Samples `layers` layers inside the obstacle's surface.
+void sph_sample_obstacle(const SphObstacle& o, float dx, int layers, SphBoundarySample& out);
 
 }  // namespace huygens

@@ -7,8 +7,9 @@
 //   pressure sum_j (P_i + P_j + Pi_ij) (h - r)^2 / r x_ij    (x m 45/(pi h^6))
 //   viscous  sum_j (v_j - v_i) (h - r) / rho_j               (x nu rho0 m 45/(pi h^6) / rho_i)
 // Pi_ij = (pik + pbk mu) mu, mu = max(0, -v_ij . x_ij) / (r^2 + h^2/100), pik = alpha c0 h / rho0,
-// pbk = beta h^2 / rho0: the impact viscosity on approaching pairs only. kImage: the sums over the
-// mirror images of the range (d = o + s X_j, boundary.hpp) instead of the particles (d = x_i - X_j).
+// pbk = beta h^2 / rho0: the impact viscosity on approaching pairs only. kBoundary: the sums over
+// boundary particles (boundary.hpp), each weighted by its mass ratio W = m_b / m, at rest, without
+// the viscous term (free-slip walls).
 // Whole aligned 8-float vectors over [b & ~7, (e + 7) & ~7), lanes outside [b, e) masked (arrays
 // padded: no scalar remainder); 1/r without square root or division (sph_rsqrt). The loop bodies
 // are branch-free: every term is computed for every lane and the support and range test selects
@@ -42,38 +43,43 @@ inline float sph_keep(bool keep, float x) {
 }
 
 /// The particle arrays a pair sum reads (cell-sorted, 64-byte aligned): positions (m), velocities
-/// (m/s), PP = l p / rho^2, IR = 1 / rho, LR = l / rho.
+/// (m/s), PP = l p / rho^2, IR = 1 / rho, LR = l / rho. Boundary particles: X, Y, Z, PP, W (the
+/// mass ratio m_b / m) and the unit normal NX, NY, NZ into the fluid.
 struct SphView {
   const float *X, *Y, *Z, *VX, *VY, *VZ, *PP, *IR, *LR;
+  const float* W = nullptr;
+  const float *NX = nullptr, *NY = nullptr, *NZ = nullptr;
 };
 
-/// Adds the density sum to `sum` and, with kMoment, the first moment of the spiky gradient to `msum`.
-template <bool kImage, bool kMoment>
-[[gnu::noinline]] void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im, float h,
-                                       float h2, float& sum, float& msum) {
+/// Adds the density sum of particle (xi, yi, zi) to `sum` and, with kMoment, the first moment of
+/// the spiky gradient to `msum`; kBoundary: over boundary candidates, each weighted by W.
+template <bool kBoundary, bool kMoment>
+[[gnu::noinline]] void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi, float zi,
+                                       float h, float h2, float& sum, float& msum) {
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
-  const float ox = im.o[0], oy = im.o[1], oz = im.o[2], sx = im.s[0], sy = im.s[1], sz = im.s[2];
+  const float* W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   float s6 = 0.f, sm = 0.f;
 #pragma omp simd reduction(+ : s6, sm) aligned(X, Y, Z : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = kImage ? ox + sx * X[j] : ox - X[j];
-    const float dy = kImage ? oy + sy * Y[j] : oy - Y[j];
-    const float dz = kImage ? oz + sz * Z[j] : oz - Z[j];
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
     const bool in = (r2 < h2) & (j >= b) & (j < e);
     const float q = sph_keep(in, h2 - r2);
     // the selected cube is added: the and between product and sum keeps them two roundings (no
     // fused multiply-add), the same sums for every ISA
-    s6 += sph_keep(in, q * q * q);
+    const float q3 = kBoundary ? q * q * q * W[j] : q * q * q;
+    s6 += sph_keep(in, q3);
     if constexpr (kMoment) {
       // first moment of the spiky gradient: (h - r)^2 r, r = r2 / sqrt(r2 + 1e-30): 0 at r2 = 0, and
       // r2 + 1e-30 rounds to r2 for r2 > 2e-23 m^2
       const float r = r2 * sph_rsqrt(r2 + 1e-30f);
       const float hr = sph_keep(in, h - r);
-      sm += sph_keep(in, hr * hr * r);
+      sm += sph_keep(in, kBoundary ? hr * hr * r * W[j] : hr * hr * r);
     }
   }
   sum += s6;
@@ -82,8 +88,11 @@ template <bool kImage, bool kMoment>
 
 /// Adds the pressure sum to acc[0..2], the viscous sum to acc[3..5] and the spiky first moment
 /// (for the next step's correction) to acc[6]; vi = v_i, Pi = P_i, rmin = smallest r used (m).
-template <bool kImage>
-[[gnu::noinline]] void sph_force_range(const SphView& v, std::uint32_t b, std::uint32_t e, const SphImage& im,
+/// kBoundary: over boundary candidates, pressure, impact and moment terms weighted by W, no viscous
+/// term (free slip); the impact term sees the velocity of a mirror image of particle i across the
+/// wall, v_i - v_i' = 2 (v_i . n) n, so only motion into the wall is damped, not sliding along it.
+template <bool kBoundary>
+[[gnu::noinline]] void sph_force_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi, float zi,
                                        const float vi[3], float Pi, float h, float h2, float rmin, float pik, float pbk,
                                        float acc[7]) {
   const float rmin2 = rmin * rmin, eta2 = 0.01f * h2;
@@ -95,37 +104,43 @@ template <bool kImage>
   const float* VZ = v.VZ;
   const float* PP = v.PP;
   const float* IR = v.IR;
-  const float* LR = v.LR;
-  const float ox = im.o[0], oy = im.o[1], oz = im.o[2], sx = im.s[0], sy = im.s[1], sz = im.s[2];
-  const float G0 = im.G0, gx = im.gs[0], gy = im.gs[1], gz = im.gs[2];
+  const float* W = v.W;
+  const float* NX = v.NX;
+  const float* NY = v.NY;
+  const float* NZ = v.NZ;
   const float vxi = vi[0], vyi = vi[1], vzi = vi[2];
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   float fpx = 0.f, fpy = 0.f, fpz = 0.f, fvx = 0.f, fvy = 0.f, fvz = 0.f, sm = 0.f;
-#pragma omp simd reduction(+ : fpx, fpy, fpz, fvx, fvy, fvz, sm) aligned(X, Y, Z, VX, VY, VZ, PP, IR, LR : 32)
+#pragma omp simd reduction(+ : fpx, fpy, fpz, fvx, fvy, fvz, sm) aligned(X, Y, Z, PP : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = kImage ? ox + sx * X[j] : ox - X[j];
-    const float dy = kImage ? oy + sy * Y[j] : oy - Y[j];
-    const float dz = kImage ? oz + sz * Z[j] : oz - Z[j];
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
     const float ri = sph_rsqrt(std::max(r2, rmin2));  // 1 / r
     const float r = r2 * ri;
     const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r);
-    const float Pj = kImage ? std::max(PP[j] + LR[j] * (G0 + gx * X[j] + gy * Y[j] + gz * Z[j]), 0.f) : PP[j];
-    const float vjx = kImage ? -sx * VX[j] : VX[j], vjy = kImage ? -sy * VY[j] : VY[j],
-                vjz = kImage ? -sz * VZ[j] : VZ[j];
-    const float vr = (vxi - vjx) * dx + (vyi - vjy) * dy + (vzi - vjz) * dz;
+    float vr;
+    if constexpr (kBoundary) {
+      vr = 2.f * (vxi * NX[j] + vyi * NY[j] + vzi * NZ[j]) * (dx * NX[j] + dy * NY[j] + dz * NZ[j]);
+    } else {
+      vr = (vxi - VX[j]) * dx + (vyi - VY[j]) * dy + (vzi - VZ[j]) * dz;
+    }
     const float ie = sph_rsqrt(r2 + eta2);  // Monaghan's 1 / (r^2 + h^2/100), squared below
     const float mu = std::max(-vr, 0.f) * ie * ie;
     const float Pv = (pik + pbk * mu) * mu;
-    const float fp = (Pi + Pj + Pv) * hr * hr * ri;
+    const float wj = kBoundary ? W[j] : 1.f;
+    const float fp = (Pi + PP[j] + Pv) * hr * hr * ri * wj;
     fpx += fp * dx;
     fpy += fp * dy;
     fpz += fp * dz;
-    const float fv = hr * IR[j];
-    fvx += fv * (vjx - vxi);
-    fvy += fv * (vjy - vyi);
-    fvz += fv * (vjz - vzi);
-    sm += hr * hr * r;  // first moment of the spiky gradient, for the next step's correction
+    if constexpr (!kBoundary) {
+      const float fv = hr * IR[j];
+      fvx += fv * (VX[j] - vxi);
+      fvy += fv * (VY[j] - vyi);
+      fvz += fv * (VZ[j] - vzi);
+    }
+    sm += hr * hr * r * wj;  // first moment of the spiky gradient, for the next step's correction
   }
   acc[0] += fpx;
   acc[1] += fpy;
@@ -134,6 +149,45 @@ template <bool kImage>
   acc[4] += fvy;
   acc[5] += fvz;
   acc[6] += sm;
+}
+
+/// The sums of a boundary particle at (xb, yb, zb) over fluid candidates for its extrapolated
+/// pressure (Adami et al. 2012 eq. 27): s[0] = sum W, s[1] = sum p W, s[2..4] = sum rho (x_b - x_f) W,
+/// s[5] = sum l W, with W = (h^2 - r^2)^3 (poly6 without its constant, which cancels). v: X, Y, Z
+/// of the fluid, PP = p (Pa), IR = rho (kg/m^3), LR = l (1).
+[[gnu::noinline]] inline void sph_wall_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xb, float yb,
+                                             float zb, float h2, float s[6]) {
+  const float* X = v.X;
+  const float* Y = v.Y;
+  const float* Z = v.Z;
+  const float* P = v.PP;
+  const float* R = v.IR;
+  const float* L = v.LR;
+  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+  float sw = 0.f, sp = 0.f, sx = 0.f, sy = 0.f, sz = 0.f, sl = 0.f;
+#pragma omp simd reduction(+ : sw, sp, sx, sy, sz, sl) aligned(X, Y, Z, P, R, L : 32)
+  for (std::uint32_t j = b0; j < e0; ++j) {
+    const float dx = xb - X[j];
+    const float dy = yb - Y[j];
+    const float dz = zb - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const bool in = (r2 < h2) & (j >= b) & (j < e);
+    const float q = sph_keep(in, h2 - r2);
+    const float w = sph_keep(in, q * q * q);
+    const float rw = sph_keep(in, R[j] * w);
+    sw += w;
+    sp += sph_keep(in, P[j] * w);
+    sx += rw * dx;
+    sy += rw * dy;
+    sz += rw * dz;
+    sl += sph_keep(in, L[j] * w);
+  }
+  s[0] += sw;
+  s[1] += sp;
+  s[2] += sx;
+  s[3] += sy;
+  s[4] += sz;
+  s[5] += sl;
 }
 
 }  // namespace huygens

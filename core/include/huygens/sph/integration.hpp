@@ -3,9 +3,8 @@
 // every step, on the support radius h (m), sound speed c0 (m/s), kinematic viscosity nu (m^2/s):
 //   dt = min(cfl h / (c0 + v_max), force sqrt(h / a_max), viscous h^2 / nu, dt_max)
 // (the acoustic CFL, force and viscous conditions; the factors in SphParams). Symplectic Euler
-// v += a dt, x += v dt, with v *= 1 / (1 + damping dt) for settling runs; then every particle is
-// clamped 0.1 spacing inside the container and outside every obstacle, its normal velocity into
-// the wall removed, so no particle leaves the container.
+// v += a dt, x += v dt, with v *= 1 / (1 + damping dt) for settling runs. No position clamp: the
+// boundary particles (boundary.hpp) keep the fluid inside by their pressure.
 #include <cstddef>
 #include <cstdint>
 
@@ -34,7 +33,7 @@ struct SphMotion {
 /// largest speed vmax (m/s) and acceleration amax (m/s^2); `limiter` names the condition that set it.
 double sph_choose_dt(const SphParams& p, float h, float c0, float nu, float vmax, float amax, const char*& limiter);
 
-/// One symplectic Euler step of dt (s) with velocity damping `damping_ps` (1/s), then the clamp.
-void sph_integrate(const SphParams& p, float damping_ps, float dt, const SphMotion& m);
+/// One symplectic Euler step of dt (s) with velocity damping `damping_ps` (1/s).
+void sph_integrate(float damping_ps, float dt, const SphMotion& m);
 
 }  // namespace huygens

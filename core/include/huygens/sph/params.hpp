@@ -35,6 +35,9 @@ struct SphParams {
   float impact_alpha = 0.f;
   /// Beta (quadratic term) of the impact viscosity Pi_ij; 0 with alpha 0 = off (unit: 1).
   float impact_beta = 4.f;
+  /// Alpha of the impact viscosity between fluid and boundary particles, on the velocity normal to
+  /// the wall only (free slip): stops zero-pressure fluid drifting into a wall (unit: 1).
+  float wall_alpha = 0.1f;
   /// Speed of sound c0 of the Tait equation; 0 = automatic, 10 sqrt(2 g H) with H the fluid height (unit: m/s).
   float sound_speed_mps = 0.f;
   /// Tait exponent gamma (unit: 1).

@@ -1,13 +1,15 @@
 #pragma once
 // 3D smoothed particle hydrodynamics of paper 000 section 3, after Mueller, Charypar and Gross
 // 2003 (MCG03): a weakly compressible fluid in a closed box, stepped on the CPU.
-//   density   rho_i = sum_j m W_poly6(r_ij) over neighbours and wall images       (MCG03 eq. 3)
+//   density   rho_i = sum_j m_j W_poly6(r_ij) over fluid and boundary neighbours  (MCG03 eq. 3)
 //   pressure  p_i = max(0, B ((rho_i/rho0)^gamma - 1)), B = rho0 c0^2 / gamma      (Tait)
 //   force     a_i = g - sum_j m (l_i p_i/rho_i^2 + l_j p_j/rho_j^2 + Pi_ij) grad W_spiky
 //                   + (nu rho0 / rho_i) sum_j m (v_j - v_i) / rho_j lap W_visc     (MCG03 eq. 10, 14)
 // with nu = nu_physical + eps c0 h, Pi_ij the impact viscosity of Monaghan 1992 eq. 4.1 and
 // l_i = 3 / tr(M_i) the gradient correction of Bonet and Lok 1999 (M_i: the spiky gradient's first
-// moment, summed by the force pass and used by the next step's density pass). Units: SI (m, s, kg).
+// moment, summed by the force pass and used by the next step's density pass). Boundary particles
+// (boundary.hpp) are neighbours at rest with the pressure extrapolated from the fluid (Adami, Hu and
+// Adams 2012 eq. 27-28), recomputed between the density and force passes. Units: SI (m, s, kg).
 // Kernels: kernels.hpp; walls and obstacles: boundary.hpp; pair sums: forces.hpp; neighbour grid:
 // grid.hpp; time step: integration.hpp. Why each choice, and the measurements: docs/sph.md.
 #include <array>
@@ -69,6 +71,14 @@ class SphSystem {
   std::span<const float> gradient_correction() const { return {corr_.data(), n_}; }
   std::span<const std::uint32_t> ids() const { return {id_.data(), n_}; }
   const SphGrid& grid() const { return grid_; }
+  /// Boundary particles (walls and obstacles), in the grid's static order: positions (m), mass ratio
+  /// m_b / m (1), extrapolated pressure p_b of the last density pass (Pa).
+  std::size_t boundary_count() const { return nb_; }
+  std::span<const float> boundary_x() const { return {bx_.data(), nb_}; }
+  std::span<const float> boundary_y() const { return {by_.data(), nb_}; }
+  std::span<const float> boundary_z() const { return {bz_.data(), nb_}; }
+  std::span<const float> boundary_mass_ratio() const { return {bw_.data(), nb_}; }
+  std::span<const float> boundary_pressure() const { return {bp_.data(), nb_}; }
 
   /// Positions in particle-id order, interleaved (x, y, z) per particle (count x 3) (unit: m).
   void positions_by_id(std::span<float> out) const;
@@ -113,6 +123,12 @@ class SphSystem {
   /// fresh_moment: compute the gradient correction in this pass (else use the last force pass's).
   void compute_density(bool fresh_moment);
   void compute_forces();
+  /// The boundary particles' pressure from the fluid around them (Adami et al. 2012 eq. 27-28).
+  void compute_boundary_pressure();
+  /// p_b, and l_b p_b / rho_b^2 into bP_[b], from the sums s of sph_wall_range (forces.hpp).
+  void set_boundary_pressure(std::size_t b, const float s[6]);
+  /// Samples the container walls and the obstacles and sorts them into the grid's static table.
+  void place_boundary();
   float pressure_of(float rho) const;
   /// Gradient correction l = 1 / M from the spiky first-moment sum msum = sum (h - r)^2 r.
   float gradient_correction(float msum) const {
@@ -130,6 +146,7 @@ class SphSystem {
   // impact viscosity Pi_ij = (pik_ + pbk_ mu) mu, mu = max(0, -v_ij . x_ij) / (r^2 + h^2/100):
   // pik_ = alpha c0 h / rho0, pbk_ = beta h^2 / rho0
   float pik_ = 0, pbk_ = 0;
+  float pikw_ = 0;  // wall_alpha c0 h / rho0: the linear term between fluid and boundary particles
   std::array<float, 3> g_;
   float damping_;
   std::size_t n_ = 0;
@@ -137,7 +154,10 @@ class SphSystem {
   std::int64_t steps_ = 0;
   SphGrid grid_;
   SphCellGather gather_;
-  SphObstacleWalls walls_;
+  SphBoundarySample bsample_;  // the boundary particles as sampled (any order)
+  std::size_t nb_ = 0;
+  // boundary particles, grid static order: positions, mass ratio, l p / rho^2, pressure, normal
+  AlignedBuffer<float> bx_, by_, bz_, bw_, bP_, bp_, bnx_, bny_, bnz_;
   // SoA state (64-byte aligned) and sort buffers.
   AlignedBuffer<float> x_, y_, z_, vx_, vy_, vz_, ax_, ay_, az_, rho_, P_, irho_, lirho_, corr_, p_arr_;
   AlignedBuffer<float> tx_, ty_, tz_, tvx_, tvy_, tvz_, tcorr_;

@@ -26,6 +26,10 @@ std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::v
 /// container_len a long: inside the container, finite, max speed (every step) < 1.5 sqrt(2 g H).
 std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float container_len);
 
+/// No particle enters an obstacle: a dam break (spacing dx, m) onto a wedge read as an OBJ mesh,
+/// a sphere, a vertical cylinder and a box, all boundary particles, over t_end seconds.
+std::vector<ValidationRow> sph_obstacle_rows(float dx, double t_end);
+
 /// Heightfield extraction: a settled flat pool (height = volume / area within half a spacing)
 /// and a tilted lattice (slope of the extracted surface).
 std::vector<ValidationRow> sph_heightfield_rows(int n, int depth, double settle_s, float slope);
