@@ -73,7 +73,6 @@ struct Painter {
   }
 };
 
-
 }  // namespace
 
 WaterRenderer::PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right) {
@@ -156,7 +155,8 @@ void draw_plot(const WaterRenderer::PlanPlot& r, const PlotSpec& spec, const std
   glClear(GL_COLOR_BUFFER_BIT);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, src.id());
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, target.fbo());
-  glBlitFramebuffer(0, 0, iw, ih, static_cast<GLint>(std::lround(r.x0)), static_cast<GLint>(std::lround(H - r.y0 - r.height)),
+  glBlitFramebuffer(0, 0, iw, ih, static_cast<GLint>(std::lround(r.x0)),
+                    static_cast<GLint>(std::lround(H - r.y0 - r.height)),
                     static_cast<GLint>(std::lround(r.x0 + r.width)), static_cast<GLint>(std::lround(H - r.y0)),
                     GL_COLOR_BUFFER_BIT, GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
