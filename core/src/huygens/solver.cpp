@@ -10,6 +10,7 @@
 
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
+#include "huygens/huygens/slab_solver.hpp"
 #include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens {
@@ -439,7 +440,9 @@ std::vector<OutputField> HuygensSolver::outputs() {
   return {OutputField{"eta", {v, v}, eta_view()}};
 }
 
-nlohmann::json HuygensSolver::meta() const {
+nlohmann::json HuygensSolver::meta() const { return huygens_meta(scene_, transforms_per_step(), still_energy_); }
+
+nlohmann::json huygens_meta(const HuygensScene& scene_, int transforms_per_step, double still_energy_) {
   const auto& p = scene_.params;
   const int m = p.margin, n = p.n;
   const double dx = p.length_m / n;
@@ -481,10 +484,10 @@ nlohmann::json HuygensSolver::meta() const {
                                                 {"gamma", scene_.wind.gamma},
                                                 {"spectrum", "JONSWAP"}}
                                : nlohmann::json(nullptr)},
-      {"transforms_per_step", transforms_per_step()},
+      {"transforms_per_step", transforms_per_step},
       {"still_energy_j", still_energy_},
       {"transforms_per_displayed_frame",
-       static_cast<double>(transforms_per_step()) / static_cast<double>(scene_.display_per_step)},
+       static_cast<double>(transforms_per_step) / static_cast<double>(scene_.display_per_step)},
   };
 }
 
@@ -535,6 +538,13 @@ RenderInfo HuygensSolver::render_info() {
 }
 
 std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options) {
+#ifdef HUYGENS_HAVE_MPI
+  // under mpirun with more than one rank: the slab solver (one process: this solver, unchanged)
+  int init = 0, ranks = 1;
+  MPI_Initialized(&init);
+  if (init) MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (ranks > 1) return std::make_unique<HuygensSlabSolver>(parse_huygens_scene(scene, options), MPI_COMM_WORLD);
+#endif
   return std::make_unique<HuygensSolver>(parse_huygens_scene(scene, options));
 }
 

@@ -27,6 +27,10 @@ struct OutputField {
   std::string name;
   std::vector<std::size_t> shape;
   std::span<const float> data;
+  /// On MPI ranks: the shape of the whole field (empty: `shape` is the whole field) and the
+  /// first global row of `data` (each rank writes its rows of one file).
+  std::vector<std::size_t> global_shape = {};
+  std::size_t row_offset = 0;
 };
 
 /// Options that come from the command line rather than the scene.
