@@ -79,7 +79,8 @@ T reduce(T x, MPI_Datatype type, MPI_Op op) {
   return out;
 }
 void reduce_span(std::span<double> x, MPI_Op op) {
-  if (g_active && !x.empty()) MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(x.size()), MPI_DOUBLE, op, MPI_COMM_WORLD);
+  if (g_active && !x.empty())
+    MPI_Allreduce(MPI_IN_PLACE, x.data(), static_cast<int>(x.size()), MPI_DOUBLE, op, MPI_COMM_WORLD);
 }
 }  // namespace
 
@@ -128,7 +129,8 @@ HaloExchange::HaloExchange(std::size_t max_messages) {
 
 namespace {
 int checked_count(std::size_t n) {
-  if (n > static_cast<std::size_t>(INT_MAX)) throw std::length_error("HaloExchange: message longer than INT_MAX floats");
+  if (n > static_cast<std::size_t>(INT_MAX))
+    throw std::length_error("HaloExchange: message longer than INT_MAX floats");
   return static_cast<int>(n);
 }
 [[noreturn]] void no_peer() { throw std::logic_error("HaloExchange: a peer rank in a run of one rank"); }
