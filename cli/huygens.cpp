@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "huygens/common/comm.hpp"
 #include "huygens/common/program.hpp"
 
 namespace huygens {
@@ -39,19 +40,32 @@ const char* const kUsage =
     "            value (or a negative LBM depth); 4 not enough memory; 130/143 stopped by\n"
     "            SIGINT/SIGTERM.\n";
 
+int command(int argc, char** argv) {
+  if (argc < 2) throw UsageError("no command given");
+  const std::string cmd = argv[1];
+  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (cmd == "run") return cmd_run(argc - 2, argv + 2);
+  if (cmd == "validate") return cmd_validate(argc - 2, argv + 2);
+  throw UsageError("unknown command '" + cmd + "'");
+}
+
 }  // namespace huygens
 
+// MPI (comm.hpp) starts inside run_program's body (after its one re-execution) and ends with the
+// body; an error that escapes the body on one rank of several ends them all by MPI_Abort with the
+// program's exit code, after run_program printed the message (comm::exit_code). Agreed stops (a
+// non-finite value, a negative depth, a signal: reduced at step boundaries) end every rank
+// cleanly with the same code.
 int main(int argc, char** argv) {
   using namespace huygens;
-  return run_program("huygens", argv, [&]() {
-    if (argc < 2) throw UsageError("no command given");
-    const std::string cmd = argv[1];
-    if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (cmd == "run") return cmd_run(argc - 2, argv + 2);
-    if (cmd == "validate") return cmd_validate(argc - 2, argv + 2);
-    throw UsageError("unknown command '" + cmd + "'");
+  const int rc = run_program("huygens", argv, [&]() {
+    comm::init(&argc, &argv);
+    const int code = command(argc, argv);
+    comm::finalize();
+    return code;
   });
+  return comm::exit_code(rc);
 }

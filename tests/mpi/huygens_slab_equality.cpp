@@ -31,14 +31,13 @@ std::vector<float> gather_eta(HuygensSlabSolver& s) {
   const int v = static_cast<int>(f.global_shape[1]);
   int ranks = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  int mine[2] = {static_cast<int>(f.row_offset) * v, static_cast<int>(f.data.size())};
+  int mine[2] = {static_cast<int>(f.row0) * v, static_cast<int>(f.data.size())};
   std::vector<int> all(2 * static_cast<std::size_t>(ranks));
   MPI_Gather(mine, 2, MPI_INT, all.data(), 2, MPI_INT, 0, MPI_COMM_WORLD);
   std::vector<int> displ(static_cast<std::size_t>(ranks)), counts(static_cast<std::size_t>(ranks));
   for (int r = 0; r < ranks; ++r) displ[r] = all[2 * r], counts[r] = all[2 * r + 1];
   std::vector<float> eta(static_cast<std::size_t>(v) * v, NAN);
-  MPI_Gatherv(f.data.data(), mine[1], MPI_FLOAT, eta.data(), counts.data(), displ.data(), MPI_FLOAT, 0,
-              MPI_COMM_WORLD);
+  MPI_Gatherv(f.data.data(), mine[1], MPI_FLOAT, eta.data(), counts.data(), displ.data(), MPI_FLOAT, 0, MPI_COMM_WORLD);
   return eta;
 }
 
@@ -111,8 +110,9 @@ int run(int argc, char** argv) {
   int fail = rank == 0 && !(worst <= 1e-6);
   MPI_Bcast(&fail, 1, MPI_INT, 0, MPI_COMM_WORLD);
   if (rank == 0)
-    std::printf("%s P=%d: worst relative L2 vs 1 rank %.3e (limit 1e-6): %s; vs one-process solver %.3e (target 1e-6, "
-                "not asserted: docs/scale.md)\n",
-                argv[1], ranks, worst, fail ? "FAIL" : "pass", worst_one);
+    std::printf(
+        "%s P=%d: worst relative L2 vs 1 rank %.3e (limit 1e-6): %s; vs one-process solver %.3e (target 1e-6, "
+        "not asserted: docs/scale.md)\n",
+        argv[1], ranks, worst, fail ? "FAIL" : "pass", worst_one);
   return fail;
 }

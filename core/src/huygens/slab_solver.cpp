@@ -53,6 +53,7 @@ HuygensSlabSolver::HuygensSlabSolver(const HuygensScene& scene, MPI_Comm comm, b
   const HuygensParams& p = scene_.params;
   if (auto e = huygens_params_error(p); !e.empty()) throw std::invalid_argument(e);
   g_ = slab_grid(p.n, comm_, transposed);
+  sent_per_transform_ = static_cast<std::uint64_t>(g_.transposes() * slab_transpose_bytes(g_));
   spatial_ = p.absorber != Absorber::off || !scene_.ships.empty();
   second_ = scene_.stokes;
   v_ = p.n - 2 * p.margin;
@@ -316,6 +317,7 @@ void HuygensSlabSolver::propagate() {
       inv_prop_->execute();
       fft_ns_ += elapsed_ns(t0);
       stats_[st_propagate_].transforms += 1;
+      stats_[st_propagate_].sent += sent_per_transform_;
     }
   }
   const std::size_t m = static_cast<std::size_t>(spatial_ ? g_.rows : g_.krows) * g_.n;
@@ -363,9 +365,9 @@ void HuygensSlabSolver::spectrum() {
     fwd_->execute();
     fft_ns_ += elapsed_ns(t0);
     stats_[st_spectrum_].transforms += 1;
+    stats_[st_spectrum_].sent += sent_per_transform_;
   }
-  if (check_now_)
-    check(st_spectrum_, std::span<const cfloat>(s_.data(), static_cast<std::size_t>(g_.krows) * g_.n));
+  if (check_now_) check(st_spectrum_, std::span<const cfloat>(s_.data(), static_cast<std::size_t>(g_.krows) * g_.n));
 }
 
 bool HuygensSlabSolver::drop_due() const {
@@ -436,6 +438,7 @@ void HuygensSlabSolver::make_height() {
   }
   fft_ns_ += elapsed_ns(t0);
   stats_[st_height_].transforms += second_ ? 4 : 2;
+  stats_[st_height_].sent += (second_ ? 4 : 2) * sent_per_transform_;
 }
 
 bool HuygensSlabSolver::extract_height() {
@@ -541,7 +544,7 @@ void HuygensSlabSolver::step() {
 std::vector<OutputField> HuygensSlabSolver::outputs() {
   OutputField f{"eta", {static_cast<std::size_t>(vis_rows_), static_cast<std::size_t>(v_)}, eta_.span()};
   f.global_shape = {static_cast<std::size_t>(v_), static_cast<std::size_t>(v_)};
-  f.row_offset = static_cast<std::size_t>(vis_row0_);
+  f.row0 = static_cast<std::size_t>(vis_row0_);
   return {f};
 }
 
@@ -580,20 +583,6 @@ nlohmann::json HuygensSlabSolver::meta() const {
               {"transposes_per_step", transforms_per_step()},
               {"height", "i IFFT[alpha Y] + i conj(IFFT[beta Y]): two transforms, no mirror exchange"}};
   return j;
-}
-
-StageStats HuygensSlabSolver::reduced_stats() const {
-  StageStats out = stats_;
-  const std::size_t k = stats_.all().size();
-  std::vector<std::uint64_t> ns(k), bytes(k);
-  for (std::size_t i = 0; i < k; ++i) ns[i] = stats_.all()[i].ns, bytes[i] = stats_.all()[i].bytes;
-  MPI_Allreduce(MPI_IN_PLACE, ns.data(), static_cast<int>(k), MPI_UINT64_T, MPI_MAX, comm_);
-  MPI_Allreduce(MPI_IN_PLACE, bytes.data(), static_cast<int>(k), MPI_UINT64_T, MPI_SUM, comm_);
-  for (std::size_t i = 0; i < k; ++i) {
-    out[static_cast<int>(i)].ns = ns[i];
-    out[static_cast<int>(i)].bytes = bytes[i];
-  }
-  return out;
 }
 
 }  // namespace huygens

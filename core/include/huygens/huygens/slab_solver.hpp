@@ -44,7 +44,7 @@ class HuygensSlabSolver : public Solver {
   void step() override;
   double time() const override { return static_cast<double>(steps_) * scene_.params.dt_s; }
   std::int64_t steps() const override { return steps_; }
-  /// This rank's rows of the visible eta: shape {rows, v}, global_shape {v, v}, row_offset.
+  /// This rank's rows of the visible eta: shape {rows, v}, global_shape {v, v}, row0.
   std::vector<OutputField> outputs() override;
   /// The global grid (as HuygensSolver::meta) plus "mpi": ranks, layout, transposes per step.
   nlohmann::json meta() const override;
@@ -69,8 +69,6 @@ class HuygensSlabSolver : public Solver {
   double bytes_sent_per_step() const;
   /// Wall time inside the N x N transforms (local FFTs and transposes; unit: ns), summed.
   std::uint64_t fft_ns() const { return fft_ns_; }
-  /// Collective: the stage table reduced over ranks (time: the slowest rank; bytes: summed).
-  StageStats reduced_stats() const;
   bool still() const { return still_; }
   /// This rank's rows of the spectrum Z^ (krows x N, the grid's layout; unnormalised).
   std::span<const cfloat> spectrum_view() const { return {s_.data(), static_cast<std::size_t>(g_.krows) * g_.n}; }
@@ -123,6 +121,7 @@ class HuygensSlabSolver : public Solver {
   double still_energy_ = 0.0;
   bool still_ = false;
   std::uint64_t fft_ns_ = 0;
+  std::uint64_t sent_per_transform_ = 0;  // bytes this rank sends in one N x N transform
 };
 
 }  // namespace huygens
