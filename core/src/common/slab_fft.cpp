@@ -39,7 +39,9 @@ unsigned effort_flags(PlanEffort e) {
 
 SlabFft::SlabFft(const SlabGrid& g, cfloat* in, cfloat* out, int sign, PlanEffort effort, MPI_Comm comm) {
   slab_fft_init();
-  const unsigned layout = !g.transposed ? 0u : sign == Fft2D::forward ? FFTW_MPI_TRANSPOSED_OUT : FFTW_MPI_TRANSPOSED_IN;
+  const unsigned layout = !g.transposed            ? 0u
+                          : sign == Fft2D::forward ? FFTW_MPI_TRANSPOSED_OUT
+                                                   : FFTW_MPI_TRANSPOSED_IN;
   plan_ = fftwf_mpi_plan_dft_2d(g.n, g.n, reinterpret_cast<fftwf_complex*>(in), reinterpret_cast<fftwf_complex*>(out),
                                 comm, sign, effort_flags(effort) | layout);
   if (!plan_) throw std::runtime_error("fftwf_mpi_plan_dft_2d failed");
