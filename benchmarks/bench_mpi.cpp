@@ -97,10 +97,10 @@ HuygensScene mpi_scene(int n) {
 }
 
 struct Timing {
-  double step_s = 0;      // mean wall time per step (the slowest rank)
-  double bytes = 0;       // measured bytes sent per step by this rank
-  double formula = 0;     // HuygensSlabSolver::bytes_sent_per_step()
-  int transposes = 0;     // per step
+  double step_s = 0;   // mean wall time per step (the slowest rank)
+  double bytes = 0;    // measured bytes sent per step by this rank
+  double formula = 0;  // HuygensSlabSolver::bytes_sent_per_step()
+  int transposes = 0;  // per step
 };
 
 Timing time_solver(const HuygensScene& sc, MPI_Comm comm, int steps) {
@@ -121,8 +121,8 @@ double time_transpose(int n, MPI_Comm comm, int reps) {
   const ptrdiff_t alloc = fftwf_mpi_local_size_2d_transposed(n, n, comm, &rows, &r0, &cols, &c0);
   float* a = fftwf_alloc_real(2 * static_cast<size_t>(alloc));
   for (ptrdiff_t i = 0; i < 2 * alloc; ++i) a[i] = 0.0f;
-  fftwf_plan p = fftwf_mpi_plan_many_transpose(n, n, 2, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, a, a, comm,
-                                               FFTW_ESTIMATE);
+  fftwf_plan p =
+      fftwf_mpi_plan_many_transpose(n, n, 2, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, a, a, comm, FFTW_ESTIMATE);
   fftwf_execute(p);
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();
@@ -169,12 +169,14 @@ void run_under_mpi(Context& ctx) {
     t.add({fmt("%d", n), fmt("%d", ranks), fmt("%.1f", 1e3 * many.step_s), fmt("%.1f", 1e3 * tr),
            fmt("%.1f", 1e3 * (many.step_s - tr)), fmt("%.2f", one.step_s / many.step_s), fmt("%d", many.transposes),
            fmt("%.0f", many.formula), fmt("%.0f", many.bytes), fmt("%.4f", many.bytes / many.formula)});
-    ctx.expect(std::abs(many.bytes / many.formula - 1.0) < 0.01, fmt("mpi: measured bytes match the formula at N=%d", n));
+    ctx.expect(std::abs(many.bytes / many.formula - 1.0) < 0.01,
+               fmt("mpi: measured bytes match the formula at N=%d", n));
   }
   if (rank == 0)
-    ctx.report("mpi", fmt("Huygens slab solver, strong scaling 1 -> %d ranks (first order + cutoff, FFTW_ESTIMATE, "
-                          "OpenMP threads per rank %d; formula T x 8 N^2/P (P-1)/P)",
-                          ranks, omp_get_max_threads()),
+    ctx.report("mpi",
+               fmt("Huygens slab solver, strong scaling 1 -> %d ranks (first order + cutoff, FFTW_ESTIMATE, "
+                   "OpenMP threads per rank %d; formula T x 8 N^2/P (P-1)/P)",
+                   ranks, omp_get_max_threads()),
                t);
 }
 
