@@ -449,8 +449,8 @@ std::vector<OutputField> HuygensSolver::outputs() {
 
 nlohmann::json HuygensSolver::meta() const { return huygens_meta(scene_, transforms_per_step(), still_energy_); }
 
-nlohmann::json huygens_meta(const HuygensScene& scene_, int transforms_per_step, double still_energy_) {
-  const auto& p = scene_.params;
+nlohmann::json huygens_meta(const HuygensScene& scene, int transforms_per_step, double still_energy_j) {
+  const auto& p = scene.params;
   const int m = p.margin, n = p.n;
   const double dx = p.length_m / n;
   return nlohmann::json{
@@ -460,7 +460,7 @@ nlohmann::json huygens_meta(const HuygensScene& scene_, int transforms_per_step,
       {"dx", dx},
       {"dt", p.dt_s},
       {"margin", m},
-      {"display_per_step", scene_.display_per_step},
+      {"display_per_step", scene.display_per_step},
       {"cutoff", p.absorber == Absorber::paper_quadratic},
       {"cutoff_time_s", p.cutoff_time_s},
       {"rotation", p.rotation == Rotation::lifting ? "lifting" : "complex"},
@@ -478,23 +478,23 @@ nlohmann::json huygens_meta(const HuygensScene& scene_, int transforms_per_step,
         {"note",
          "index ranges are half-open [start, end) into the full N x N grid; origin_m is (x, y) of cell (0, 0)"}}},
       {"fields",
-       {{"eta", scene_.stokes ? "elevation to second order (paper 004 eq. 3: Re IFFT[i k/omega Z^] + Re chi^2) (m), "
-                                "rows = y, cols = x"
-                              : "first-order elevation Re IFFT[i k/omega Z^] (m), rows = y, cols = x"}}},
-      {"stokes", scene_.stokes},
-      {"ships", static_cast<int>(scene_.ships.size())},
-      {"ship_patch", scene_.ships.empty() ? 0 : scene_.ship_patch},
-      {"wind", scene_.has_wind ? nlohmann::json{{"speed_mps", scene_.wind.speed_mps},
-                                                {"direction_deg", scene_.wind.direction_deg},
-                                                {"seed", scene_.wind.seed},
-                                                {"fetch_m", scene_.wind.fetch_m},
-                                                {"gamma", scene_.wind.gamma},
-                                                {"spectrum", "JONSWAP"}}
-                               : nlohmann::json(nullptr)},
+       {{"eta", scene.stokes ? "elevation to second order (paper 004 eq. 3: Re IFFT[i k/omega Z^] + Re chi^2) (m), "
+                               "rows = y, cols = x"
+                             : "first-order elevation Re IFFT[i k/omega Z^] (m), rows = y, cols = x"}}},
+      {"stokes", scene.stokes},
+      {"ships", static_cast<int>(scene.ships.size())},
+      {"ship_patch", scene.ships.empty() ? 0 : scene.ship_patch},
+      {"wind", scene.has_wind ? nlohmann::json{{"speed_mps", scene.wind.speed_mps},
+                                               {"direction_deg", scene.wind.direction_deg},
+                                               {"seed", scene.wind.seed},
+                                               {"fetch_m", scene.wind.fetch_m},
+                                               {"gamma", scene.wind.gamma},
+                                               {"spectrum", "JONSWAP"}}
+                              : nlohmann::json(nullptr)},
       {"transforms_per_step", transforms_per_step},
-      {"still_energy_j", still_energy_},
+      {"still_energy_j", still_energy_j},
       {"transforms_per_displayed_frame",
-       static_cast<double>(transforms_per_step) / static_cast<double>(scene_.display_per_step)},
+       static_cast<double>(transforms_per_step) / static_cast<double>(scene.display_per_step)},
   };
 }
 
