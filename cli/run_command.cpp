@@ -28,7 +28,9 @@ using nlohmann::json;
 struct RunArgs {
   std::string scene_file, dump_dir, stats_file;
   long long steps = 100, every = 1;
-  bool overwrite = false;
+  bool overwrite = false, dry_run = false;
+  int ranks = 0;          // --ranks (0: not given)
+  double rank_gib = 0.0;  // --rank-memory (0: this machine's available memory)
   RunOptions options;
 };
 
@@ -54,6 +56,12 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
       a.overwrite = true;
     else if (w == "--fast-plans")
       a.options.measure_plans = false;
+    else if (w == "--dry-run")
+      a.dry_run = true;
+    else if (w == "--ranks")
+      a.ranks = static_cast<int>(parse_int_arg(w, value(), 1, 1 << 20));
+    else if (w == "--rank-memory")
+      a.rank_gib = parse_real_arg(w, value(), 1e-3, 1e6);
     else if (w == "--help" || w == "-h")
       return false;
     else if (!w.empty() && w[0] == '-')
@@ -64,6 +72,8 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
       throw UsageError("more than one scene given");
   }
   if (a.scene_file.empty()) throw UsageError("run needs a SCENE file");
+  if ((a.ranks || a.rank_gib > 0) && !a.dry_run)
+    throw UsageError("--ranks and --rank-memory size a --dry-run (a run's ranks are mpirun -np P)");
   return true;
 }
 
@@ -206,6 +216,14 @@ int cmd_run(int argc, char** argv) {
   if (!parse_run_args(argc, argv, a)) {
     std::fputs(kUsage, stdout);
     return kExitOk;
+  }
+  if (a.dry_run) {
+    try {
+      return cmd_dry_run(a.scene_file, a.ranks ? a.ranks : comm::size(), a.rank_gib);
+    } catch (const SceneError& e) {
+      if (comm::root()) std::fprintf(stderr, "huygens: scene error in %s: %s\n", a.scene_file.c_str(), e.what());
+      return kExitUsage;
+    }
   }
   // every output target is checked before the run, not after it
   if (!a.stats_file.empty() && comm::root()) check_output_file(a.stats_file);  // rank 0 writes it
