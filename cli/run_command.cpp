@@ -1,6 +1,7 @@
 // huygens run: one scene without graphics, its stage table, dumps and meta.json. A run ends
 // complete (0), stopped by a non-finite value or a negative LBM depth (3), by SIGINT/SIGTERM (130/143)
 // or by a failed write (1); every way leaves meta.json describing exactly the dumps that exist.
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -193,6 +194,11 @@ void print_header(const RunArgs& a, Solver& solver) {
 void report(const RunArgs& a, Solver& solver, double wall, int rc) {
   const std::vector<StageStat> stats = reduced_stats(solver.stats());
   wall = comm::max(wall);
+  // bytes this rank sent to the others per step (the halo rows of docs/scale.md)
+  double sent = 0.0;
+  for (const auto& s : solver.stats().all()) sent += static_cast<double>(s.sent);
+  sent /= static_cast<double>(std::max<std::int64_t>(1, solver.steps()));
+  const double sent_max = comm::max(sent), sent_all = comm::sum(sent);
   if (!comm::root()) return;
   std::printf("scene %s (solver %s): %lld steps to t = %.4g s in %.3f s wall\n", a.scene_file.c_str(),
               solver.meta().value("solver", "?").c_str(), static_cast<long long>(solver.steps()), solver.time(), wall);
@@ -200,10 +206,18 @@ void report(const RunArgs& a, Solver& solver, double wall, int rc) {
     std::printf("stage table of %d ranks: times and calls the largest over the ranks, bytes summed over them\n",
                 comm::size());
   std::printf("%s", stats_table(stats).c_str());
+  if (sent_all > 0)
+    std::printf("sent to other ranks per step: %.0f bytes on the busiest rank, %.0f on all %d ranks\n", sent_max,
+                sent_all, comm::size());
   if (!a.stats_file.empty()) {
-    const json out = {
-        {"scene", a.scene_file}, {"steps", solver.steps()}, {"time_s", solver.time()},    {"wall_s", wall},
-        {"exit_code", rc},       {"ranks", comm::size()},   {"stages", stats_json(stats)}};
+    const json out = {{"scene", a.scene_file},
+                      {"steps", solver.steps()},
+                      {"time_s", solver.time()},
+                      {"wall_s", wall},
+                      {"exit_code", rc},
+                      {"ranks", comm::size()},
+                      {"sent_bytes_per_step_max", sent_max},
+                      {"stages", stats_json(stats)}};
     write_file_atomic(a.stats_file, out.dump(2) + "\n");
   }
   if (!a.dump_dir.empty()) std::printf("dumps: %s (meta.json)\n", a.dump_dir.c_str());
