@@ -32,7 +32,8 @@ MemoryEstimate huygens_rank_memory(const HuygensScene& s, int ranks) {
   const std::uint64_t rows = (n + static_cast<std::uint64_t>(ranks) - 1) / static_cast<std::uint64_t>(ranks);
   MemoryEstimate m;
   m.size_key = whole.size_key;
-  for (const auto& [name, bytes] : whole.parts) m.add(name, name == "ship patches" ? bytes : (bytes * rows + n - 1) / n);
+  for (const auto& [name, bytes] : whole.parts)
+    m.add(name, name == "ship patches" ? bytes : (bytes * rows + n - 1) / n);
   return m;
 }
 
@@ -78,8 +79,8 @@ std::function<MemoryEstimate(int)> rank_memory(const Scene& scene) {
 int cmd_dry_run(const std::string& scene_file, int ranks, double rank_gib) {
   const Scene scene = load_scene(scene_file);
   const Sizing z = sizing(scene);
-  const std::uint64_t limit = rank_gib > 0 ? static_cast<std::uint64_t>(rank_gib * 1024.0 * 1024.0 * 1024.0)
-                                           : available_memory();
+  const std::uint64_t limit =
+      rank_gib > 0 ? static_cast<std::uint64_t>(rank_gib * 1024.0 * 1024.0 * 1024.0) : available_memory();
   const auto memory = rank_memory(scene);
   const MemoryEstimate m = memory(z.distributed ? std::min(ranks, z.max_ranks) : 1);
   if (!comm::root()) return kExitOk;
@@ -101,7 +102,8 @@ int cmd_dry_run(const std::string& scene_file, int ranks, double rank_gib) {
   for (int p = 1; p <= z.max_ranks && p <= 256; p *= 2) {
     const std::uint64_t b = memory(p).total();
     if (!first_fit && b <= limit) first_fit = p;
-    t.add({std::to_string(p), format_bytes(b), format_bytes(b * static_cast<std::uint64_t>(p)), b <= limit ? "yes" : "no"});
+    t.add({std::to_string(p), format_bytes(b), format_bytes(b * static_cast<std::uint64_t>(p)),
+           b <= limit ? "yes" : "no"});
   }
   std::printf("%s", t.text().c_str());
   if (first_fit)

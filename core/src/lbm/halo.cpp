@@ -50,7 +50,9 @@ void LbmShallow::exchange_halos() {
   StageTimer t(stats_[st_halo_]);
   const std::size_t nx = static_cast<std::size_t>(p_.cols);
   const LbmPeers peer{rank_ > 0 ? rank_ - 1 : -1, rank_ < ranks_ - 1 ? rank_ + 1 : -1,
-                      image_row_ < 0 ? -1 : rank_ == 0 ? ranks_ - 1 : 0};
+                      image_row_ < 0 ? -1
+                      : rank_ == 0   ? ranks_ - 1
+                                     : 0};
   // message: populations of row `edge`, then the depth of `edge` and (neighbours) of `inner`
   auto pack = [&](std::vector<float>& m, int edge, int inner) {
     float* o = m.data();
