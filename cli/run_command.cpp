@@ -1,6 +1,7 @@
 // huygens run: one scene without graphics, its stage table, dumps and meta.json. A run ends
 // complete (0), stopped by a non-finite value or a negative LBM depth (3), by SIGINT/SIGTERM (130/143)
 // or by a failed write (1); every way leaves meta.json describing exactly the dumps that exist.
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -28,7 +29,9 @@ using nlohmann::json;
 struct RunArgs {
   std::string scene_file, dump_dir, stats_file;
   long long steps = 100, every = 1;
-  bool overwrite = false;
+  bool overwrite = false, dry_run = false;
+  int ranks = 0;          // --ranks (0: not given)
+  double rank_gib = 0.0;  // --rank-memory (0: this machine's available memory)
   RunOptions options;
 };
 
@@ -54,6 +57,12 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
       a.overwrite = true;
     else if (w == "--fast-plans")
       a.options.measure_plans = false;
+    else if (w == "--dry-run")
+      a.dry_run = true;
+    else if (w == "--ranks")
+      a.ranks = static_cast<int>(parse_int_arg(w, value(), 1, 1 << 20));
+    else if (w == "--rank-memory")
+      a.rank_gib = parse_real_arg(w, value(), 1e-3, 1e6);
     else if (w == "--help" || w == "-h")
       return false;
     else if (!w.empty() && w[0] == '-')
@@ -64,6 +73,8 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
       throw UsageError("more than one scene given");
   }
   if (a.scene_file.empty()) throw UsageError("run needs a SCENE file");
+  if ((a.ranks || a.rank_gib > 0) && !a.dry_run)
+    throw UsageError("--ranks and --rank-memory size a --dry-run (a run's ranks are mpirun -np P)");
   return true;
 }
 
@@ -183,6 +194,11 @@ void print_header(const RunArgs& a, Solver& solver) {
 void report(const RunArgs& a, Solver& solver, double wall, int rc) {
   const std::vector<StageStat> stats = reduced_stats(solver.stats());
   wall = comm::max(wall);
+  // bytes this rank sent to the others per step (the halo rows of docs/scale.md)
+  double sent = 0.0;
+  for (const auto& s : solver.stats().all()) sent += static_cast<double>(s.sent);
+  sent /= static_cast<double>(std::max<std::int64_t>(1, solver.steps()));
+  const double sent_max = comm::max(sent), sent_all = comm::sum(sent);
   if (!comm::root()) return;
   std::printf("scene %s (solver %s): %lld steps to t = %.4g s in %.3f s wall\n", a.scene_file.c_str(),
               solver.meta().value("solver", "?").c_str(), static_cast<long long>(solver.steps()), solver.time(), wall);
@@ -190,10 +206,18 @@ void report(const RunArgs& a, Solver& solver, double wall, int rc) {
     std::printf("stage table of %d ranks: times and calls the largest over the ranks, bytes summed over them\n",
                 comm::size());
   std::printf("%s", stats_table(stats).c_str());
+  if (sent_all > 0)
+    std::printf("sent to other ranks per step: %.0f bytes on the busiest rank, %.0f on all %d ranks\n", sent_max,
+                sent_all, comm::size());
   if (!a.stats_file.empty()) {
-    const json out = {
-        {"scene", a.scene_file}, {"steps", solver.steps()}, {"time_s", solver.time()},    {"wall_s", wall},
-        {"exit_code", rc},       {"ranks", comm::size()},   {"stages", stats_json(stats)}};
+    const json out = {{"scene", a.scene_file},
+                      {"steps", solver.steps()},
+                      {"time_s", solver.time()},
+                      {"wall_s", wall},
+                      {"exit_code", rc},
+                      {"ranks", comm::size()},
+                      {"sent_bytes_per_step_max", sent_max},
+                      {"stages", stats_json(stats)}};
     write_file_atomic(a.stats_file, out.dump(2) + "\n");
   }
   if (!a.dump_dir.empty()) std::printf("dumps: %s (meta.json)\n", a.dump_dir.c_str());
@@ -206,6 +230,14 @@ int cmd_run(int argc, char** argv) {
   if (!parse_run_args(argc, argv, a)) {
     std::fputs(kUsage, stdout);
     return kExitOk;
+  }
+  if (a.dry_run) {
+    try {
+      return cmd_dry_run(a.scene_file, a.ranks ? a.ranks : comm::size(), a.rank_gib);
+    } catch (const SceneError& e) {
+      if (comm::root()) std::fprintf(stderr, "huygens: scene error in %s: %s\n", a.scene_file.c_str(), e.what());
+      return kExitUsage;
+    }
   }
   // every output target is checked before the run, not after it
   if (!a.stats_file.empty() && comm::root()) check_output_file(a.stats_file);  // rank 0 writes it

@@ -46,23 +46,60 @@ struct LbmPeers {
   int lo, hi, img;
 };
 
+static LbmPeers peers(int rank, int ranks, int image_row) {
+  return {rank > 0 ? rank - 1 : -1, rank < ranks - 1 ? rank + 1 : -1, image_row < 0 ? -1 : rank == 0 ? ranks - 1 : 0};
+}
+
 void LbmShallow::exchange_halos() {
+  start_halos();
+  finish_halos();
+}
+
+// All wet on several ranks: post the halo messages, update the inner rows (their rules and pulls
+// stay inside the slab), complete the messages, then the two edge rows. Each cell's update reads
+// only the previous step, so the order changes no bit; the kernel is the one-process kernel.
+void LbmShallow::all_wet_overlapped(int& flagged) {
+  start_halos();
+  int inner = 0, edge = 0;
+  std::swap(spans_, inner_spans_);
+  std::swap(rules_, inner_rules_);
+  {
+    StageTimer t(stats_[st_fill_]);
+    fill_ghosts(false);
+  }
+  {
+    StageTimer t(stats_[st_kernel_]);
+    all_wet_kernel(inner);
+  }
+  std::swap(spans_, inner_spans_);
+  std::swap(rules_, inner_rules_);
+  finish_halos();
+  std::swap(spans_, edge_spans_);
+  std::swap(rules_, edge_rules_);
+  {
+    StageTimer t(stats_[st_fill_]);
+    fill_ghosts(false);
+  }
+  {
+    StageTimer t(stats_[st_kernel_]);
+    all_wet_kernel(edge);
+  }
+  std::swap(spans_, edge_spans_);
+  std::swap(rules_, edge_rules_);
+  flagged = inner + edge;
+}
+
+// Packs this rank's edge rows and posts the messages (the receives first).
+void LbmShallow::start_halos() {
   StageTimer t(stats_[st_halo_]);
   const std::size_t nx = static_cast<std::size_t>(p_.cols);
-  const LbmPeers peer{rank_ > 0 ? rank_ - 1 : -1, rank_ < ranks_ - 1 ? rank_ + 1 : -1,
-                      image_row_ < 0 ? -1 : rank_ == 0 ? ranks_ - 1 : 0};
+  const LbmPeers peer = peers(rank_, ranks_, image_row_);
   // message: populations of row `edge`, then the depth of `edge` and (neighbours) of `inner`
   auto pack = [&](std::vector<float>& m, int edge, int inner) {
     float* o = m.data();
     for (int a = 0; a < 9; ++a, o += nx) std::copy_n(fa_.data() + a * plane_ + idx(edge, 0), nx, o);
     std::copy_n(ha_.data() + idx(edge, 0), nx, o);
     if (inner >= 0) std::copy_n(ha_.data() + idx(inner, 0), nx, o + nx);
-  };
-  auto unpack = [&](const std::vector<float>& m, int edge, int inner) {
-    const float* o = m.data();
-    for (int a = 0; a < 9; ++a, o += nx) std::copy_n(o, nx, fa_.data() + a * plane_ + idx(edge, 0));
-    std::copy_n(o, nx, ha_.data() + idx(edge, 0));
-    if (inner >= 0) std::copy_n(o + nx, nx, ha_.data() + idx(inner, 0));
   };
   const int first = row0_, last = row0_ + rows_ - 1;
   if (peer.lo >= 0) xchg_.recv(peer.lo, kTagUp, recv_[0].data(), recv_[0].size());
@@ -72,11 +109,25 @@ void LbmShallow::exchange_halos() {
   if (peer.hi >= 0) pack(send_[1], last, last - 1), xchg_.send(peer.hi, kTagUp, send_[1].data(), send_[1].size());
   if (peer.img >= 0)
     pack(send_[2], rank_ == 0 ? first : last, -1), xchg_.send(peer.img, kTagImage, send_[2].data(), send_[2].size());
+  stats_[st_halo_].sent = xchg_.bytes_sent();
+}
+
+// Completes the messages and copies them into the halo rows and the image row.
+void LbmShallow::finish_halos() {
+  StageTimer t(stats_[st_halo_]);
+  const std::size_t nx = static_cast<std::size_t>(p_.cols);
+  const LbmPeers peer = peers(rank_, ranks_, image_row_);
+  auto unpack = [&](const std::vector<float>& m, int edge, int inner) {
+    const float* o = m.data();
+    for (int a = 0; a < 9; ++a, o += nx) std::copy_n(o, nx, fa_.data() + a * plane_ + idx(edge, 0));
+    std::copy_n(o, nx, ha_.data() + idx(edge, 0));
+    if (inner >= 0) std::copy_n(o + nx, nx, ha_.data() + idx(inner, 0));
+  };
   xchg_.wait();
+  const int first = row0_, last = row0_ + rows_ - 1;
   if (peer.lo >= 0) unpack(recv_[0], first - 1, first - 2);
   if (peer.hi >= 0) unpack(recv_[1], last + 1, last + 2);
   if (peer.img >= 0) unpack(recv_[2], image_row_, -1);
-  stats_[st_halo_].sent = xchg_.bytes_sent();
 }
 
 void LbmShallow::exchange_theta() {

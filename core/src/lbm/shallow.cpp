@@ -290,6 +290,10 @@ void LbmShallow::init_lattice(const LbmFields& in) {
     for (int r : {row0_ - 1, row0_ + rows_, image_row_})
       if (r >= 0 && r < ny && (r != image_row_ || image_row_ >= 0)) add_spans(r, halo_spans_);
   for (const Span& sp : spans_) ncells_ += sp.end - sp.begin;
+  if (ranks_ > 1) {  // the edge rows read the halo, the inner rows do not
+    for (int r = row0_; r < row0_ + rows_; ++r)
+      add_spans(r, r == row0_ || r == row0_ + rows_ - 1 ? edge_spans_ : inner_spans_);
+  }
 }
 
 // The ghost rules of this rank's fluid cells; on several ranks also the rules of the cells up to
@@ -297,6 +301,14 @@ void LbmShallow::init_lattice(const LbmFields& in) {
 // one process's order, so every ghost depth a kernel reads is the one one process writes last).
 void LbmShallow::build_rules(const LbmFields& in) {
   rules_ = make_rules(row0_, row0_ + rows_, row0_ - halo_, row0_ + rows_ + halo_, in.solid);
+  if (ranks_ > 1) {
+    const int first = row0_ + 1, last = row0_ + rows_ - 2;  // inner rows
+    inner_rules_ = make_rules(first, last + 1, row0_ - halo_, row0_ + rows_ + halo_, in.solid);
+    for (const Rule& r : make_rules(row0_, first, row0_ - halo_, row0_ + rows_ + halo_, in.solid))
+      edge_rules_.push_back(r);
+    for (const Rule& r : make_rules(last + 1, row0_ + rows_, row0_ - halo_, row0_ + rows_ + halo_, in.solid))
+      edge_rules_.push_back(r);
+  }
   if (ranks_ > 1)
     depth_rules_ = make_rules(std::max(0, row0_ - 2), std::min(p_.rows, row0_ + rows_ + 2), row0_ - halo_,
                               row0_ + rows_ + halo_, in.solid);
@@ -727,24 +739,23 @@ void LbmShallow::stream_collide_wet_dry(int& dry, int& bad) {
 }
 
 void LbmShallow::step() {
-  if (ranks_ > 1) exchange_halos();  // the neighbours' rows this step reads (halo.cpp)
   const bool wet_dry = dry_ > 0;
-  {
+  int flagged = 0, bad = 0;
+  // several ranks, all wet: the halo exchange overlaps the inner rows' update (halo.cpp)
+  const bool overlap = ranks_ > 1 && !wet_dry;
+  if (overlap) all_wet_overlapped(flagged);
+  if (ranks_ > 1 && !overlap) exchange_halos();  // the neighbours' rows this step reads (halo.cpp)
+  if (!overlap) {
     StageTimer t(stats_[st_fill_]);
     if (wet_dry) set_ghost_depths();
     fill_ghosts(wet_dry);
   }
-  int flagged = 0, bad = 0;
   {
     StageTimer t(stats_[st_kernel_]);
     if (wet_dry)
       stream_collide_wet_dry(flagged, bad);
-    else if (!has_bed_)
-      stream_collide<0>(flagged);
-    else if (p_.bed_force == LbmBedForce::centred)
-      stream_collide<1>(flagged);
-    else
-      stream_collide<2>(flagged);
+    else if (!overlap)
+      all_wet_kernel(flagged);
     agree(flagged, bad);  // several ranks: the counts of all ranks
     if (!wet_dry && flagged) {
       // A cell fell below h_min (or went negative) in the all-wet pass: the populations it read
@@ -766,6 +777,16 @@ void LbmShallow::step() {
   ++steps_;
   if (bad) throw_bad_cell();
   dry_ = static_cast<std::size_t>(flagged);
+}
+
+// The all-wet pass: flat bed, well-balanced centred bed term or the naive one.
+void LbmShallow::all_wet_kernel(int& flagged) {
+  if (!has_bed_)
+    stream_collide<0>(flagged);
+  else if (p_.bed_force == LbmBedForce::centred)
+    stream_collide<1>(flagged);
+  else
+    stream_collide<2>(flagged);
 }
 
 void LbmShallow::unshift() {

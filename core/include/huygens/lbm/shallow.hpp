@@ -239,6 +239,10 @@ class LbmShallow {
     if (image_row_ >= 0) fn(image_row_);
   }
   void exchange_halos();
+  void start_halos();
+  void finish_halos();
+  void all_wet_kernel(int& flagged);
+  void all_wet_overlapped(int& flagged);
   void exchange_theta();
   void agree(int& flagged, int& bad);
   void fill_ghosts(bool wet_dry);
@@ -274,9 +278,12 @@ class LbmShallow {
   int st_fill_ = 0, st_kernel_ = 0;
   // decomposition over ranks (halo.cpp): this rank's rows [row0_, row0_ + rows_), halo rows each side
   int ranks_ = 1, rank_ = 0, row0_ = 0, rows_ = 0, halo_ = 1;
-  int image_row_ = -1;                    // global row of the periodic image row, -1 without
-  std::vector<Rule> depth_rules_;         // several ranks: rules of own and halo cells that set ghost depths
-  std::vector<Span> halo_spans_;          // fluid cells of the first halo rows and the image row
+  int image_row_ = -1;             // global row of the periodic image row, -1 without
+  std::vector<Rule> depth_rules_;  // several ranks: rules of own and halo cells that set ghost depths
+  std::vector<Span> halo_spans_;   // fluid cells of the first halo rows and the image row
+  // the all-wet pass on several ranks: rows and rules that read no halo (inner) and the edge rows'
+  std::vector<Span> inner_spans_, edge_spans_;
+  std::vector<Rule> inner_rules_, edge_rules_;
   std::vector<float> send_[3], recv_[3];  // halo messages: to/from below, above, periodic image
   HaloExchange xchg_{12};
   int st_halo_ = -1, st_reduce_ = -1;
