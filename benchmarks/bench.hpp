@@ -59,6 +59,7 @@ void bench_stress(Context&);
 void bench_interp(Context&);
 void bench_render(Context&);
 void bench_load(Context&);
+void bench_mpi(Context&);
 // the solver parts of "stress" (called by bench_stress; `stress:huygens` etc. runs one)
 void stress_huygens(Context&);
 void stress_sph(Context&);

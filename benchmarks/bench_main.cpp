@@ -123,7 +123,7 @@ int bench_main(int argc, char** argv) {
   const std::map<std::string, Section> sections = {
       {"huygens", bench_huygens}, {"pipeline", bench_pipeline}, {"ships", bench_ships}, {"lbm", bench_lbm},
       {"sph", bench_sph},         {"accuracy", bench_accuracy}, {"skip", bench_skip},   {"stress", bench_stress},
-      {"interp", bench_interp},   {"render", bench_render},     {"load", bench_load},
+      {"interp", bench_interp},   {"render", bench_render},     {"load", bench_load},   {"mpi", bench_mpi},
   };
   Context ctx;
   std::string csv;

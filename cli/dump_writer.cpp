@@ -1,8 +1,14 @@
 #include "dump_writer.hpp"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <exception>
 #include <filesystem>
+#include <functional>
 
 #include "huygens/common/atomic_file.hpp"
+#include "huygens/common/comm.hpp"
 #include "huygens/common/npy.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
@@ -20,6 +26,77 @@ bool is_run_file(const std::filesystem::path& p) {
   return name == "meta.json" || name == "meta.json.tmp" || ends(".npy") || ends(".npy.tmp");
 }
 
+#ifdef HUYGENS_HAVE_MPI
+// The reason of a failed MPI call, or "" when it succeeded.
+std::string mpi_error(int code) {
+  if (code == MPI_SUCCESS) return "";
+  char text[MPI_MAX_ERROR_STRING];
+  int len = 0;
+  MPI_Error_string(code, text, &len);
+  return std::string(text, static_cast<std::size_t>(len));
+}
+
+// One .npy from the rows of every rank (a collective): PATH.tmp is opened by all ranks and emptied,
+// rank 0 writes the header, each rank writes its rows at header + row0 * row bytes
+// (MPI_File_write_at_all), the file is closed (which syncs it), and only when every rank succeeded
+// rank 0 renames it onto PATH. Any failure: every rank throws IoError, no file under PATH.
+void write_npy_ranks(const std::string& path, const OutputField& f) {
+  const std::string tmp = path + ".tmp", header = npy_header(f.full_shape());
+  std::size_t row_elems = 1;
+  for (std::size_t i = 1; i < f.shape.size(); ++i) row_elems *= f.shape[i];
+  MPI_File fh;
+  std::string err =
+      mpi_error(MPI_File_open(comm::world(), tmp.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh));
+  const bool opened = !comm::any(!err.empty());
+  if (opened) {
+    auto step = [&](int code) {
+      if (err.empty()) err = mpi_error(code);
+    };
+    step(MPI_File_set_size(fh, 0));  // a stale temporary from an earlier run may be longer
+    if (comm::root())
+      step(MPI_File_write_at(fh, 0, header.data(), static_cast<int>(header.size()), MPI_BYTE, MPI_STATUS_IGNORE));
+    MPI_Datatype row;
+    MPI_Type_contiguous(static_cast<int>(row_elems), MPI_FLOAT, &row);
+    MPI_Type_commit(&row);
+    const MPI_Offset at = static_cast<MPI_Offset>(header.size() + f.row0 * row_elems * sizeof(float));
+    step(MPI_File_write_at_all(fh, at, f.data.data(), static_cast<int>(f.shape.empty() ? 0 : f.shape[0]), row,
+                               MPI_STATUS_IGNORE));
+    MPI_Type_free(&row);
+    step(MPI_File_close(&fh));
+  }
+  bool failed = comm::any(!err.empty());
+  if (!failed && comm::root() && std::rename(tmp.c_str(), path.c_str()) != 0) err = std::strerror(errno);
+  failed = comm::any(!err.empty());
+  if (!failed) return;
+  if (comm::root()) std::remove(tmp.c_str());
+  throw IoError(path, err.empty() ? "another rank could not write its rows" : err);
+}
+#endif
+
+// One dumped field: the whole array in one process, the rows of every rank on MPI ranks.
+void write_field(const std::string& path, const OutputField& f) {
+#ifdef HUYGENS_HAVE_MPI
+  if (comm::size() > 1) return write_npy_ranks(path, f);
+#endif
+  if (!f.global_shape.empty() && f.global_shape != f.shape)
+    throw std::logic_error("a field of " + f.name + " holds part of the rows in a run of one rank");
+  write_npy(path, f.data, f.shape);
+}
+
+// Runs fn on rank 0 alone (meta.json, the folder) and agrees on the outcome: when it throws
+// IoError there, every rank throws one (no rank waits in a collective for one that stopped).
+void agreed_on_root(const std::string& what, const std::function<void()>& fn) {
+  std::exception_ptr failure;
+  if (comm::root()) try {
+      fn();
+    } catch (const IoError&) {
+      failure = std::current_exception();
+    }
+  if (!comm::any(failure != nullptr)) return;
+  if (failure) std::rethrow_exception(failure);
+  throw IoError(what, "rank 0 could not write it");
+}
+
 }  // namespace
 
 void DumpWriter::prepare(const std::string& dir, bool overwrite) {
@@ -33,9 +110,12 @@ void DumpWriter::prepare(const std::string& dir, bool overwrite) {
   if (!old.empty() && !overwrite)
     throw UsageError("the dump folder " + dir + " holds another run's files (" + std::to_string(old.size()) +
                      ", e.g. " + old.front().filename().string() + "): choose an empty folder or add --overwrite");
-  for (const auto& p : old)
-    if (!fs::remove(p, ec)) throw IoError(p.string(), "cannot remove: " + ec.message());
-  check_output_file(dir + "/meta.json");  // the folder takes a new file
+  comm::barrier();  // every rank looked before rank 0 removes
+  agreed_on_root(dir, [&] {
+    for (const auto& p : old)
+      if (!fs::remove(p, ec)) throw IoError(p.string(), "cannot remove: " + ec.message());
+    check_output_file(dir + "/meta.json");  // the folder takes a new file
+  });
 }
 
 DumpWriter::DumpWriter(std::string dir, const std::string& scene_file, Solver& solver)
@@ -43,13 +123,14 @@ DumpWriter::DumpWriter(std::string dir, const std::string& scene_file, Solver& s
   meta_["scene"] = scene_file;
   meta_["dumps"] = nlohmann::json::array();
   meta_["complete"] = false;
+  meta_["ranks"] = comm::size();
 }
 
 // meta.json carries the solver's meta refreshed (step counts, adaptive dt history)
 void DumpWriter::save_meta() {
   const nlohmann::json now = solver_.meta();
   for (const auto& [key, value] : now.items()) meta_[key] = value;
-  write_file_atomic(dir_ + "/meta.json", meta_.dump(2) + "\n");
+  agreed_on_root(dir_ + "/meta.json", [&] { write_file_atomic(dir_ + "/meta.json", meta_.dump(2) + "\n"); });
 }
 
 void DumpWriter::write_entry(nlohmann::json entry, const std::vector<OutputField>& fields, const std::string& suffix) {
@@ -57,7 +138,7 @@ void DumpWriter::write_entry(nlohmann::json entry, const std::vector<OutputField
   for (const auto& f : fields) {
     const std::string name = fmt("%s_%06lld%s.npy", f.name.c_str(), entry["step"].get<long long>(), suffix.c_str());
     written_.push_back(dir_ + "/" + name);
-    write_npy(written_.back(), f.data, f.shape);
+    write_field(written_.back(), f);
     entry["files"].push_back(name);
   }
   entry["index"] = static_cast<long long>(meta_["dumps"].size());
@@ -73,7 +154,8 @@ void DumpWriter::dump() {
     write_step();
   } catch (...) {
     std::error_code ec;
-    for (const auto& f : written_) std::filesystem::remove(f, ec);
+    if (comm::root())
+      for (const auto& f : written_) std::filesystem::remove(f, ec);
     meta_["dumps"] = before;
     throw;
   }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "huygens/common/comm.hpp"
 #include "huygens/common/program.hpp"
 
 namespace huygens {
@@ -15,6 +16,8 @@ namespace huygens {
 const char* const kUsage =
     "usage: huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--overwrite] [--stats-json FILE]\n"
     "                         [--fast-plans]\n"
+    "       huygens run SCENE --dry-run [--ranks P] [--rank-memory GIB]\n"
+    "       mpirun -np P huygens run SCENE ...   (MPI build: P ranks, docs/scale.md)\n"
     "       huygens validate [CASE...] [--list]\n"
     "       huygens --help\n"
     "\n"
@@ -31,6 +34,12 @@ const char* const kUsage =
     "          The scene is refused before the run when it needs more memory than is available\n"
     "          (HUYGENS_MAX_MEMORY_GIB lowers the limit). SIGINT/SIGTERM stop the run after the\n"
     "          current step: meta.json records \"stopped\", the stage table is printed.\n"
+    "          --dry-run prints the memory the scene needs per rank on P ranks (--ranks P,\n"
+    "          default the ranks of this run) and for P = 1, 2, 4 ... 256, and from which P it\n"
+    "          fits in GIB per rank (--rank-memory; default: what this machine has), then\n"
+    "          exits 0 without running. Under mpirun (an MPI build) the scene runs on P\n"
+    "          ranks: LBM dumps are bitwise those of one process; rank 0 prints and writes\n"
+    "          meta.json, the .npy files are written by all ranks (MPI-IO).\n"
     "validate  runs the analytic validation cases (all, or the named ones) and prints\n"
     "          case, quantity, measured, expected, error, tolerance, pass/fail.\n"
     "          --list prints the case names.\n"
@@ -39,19 +48,32 @@ const char* const kUsage =
     "            value (or a negative LBM depth); 4 not enough memory; 130/143 stopped by\n"
     "            SIGINT/SIGTERM.\n";
 
+int command(int argc, char** argv) {
+  if (argc < 2) throw UsageError("no command given");
+  const std::string cmd = argv[1];
+  if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (cmd == "run") return cmd_run(argc - 2, argv + 2);
+  if (cmd == "validate") return cmd_validate(argc - 2, argv + 2);
+  throw UsageError("unknown command '" + cmd + "'");
+}
+
 }  // namespace huygens
 
+// MPI (comm.hpp) starts inside run_program's body (after its one re-execution) and ends with the
+// body; an error that escapes the body on one rank of several ends them all by MPI_Abort with the
+// program's exit code, after run_program printed the message (comm::exit_code). Agreed stops (a
+// non-finite value, a negative depth, a signal: reduced at step boundaries) end every rank
+// cleanly with the same code.
 int main(int argc, char** argv) {
   using namespace huygens;
-  return run_program("huygens", argv, [&]() {
-    if (argc < 2) throw UsageError("no command given");
-    const std::string cmd = argv[1];
-    if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (cmd == "run") return cmd_run(argc - 2, argv + 2);
-    if (cmd == "validate") return cmd_validate(argc - 2, argv + 2);
-    throw UsageError("unknown command '" + cmd + "'");
+  const int rc = run_program("huygens", argv, [&]() {
+    comm::init(&argc, &argv);
+    const int code = command(argc, argv);
+    comm::finalize();
+    return code;
   });
+  return comm::exit_code(rc);
 }

@@ -18,3 +18,17 @@ if(TARGET PkgConfig::FFTW3F AND TARGET FFTW3::fftw3f_omp)
 else()
   set(HUYGENS_FFTW_FOUND FALSE)
 endif()
+# FFTW's MPI transforms in single precision (the fftwf_mpi_* API; Debian: libfftw3-mpi-dev) as
+# FFTW3::fftw3f_mpi, for the HUYGENS_MPI build (CMakeLists.txt); HUYGENS_FFTW_MPI_FOUND says whether
+# it is there. Its users also link MPI::MPI_CXX.
+find_library(HUYGENS_FFTW3F_MPI_LIBRARY NAMES fftw3f_mpi HINTS ${FFTW3F_LIBRARY_DIRS})
+if(TARGET PkgConfig::FFTW3F AND HUYGENS_FFTW3F_MPI_LIBRARY AND NOT TARGET FFTW3::fftw3f_mpi)
+  add_library(FFTW3::fftw3f_mpi UNKNOWN IMPORTED)
+  set_target_properties(FFTW3::fftw3f_mpi PROPERTIES IMPORTED_LOCATION "${HUYGENS_FFTW3F_MPI_LIBRARY}"
+                                                     INTERFACE_LINK_LIBRARIES PkgConfig::FFTW3F)
+endif()
+if(TARGET FFTW3::fftw3f_mpi)
+  set(HUYGENS_FFTW_MPI_FOUND TRUE)
+else()
+  set(HUYGENS_FFTW_MPI_FOUND FALSE)
+endif()

@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config clang-format
   clang libclang-rt-14-dev libomp-dev  # the libFuzzer targets (scripts/test-fuzz.sh)
+  libopenmpi-dev openmpi-bin libfftw3-mpi-dev  # MPI ranks (HUYGENS_MPI, docs/scale.md)
   libfftw3-dev libglm-dev nlohmann-json3-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libepoxy-dev libimgui-dev

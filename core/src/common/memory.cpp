@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -116,7 +117,15 @@ std::uint64_t available_memory() {
   return avail;
 }
 
+namespace {
+std::atomic<int> g_check_off{0};
+}  // namespace
+
+MemoryCheckOff::MemoryCheckOff() { ++g_check_off; }
+MemoryCheckOff::~MemoryCheckOff() { --g_check_off; }
+
 void require_memory(const MemoryEstimate& need) {
+  if (g_check_off > 0) return;
   const std::uint64_t avail = available_memory();
   if (need.total() <= avail) return;
   throw ResourceError("the scene needs " + need.summary() + ", " + format_bytes(avail) + " available; " +

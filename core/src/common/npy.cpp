@@ -11,10 +11,7 @@
 
 namespace huygens {
 
-void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape) {
-  std::size_t count = 1;
-  for (auto s : shape) count *= s;
-  if (count != data.size()) throw std::invalid_argument("write_npy: shape does not match data size");
+std::string npy_header(const std::vector<std::size_t>& shape) {
   std::ostringstream dict;
   dict << "{'descr': '<f4', 'fortran_order': False, 'shape': (";
   for (std::size_t i = 0; i < shape.size(); ++i)
@@ -25,13 +22,18 @@ void write_npy(const std::string& path, std::span<const float> data, const std::
   const std::size_t total = 10 + header.size() + 1;
   header.append((64 - total % 64) % 64, ' ');
   header.push_back('\n');
-  AtomicFile f(path);
-  const unsigned char magic[8] = {0x93, 'N', 'U', 'M', 'P', 'Y', 1, 0};
-  f.write(std::as_bytes(std::span(magic)));
   const unsigned short len = static_cast<unsigned short>(header.size());
-  const unsigned char le[2] = {static_cast<unsigned char>(len & 0xff), static_cast<unsigned char>(len >> 8)};
-  f.write(std::as_bytes(std::span(le)));
-  f.write(header);
+  const char lead[10] = {
+      '\x93', 'N', 'U', 'M', 'P', 'Y', 1, 0, static_cast<char>(len & 0xff), static_cast<char>(len >> 8)};
+  return std::string(lead, sizeof lead) + header;
+}
+
+void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape) {
+  std::size_t count = 1;
+  for (auto s : shape) count *= s;
+  if (count != data.size()) throw std::invalid_argument("write_npy: shape does not match data size");
+  AtomicFile f(path);
+  f.write(npy_header(shape));
   f.write(std::as_bytes(data));
   f.commit();
 }

@@ -25,7 +25,7 @@ bool power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
 }  // namespace
 
 std::string huygens_params_error(const HuygensParams& p) {
-  if (p.n < 16 || p.n > 16384 || !power_of_two(p.n)) return "grid n must be a power of two in [16, 16384]";
+  if (p.n < 16 || p.n > 32768 || !power_of_two(p.n)) return "grid n must be a power of two in [16, 32768]";
   if (!(p.length_m > 0) || !std::isfinite(p.length_m)) return "grid length must be > 0";
   if (p.margin < 0) return "margin must be >= 0";
   if (2 * p.margin >= p.n) return "margin too large: 2 * margin must be < n";

@@ -470,7 +470,9 @@ void ShipWaves::patch_spectrum(int i, double t, double dt, cfloat* out, int& row
   col0 = wrap(cc);
 }
 
-bool ShipWaves::add(cfloat* z, double t, double dt) {
+bool ShipWaves::add(cfloat* z, double t, double dt) { return add_rows(z, 0, n_, t, dt); }
+
+bool ShipWaves::add_rows(cfloat* z, int row0, int rows, double t, double dt) {
   for (int i = 0; i < ships(); ++i) {
     int r0, c0;
     patch_spectrum(i, t, dt, buf_.data(), r0, c0);
@@ -484,7 +486,8 @@ bool ShipWaves::add(cfloat* z, double t, double dt) {
     for (int j = 0; j < p_; ++j) cols_[static_cast<std::size_t>(j)] = ((c0 + fft_signed_index(j, p_)) % n_ + n_) % n_;
     for (int r = 0; r < p_; ++r) {
       const int row = ((r0 + fft_signed_index(r, p_)) % n_ + n_) % n_;
-      cfloat* dst = z + static_cast<std::size_t>(row) * n_;
+      if (row < row0 || row >= row0 + rows) continue;  // another rank's row
+      cfloat* dst = z + static_cast<std::size_t>(row - row0) * n_;
       const cfloat* src = buf_.data() + static_cast<std::size_t>(r) * p_;
       for (int j = 0; j < p_; ++j) dst[cols_[static_cast<std::size_t>(j)]] += src[j];
     }

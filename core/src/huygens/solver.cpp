@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <stdexcept>
 #include <variant>
 
+#include "huygens/common/comm.hpp"
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
+#include "huygens/huygens/slab_solver.hpp"
 #include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens {
@@ -22,7 +25,7 @@ constexpr double kBig = 1e6;
 void parse_grid(const JsonIn& root, HuygensParams& p) {
   const JsonIn grid = root.object("grid");
   grid.allow_only({"n", "length_m", "margin", "cutoff", "cutoff_time_s"});
-  const long long n = grid.integer("n", 16, 16384);
+  const long long n = grid.integer("n", 16, 32768);  // 32768: on MPI ranks (docs/scale.md)
   if ((n & (n - 1)) != 0) grid.fail("n", "must be a power of two (FFT grid), got " + std::to_string(n));
   p.n = static_cast<int>(n);
   p.length_m = grid.number("length_m", 1e-6, kBig);
@@ -206,7 +209,12 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
   p.spatial = !out.ships.empty();
   if (!out.ships.empty()) size_ship_patch(root, out);
   if (auto e = huygens_params_error(p); !e.empty()) root.fail_here(e);
-  require_memory(huygens_memory(out));  // before the ship probe, the first allocation
+    // before the ship probe, the first allocation; on ranks, what one rank allocates
+#ifdef HUYGENS_HAVE_MPI
+  require_memory(comm::size() > 1 ? huygens_slab_memory(out, comm::size()) : huygens_memory(out));
+#else
+  require_memory(huygens_memory(out));
+#endif
   if (!out.ships.empty()) check_ship_steps(root, out);
   return out;
 }
@@ -439,8 +447,10 @@ std::vector<OutputField> HuygensSolver::outputs() {
   return {OutputField{"eta", {v, v}, eta_view()}};
 }
 
-nlohmann::json HuygensSolver::meta() const {
-  const auto& p = scene_.params;
+nlohmann::json HuygensSolver::meta() const { return huygens_meta(scene_, transforms_per_step(), still_energy_); }
+
+nlohmann::json huygens_meta(const HuygensScene& scene, int transforms_per_step, double still_energy_j) {
+  const auto& p = scene.params;
   const int m = p.margin, n = p.n;
   const double dx = p.length_m / n;
   return nlohmann::json{
@@ -450,7 +460,7 @@ nlohmann::json HuygensSolver::meta() const {
       {"dx", dx},
       {"dt", p.dt_s},
       {"margin", m},
-      {"display_per_step", scene_.display_per_step},
+      {"display_per_step", scene.display_per_step},
       {"cutoff", p.absorber == Absorber::paper_quadratic},
       {"cutoff_time_s", p.cutoff_time_s},
       {"rotation", p.rotation == Rotation::lifting ? "lifting" : "complex"},
@@ -468,23 +478,23 @@ nlohmann::json HuygensSolver::meta() const {
         {"note",
          "index ranges are half-open [start, end) into the full N x N grid; origin_m is (x, y) of cell (0, 0)"}}},
       {"fields",
-       {{"eta", scene_.stokes ? "elevation to second order (paper 004 eq. 3: Re IFFT[i k/omega Z^] + Re chi^2) (m), "
-                                "rows = y, cols = x"
-                              : "first-order elevation Re IFFT[i k/omega Z^] (m), rows = y, cols = x"}}},
-      {"stokes", scene_.stokes},
-      {"ships", static_cast<int>(scene_.ships.size())},
-      {"ship_patch", scene_.ships.empty() ? 0 : scene_.ship_patch},
-      {"wind", scene_.has_wind ? nlohmann::json{{"speed_mps", scene_.wind.speed_mps},
-                                                {"direction_deg", scene_.wind.direction_deg},
-                                                {"seed", scene_.wind.seed},
-                                                {"fetch_m", scene_.wind.fetch_m},
-                                                {"gamma", scene_.wind.gamma},
-                                                {"spectrum", "JONSWAP"}}
-                               : nlohmann::json(nullptr)},
-      {"transforms_per_step", transforms_per_step()},
-      {"still_energy_j", still_energy_},
+       {{"eta", scene.stokes ? "elevation to second order (paper 004 eq. 3: Re IFFT[i k/omega Z^] + Re chi^2) (m), "
+                               "rows = y, cols = x"
+                             : "first-order elevation Re IFFT[i k/omega Z^] (m), rows = y, cols = x"}}},
+      {"stokes", scene.stokes},
+      {"ships", static_cast<int>(scene.ships.size())},
+      {"ship_patch", scene.ships.empty() ? 0 : scene.ship_patch},
+      {"wind", scene.has_wind ? nlohmann::json{{"speed_mps", scene.wind.speed_mps},
+                                               {"direction_deg", scene.wind.direction_deg},
+                                               {"seed", scene.wind.seed},
+                                               {"fetch_m", scene.wind.fetch_m},
+                                               {"gamma", scene.wind.gamma},
+                                               {"spectrum", "JONSWAP"}}
+                              : nlohmann::json(nullptr)},
+      {"transforms_per_step", transforms_per_step},
+      {"still_energy_j", still_energy_j},
       {"transforms_per_displayed_frame",
-       static_cast<double>(transforms_per_step()) / static_cast<double>(scene_.display_per_step)},
+       static_cast<double>(transforms_per_step) / static_cast<double>(scene.display_per_step)},
   };
 }
 
@@ -535,6 +545,14 @@ RenderInfo HuygensSolver::render_info() {
 }
 
 std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options) {
+#ifdef HUYGENS_HAVE_MPI
+  // under mpirun with more than one rank: the slab solver (one process: this solver, unchanged)
+  // (HUYGENS_SLAB_SOLVER=1 with MPI started, e.g. HUYGENS_MPI_INIT=1, runs the slab solver on one rank: the reference
+  // of the CLI's rank-count tests, tests/mpi/near_dumps.cmake)
+  const char* force = std::getenv("HUYGENS_SLAB_SOLVER");
+  if (comm::size() > 1 || (force && std::string(force) == "1" && comm::active()))
+    return std::make_unique<HuygensSlabSolver>(parse_huygens_scene(scene, options), comm::world());
+#endif
   return std::make_unique<HuygensSolver>(parse_huygens_scene(scene, options));
 }
 

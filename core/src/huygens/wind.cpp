@@ -84,27 +84,61 @@ WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, do
   for (int r = 0; r < n; ++r)
     for (int c = 0; c < n; ++c) {
       const std::size_t m = static_cast<std::size_t>(r) * n + c;
-      const int mx = fft_signed_index(c, n), my = fft_signed_index(r, n);
-      const double kx = dk * mx, ky = dk * my, k = std::hypot(kx, ky);
-      const double om = omega(w, k);
-      omega_[m] = om;
-      // k = 0 and the Nyquist row and column (their own mirror) carry no wave
-      if (k == 0.0 || 2 * c == n || 2 * r == n) continue;
-      const double f = wind_density(p, w, kx, ky);
-      if (f <= 0.0) continue;
-      variance_ += f * dk * dk;
-      const double a = std::sqrt(2.0 * f * dk * dk);  // elevation amplitude (unit: m)
-      const std::complex<double> z = std::complex<double>(0.0, -om / k) * a * mode_gaussian(p.seed, mx, my);
-      w0_[m] = cfloat(z);
+      omega_[m] = fill_mode(p, w, dk, c, r, m);
     }
+  init_phase(w, dk);
+}
+
+WindSea::WindSea(const WindParams& p, const Water& w, int n, double length_m, double dt, WindRows rows)
+    : n_(n),
+      dt_(dt),
+      omega_stride_(n / 2 + 1),
+      omega_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
+      w0_(static_cast<std::size_t>(rows.count) * n),
+      step_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
+      phase_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)) {
+  const double dk = 2.0 * kPi / length_m;
+  // transposed rows: row lr holds kx index row0 + lr, column c the ky index c (normal: swapped)
+  for (int lr = 0; lr < rows.count; ++lr)
+    for (int c = 0; c < n; ++c) {
+      const std::size_t m = static_cast<std::size_t>(lr) * n + c;
+      if (rows.transposed)
+        fill_mode(p, w, dk, rows.row0 + lr, c, m);
+      else
+        fill_mode(p, w, dk, c, rows.row0 + lr, m);
+    }
+  const int q = n / 2 + 1;
+  for (int r = 0; r < q; ++r)
+    for (int c = 0; c < q; ++c) omega_[static_cast<std::size_t>(r) * q + c] = omega(w, std::hypot(dk * c, dk * r));
+  init_phase(w, dk);
+}
+
+double WindSea::fill_mode(const WindParams& p, const Water& w, double dk, int c, int r, std::size_t m) {
+  // mode of FFT indices (row r = ky, column c = kx), stored at w0_[m]
+  const int n = n_;
+  const int mx = fft_signed_index(c, n), my = fft_signed_index(r, n);
+  const double kx = dk * mx, ky = dk * my, k = std::hypot(kx, ky);
+  const double om = omega(w, k);
+  // k = 0 and the Nyquist row and column (their own mirror) carry no wave
+  if (k == 0.0 || 2 * c == n || 2 * r == n) return om;
+  const double f = wind_density(p, w, kx, ky);
+  if (f <= 0.0) return om;
+  variance_ += f * dk * dk;
+  const double a = std::sqrt(2.0 * f * dk * dk);  // elevation amplitude (unit: m)
+  const std::complex<double> z = std::complex<double>(0.0, -om / k) * a * mode_gaussian(p.seed, mx, my);
+  w0_[m] = cfloat(z);
+  return om;
+}
+
+void WindSea::init_phase(const Water& w, double dk) {
   // e^{-i omega dt} on the quadrant of FFT indices (r, c) in [0, N/2]^2: the value of every mode
   // (+-r, +-c), since omega depends on |k| only (and the sign of an integer times dk is exact)
-  const int q = n / 2 + 1;
+  const int n = n_, q = n / 2 + 1;
   for (int r = 0; r < q; ++r)
     for (int c = 0; c < q; ++c) {
       const int mx = fft_signed_index(c, n), my = fft_signed_index(r, n);
       const double om = omega(w, std::hypot(dk * mx, dk * my));
-      step_[static_cast<std::size_t>(r) * q + c] = cfloat(std::exp(std::complex<double>(0.0, -om * dt)));
+      step_[static_cast<std::size_t>(r) * q + c] = cfloat(std::exp(std::complex<double>(0.0, -om * dt_)));
       phase_[static_cast<std::size_t>(r) * q + c] = cfloat(1.0f, 0.0f);
     }
 }
@@ -119,7 +153,7 @@ void WindSea::advance() {
 #pragma omp parallel for schedule(static) if (n >= 256)
     for (int r = 0; r < q; ++r)
       for (int c = 0; c < q; ++c) {
-        const double om = omega_[static_cast<std::size_t>(r) * n + c];  // mode (r, c): |k| of the quadrant cell
+        const double om = omega_[static_cast<std::size_t>(r) * omega_stride_ + c];  // |k| of the quadrant cell
         phase_[static_cast<std::size_t>(r) * q + c] = cfloat(std::exp(std::complex<double>(0.0, -om * t)));
       }
     return;

@@ -1,6 +1,7 @@
 #include "huygens/lbm/shallow.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstddef>
 #include <sstream>
@@ -190,10 +191,12 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
   return lat;
 }
 
-LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lbm_check(p, in)) {
-  const int nx = p.cols, ny = p.rows;
+LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in, LbmDecomposition d) : p_(p), lat_(lbm_check(p, in)) {
+  set_slab(d);  // this rank's rows and halo (all rows with one rank)
+  const int nx = p.cols;
+  const int lattice_rows = rows_ + 2 * halo_ + (image_row_ >= 0 ? 1 : 0);  // one rank: rows + 2 ghost rows
   stride_ = (kPad + static_cast<std::size_t>(nx) + 1 + 15) / 16 * 16;
-  plane_ = stride_ * static_cast<std::size_t>(ny + 2) + 64;  // skew planes against cache-set aliasing
+  plane_ = stride_ * static_cast<std::size_t>(lattice_rows) + 64;  // skew planes against cache-set aliasing
   fa_ = AlignedBuffer<float>(9 * plane_);
   fb_ = AlignedBuffer<float>(9 * plane_);
   ha_ = AlignedBuffer<float>(plane_);
@@ -209,36 +212,55 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
   ay_ = static_cast<float>(p.accel_mps2[1] * acc);
   hmin_ = static_cast<float>(p.min_depth_m);
   umax_ = static_cast<float>(std::min(0.7, std::max(lat_.signal_ratio, lat_.riemann_ratio)));
+  init_lattice(in);
+  build_rules(in);
 
+  const std::uint64_t bytes = (fa_.size() + fb_.size() + ha_.size() + hb_.size() + z_.size()) * sizeof(float);
+  st_fill_ = stats_.add("boundary_fill", rules_.size() * sizeof(Rule));
+  st_kernel_ = stats_.add("stream_collide", bytes);
+  if (ranks_ > 1) {
+    std::uint64_t buffers = 0;
+    for (int i = 0; i < 3; ++i) buffers += (send_[i].size() + recv_[i].size()) * sizeof(float);
+    st_halo_ = stats_.add("halo_exchange", buffers);
+    st_reduce_ = stats_.add("reduce", 0);
+  }
+}
+
+// Bed, fluid flags, initial populations and depth over the lattice rows of this rank (its rows,
+// halo rows and image row: every rank starts from the same global fields), the row spans.
+void LbmShallow::init_lattice(const LbmFields& in) {
+  const int nx = p_.cols, ny = p_.rows;
   // Bed everywhere in the lattice: ghosts take the nearest interior value.
   const auto at = [&](const std::vector<float>& v, int r, int c) {
     return v.empty() ? 0.0f : v[static_cast<std::size_t>(r) * nx + c];
   };
-  for (int r = -1; r <= ny; ++r)
+  for_lattice_rows([&](int r) {
     for (int c = -1; c <= nx; ++c) z_[idx(r, c)] = at(in.bed_m, std::clamp(r, 0, ny - 1), std::clamp(c, 0, nx - 1));
-  float zlo = z_[idx(0, 0)], zhi = zlo;
+  });
+  float zlo = at(in.bed_m, 0, 0), zhi = zlo;  // over the whole grid: every rank takes the same kernel
   for (int r = 0; r < ny; ++r)
     for (int c = 0; c < nx; ++c) {
-      zlo = std::min(zlo, z_[idx(r, c)]);
-      zhi = std::max(zhi, z_[idx(r, c)]);
+      zlo = std::min(zlo, at(in.bed_m, r, c));
+      zhi = std::max(zhi, at(in.bed_m, r, c));
     }
   has_bed_ = zhi > zlo;
 
   // Fluid cells and their initial equilibrium populations, shifted by the still-water
   // equilibrium of the mean depth; with a dry cell, unshifted (a dry cell's f_a = 0 is then exact).
-  const double vl = p.dt_s / p.cell_m;  // m/s -> lattice
+  const double vl = p_.dt_s / p_.cell_m;  // m/s -> lattice
   double hsum = 0;
   std::size_t nfluid = 0;
   for (std::size_t i = 0; i < in.depth_m.size(); ++i)
     if (in.solid.empty() || !in.solid[i]) {
       hsum += in.depth_m[i];
       ++nfluid;
-      if (in.depth_m[i] < p.min_depth_m) ++dry_;
+      if (in.depth_m[i] < p_.min_depth_m) ++dry_;
     }
   href_ = dry_ ? 0.0f : static_cast<float>(hsum / static_cast<double>(nfluid));
   shift_ = lbm_equilibrium(lat_.g_lat_pm, href_, 0.0, 0.0);
   for (int a = 0; a < 9; ++a) shift_f_[a] = static_cast<float>(shift_[a]);
-  for (int r = 0; r < ny; ++r)
+  for_lattice_rows([&](int r) {
+    if (r < 0 || r >= ny) return;
     for (int c = 0; c < nx; ++c) {
       const std::size_t i = static_cast<std::size_t>(r) * nx + c;
       if (!in.solid.empty() && in.solid[i]) continue;
@@ -246,41 +268,71 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in) : p_(p), lat_(lb
       solid_[k] = 0;
       const double h = in.depth_m[i];
       auto f = lbm_equilibrium(lat_.g_lat_pm, h, at(in.ux_mps, r, c) * vl, at(in.uy_mps, r, c) * vl);
-      if (h < p.min_depth_m) f = {h, 0, 0, 0, 0, 0, 0, 0, 0};  // dry: all water at rest
+      if (h < p_.min_depth_m) f = {h, 0, 0, 0, 0, 0, 0, 0, 0};  // dry: all water at rest
       for (int a = 0; a < 9; ++a) fa_[a * plane_ + k] = fb_[a * plane_ + k] = static_cast<float>(f[a] - shift_[a]);
       ha_[k] = hb_[k] = static_cast<float>(h);
     }
-  // Row spans of fluid cells.
-  for (int r = 0; r < ny; ++r) {
+  });
+  // Row spans of fluid cells: this rank's rows (the kernels), the first halo rows and the image
+  // row (their populations are unshifted with the rank's own, halo.cpp).
+  auto add_spans = [&](int r, std::vector<Span>& out) {
     int c = 0;
     while (c < nx) {
       while (c < nx && solid_[idx(r, c)]) ++c;
       const int c0 = c;
       while (c < nx && !solid_[idx(r, c)]) ++c;
       if (c > c0)
-        spans_.push_back({static_cast<std::uint32_t>(idx(r, c0)), static_cast<std::uint32_t>(idx(r, c0) + (c - c0))});
+        out.push_back({static_cast<std::uint32_t>(idx(r, c0)), static_cast<std::uint32_t>(idx(r, c0) + (c - c0))});
     }
-  }
+  };
+  for (int r = row0_; r < row0_ + rows_; ++r) add_spans(r, spans_);
+  if (ranks_ > 1)
+    for (int r : {row0_ - 1, row0_ + rows_, image_row_})
+      if (r >= 0 && r < ny && (r != image_row_ || image_row_ >= 0)) add_spans(r, halo_spans_);
   for (const Span& sp : spans_) ncells_ += sp.end - sp.begin;
-  build_rules();
-
-  const std::uint64_t bytes = (fa_.size() + fb_.size() + ha_.size() + hb_.size() + z_.size()) * sizeof(float);
-  st_fill_ = stats_.add("boundary_fill", rules_.size() * sizeof(Rule));
-  st_kernel_ = stats_.add("stream_collide", bytes);
+  if (ranks_ > 1) {  // the edge rows read the halo, the inner rows do not
+    for (int r = row0_; r < row0_ + rows_; ++r)
+      add_spans(r, r == row0_ || r == row0_ + rows_ - 1 ? edge_spans_ : inner_spans_);
+  }
 }
 
-void LbmShallow::build_rules() {
+// The ghost rules of this rank's fluid cells; on several ranks also the rules of the cells up to
+// two rows beyond its own that set a ghost depth in its lattice (set_ghost_depths replays them in
+// one process's order, so every ghost depth a kernel reads is the one one process writes last).
+void LbmShallow::build_rules(const LbmFields& in) {
+  rules_ = make_rules(row0_, row0_ + rows_, row0_ - halo_, row0_ + rows_ + halo_, in.solid);
+  if (ranks_ > 1) {
+    const int first = row0_ + 1, last = row0_ + rows_ - 2;  // inner rows
+    inner_rules_ = make_rules(first, last + 1, row0_ - halo_, row0_ + rows_ + halo_, in.solid);
+    for (const Rule& r : make_rules(row0_, first, row0_ - halo_, row0_ + rows_ + halo_, in.solid))
+      edge_rules_.push_back(r);
+    for (const Rule& r : make_rules(last + 1, row0_ + rows_, row0_ - halo_, row0_ + rows_ + halo_, in.solid))
+      edge_rules_.push_back(r);
+  }
+  if (ranks_ > 1)
+    depth_rules_ = make_rules(std::max(0, row0_ - 2), std::min(p_.rows, row0_ + rows_ + 2), row0_ - halo_,
+                              row0_ + rows_ + halo_, in.solid);
+}
+
+// The rules of the fluid cells of global rows [r0, r1) whose ghost lies in rows [s0, s1), in one
+// process's order (rows, columns, links; copies before inflow/outflow). `solid` is the global
+// obstacle mask (empty: none).
+std::vector<LbmShallow::Rule> LbmShallow::make_rules(int r0, int r1, int s0, int s1,
+                                                     const std::vector<std::uint8_t>& solid) const {
   const int nx = p_.cols, ny = p_.rows;
   const LbmSide sides[4] = {p_.left, p_.right, p_.bottom, p_.top};
   auto inside = [&](int r, int c) { return r >= 0 && r < ny && c >= 0 && c < nx; };
-  auto fluid = [&](int r, int c) { return inside(r, c) && !solid_[idx(r, c)]; };
-  for (int r = 0; r < ny; ++r)
+  auto fluid = [&](int r, int c) {
+    return inside(r, c) && (solid.empty() || !solid[static_cast<std::size_t>(r) * nx + c]);
+  };
+  std::vector<Rule> rules;
+  for (int r = r0; r < r1; ++r)
     for (int c = 0; c < nx; ++c) {
       if (!fluid(r, c)) continue;
       const std::uint32_t x = static_cast<std::uint32_t>(idx(r, c));
       for (int a = 1; a < 9; ++a) {
         int sr = r - kEy[a], sc = c - kEx[a];
-        if (fluid(sr, sc)) continue;
+        if (fluid(sr, sc) || sr < s0 || sr >= s1) continue;
         Rule rule{};
         rule.a = static_cast<std::uint8_t>(a);
         rule.x = x;
@@ -305,7 +357,7 @@ void LbmShallow::build_rules() {
             const int xside = sc < 0 ? 0 : 1;
             const bool open_x = xo && (sides[xside] == LbmSide::inflow || sides[xside] == LbmSide::outflow);
             if (xo && yo && !open_x) {
-              rules_.push_back(rule);
+              rules.push_back(rule);
               continue;
             }
             const int side = xo ? xside : (sr < 0 ? 2 : 3);
@@ -334,10 +386,11 @@ void LbmShallow::build_rules() {
             }
           }
         }
-        rules_.push_back(rule);
+        rules.push_back(rule);
       }
     }
-  std::stable_partition(rules_.begin(), rules_.end(), [](const Rule& r) { return r.kind == 0; });
+  std::stable_partition(rules.begin(), rules.end(), [](const Rule& r) { return r.kind == 0; });
+  return rules;
 }
 
 void LbmShallow::set_ghost_depths() {
@@ -345,7 +398,8 @@ void LbmShallow::set_ghost_depths() {
   // zero-gradient copy) or of the cell it feeds (Zou-He), so the wet/dry rule sees the real face;
   // wall and obstacle ghosts are marked -1 (their value, the bounce-back, passes unchanged).
   float* h = ha_.data();
-  for (const Rule& r : rules_) h[r.s] = r.up != kNone ? h[r.up] : r.kind != 0 ? h[r.x] : -1.0f;
+  for (const Rule& r : ranks_ > 1 ? depth_rules_ : rules_)
+    h[r.s] = r.up != kNone ? h[r.up] : r.kind != 0 ? h[r.x] : -1.0f;
 }
 
 void LbmShallow::fill_ghosts(bool wet_dry) {
@@ -625,6 +679,7 @@ void LbmShallow::outflow_limiter() {
       const float avail = hold[c] - keep;  // a film h_min/16 stays: float rounding never crosses 0
       theta[c] = out <= avail ? 1.0f : avail > 0.0f ? avail / out : 0.0f;
     }
+  exchange_theta();  // the halo rows' theta (several ranks; halo.cpp)
   for (const Rule& r : rules_) theta[r.s] = r.up != kNone ? theta[r.up] : 1.0f;
 }
 
@@ -685,22 +740,23 @@ void LbmShallow::stream_collide_wet_dry(int& dry, int& bad) {
 
 void LbmShallow::step() {
   const bool wet_dry = dry_ > 0;
-  {
+  int flagged = 0, bad = 0;
+  // several ranks, all wet: the halo exchange overlaps the inner rows' update (halo.cpp)
+  const bool overlap = ranks_ > 1 && !wet_dry;
+  if (overlap) all_wet_overlapped(flagged);
+  if (ranks_ > 1 && !overlap) exchange_halos();  // the neighbours' rows this step reads (halo.cpp)
+  if (!overlap) {
     StageTimer t(stats_[st_fill_]);
     if (wet_dry) set_ghost_depths();
     fill_ghosts(wet_dry);
   }
-  int flagged = 0, bad = 0;
   {
     StageTimer t(stats_[st_kernel_]);
     if (wet_dry)
       stream_collide_wet_dry(flagged, bad);
-    else if (!has_bed_)
-      stream_collide<0>(flagged);
-    else if (p_.bed_force == LbmBedForce::centred)
-      stream_collide<1>(flagged);
-    else
-      stream_collide<2>(flagged);
+    else if (!overlap)
+      all_wet_kernel(flagged);
+    agree(flagged, bad);  // several ranks: the counts of all ranks
     if (!wet_dry && flagged) {
       // A cell fell below h_min (or went negative) in the all-wet pass: the populations it read
       // are intact (pull scheme), so the step is redone by the wet/dry pass. The naive bed term
@@ -712,6 +768,7 @@ void LbmShallow::step() {
         set_ghost_depths();
         fill_ghosts(true);
         stream_collide_wet_dry(flagged, bad);
+        agree(flagged, bad);
       }
     }
   }
@@ -722,32 +779,60 @@ void LbmShallow::step() {
   dry_ = static_cast<std::size_t>(flagged);
 }
 
+// The all-wet pass: flat bed, well-balanced centred bed term or the naive one.
+void LbmShallow::all_wet_kernel(int& flagged) {
+  if (!has_bed_)
+    stream_collide<0>(flagged);
+  else if (p_.bed_force == LbmBedForce::centred)
+    stream_collide<1>(flagged);
+  else
+    stream_collide<2>(flagged);
+}
+
 void LbmShallow::unshift() {
   // h - H of a cell near dry has the float resolution of H, coarser than a thin film: once a cell
   // dries, populations are stored unshifted (a dry cell's zero populations and depth are exact).
   if (href_ == 0.0f) return;
-  for (const Span& sp : spans_)
-    for (int a = 0; a < 9; ++a) {
-      float* f = fa_.data() + static_cast<std::size_t>(a) * plane_;
-      for (std::uint32_t c = sp.begin; c < sp.end; ++c) f[c] += shift_f_[a];
-    }
+  for (const auto* spans : {&spans_, &halo_spans_})  // halo rows: as their owners do
+    for (const Span& sp : *spans)
+      for (int a = 0; a < 9; ++a) {
+        float* f = fa_.data() + static_cast<std::size_t>(a) * plane_;
+        for (std::uint32_t c = sp.begin; c < sp.end; ++c) f[c] += shift_f_[a];
+      }
   shift_ = {};
   shift_f_ = {};
   href_ = 0.0f;
 }
 
+// The first bad cell in row-major order over all ranks: a non-finite depth anywhere stops the run
+// as NonFiniteError, else the first negative depth (or below h_min with the naive bed term) as
+// LbmDryError naming it; every rank throws the same (the reductions are identities on one rank).
 void LbmShallow::throw_bad_cell() const {
+  bool nonfinite = false;
   for (const Span& sp : spans_)
-    for (std::uint32_t c = sp.begin; c < sp.end; ++c)
-      if (!std::isfinite(ha_[c])) throw NonFiniteError("stream_collide", steps_);
+    for (std::uint32_t c = sp.begin; c < sp.end; ++c) nonfinite = nonfinite || !std::isfinite(ha_[c]);
+  if (ranks_ > 1 ? comm::any(nonfinite) : nonfinite) throw NonFiniteError("stream_collide", steps_);
+  constexpr std::int64_t kNoCell = INT64_MAX;
+  std::int64_t first = kNoCell;
+  double depth = 0.0;
   for (const Span& sp : spans_)
-    for (std::uint32_t c = sp.begin; c < sp.end; ++c)
+    for (std::uint32_t c = sp.begin; c < sp.end && first == kNoCell; ++c)
       if (ha_[c] < 0.0f || (ha_[c] < hmin_ && p_.bed_force == LbmBedForce::naive && has_bed_)) {
-        const std::size_t col = c % stride_ - kPad, row = c / stride_ - 1;
-        throw LbmDryError("step " + std::to_string(steps_) + ": cell (row " + std::to_string(row) + ", col " +
-                          std::to_string(col) + ") fell to depth " + g6(ha_[c]) + " m" +
-                          (ha_[c] < 0.0f ? " < 0" : " < min_depth_m with the naive bed term (no wet/dry form)"));
+        const std::int64_t col = static_cast<std::int64_t>(c % stride_ - kPad);
+        const std::int64_t row = static_cast<std::int64_t>(c / stride_) - halo_ + row0_;
+        first = row * p_.cols + col;
+        depth = ha_[c];
       }
+  if (ranks_ > 1) {
+    const std::int64_t owner = comm::min(first);
+    depth = comm::sum(first == owner ? depth : 0.0);  // one rank adds its depth, the others 0: exact
+    first = owner;
+  }
+  if (first == kNoCell) return;
+  const float h = static_cast<float>(depth);
+  throw LbmDryError("step " + std::to_string(steps_) + ": cell (row " + std::to_string(first / p_.cols) + ", col " +
+                    std::to_string(first % p_.cols) + ") fell to depth " + g6(h) + " m" +
+                    (h < 0.0f ? " < 0" : " < min_depth_m with the naive bed term (no wet/dry form)"));
 }
 
 double LbmShallow::volume_m3() const {
@@ -765,8 +850,8 @@ double LbmShallow::volume_m3() const {
 }
 
 void LbmShallow::depth(std::span<float> out) const {
-  for (int r = 0; r < p_.rows; ++r)
-    for (int c = 0; c < p_.cols; ++c) out[static_cast<std::size_t>(r) * p_.cols + c] = depth_at(r, c);
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < p_.cols; ++c) out[static_cast<std::size_t>(r) * p_.cols + c] = depth_at(row0_ + r, c);
 }
 
 float LbmShallow::depth_at(int row, int col) const {
@@ -790,9 +875,9 @@ std::array<float, 2> LbmShallow::velocity_at(int row, int col) const {
 }
 
 void LbmShallow::velocity(std::span<float> out) const {
-  for (int r = 0; r < p_.rows; ++r)
+  for (int r = 0; r < rows_; ++r)
     for (int c = 0; c < p_.cols; ++c) {
-      const auto u = velocity_at(r, c);
+      const auto u = velocity_at(row0_ + r, c);
       const std::size_t i = 2 * (static_cast<std::size_t>(r) * p_.cols + c);
       out[i] = u[0];
       out[i + 1] = u[1];
@@ -800,8 +885,8 @@ void LbmShallow::velocity(std::span<float> out) const {
 }
 
 void LbmShallow::bed(std::span<float> out) const {
-  for (int r = 0; r < p_.rows; ++r)
-    for (int c = 0; c < p_.cols; ++c) out[static_cast<std::size_t>(r) * p_.cols + c] = z_[idx(r, c)];
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c < p_.cols; ++c) out[static_cast<std::size_t>(r) * p_.cols + c] = z_[idx(row0_ + r, c)];
 }
 
 int LbmShallow::bytes_per_cell() const {

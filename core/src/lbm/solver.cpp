@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "huygens/common/comm.hpp"
 #include "huygens/common/npy.hpp"
 #include "huygens/common/npy_read.hpp"
 #include "huygens/common/report.hpp"
@@ -31,15 +32,15 @@ std::array<double, 2> vec2_or_zero(const JsonIn& o, const char* key, double lo, 
 
 class LbmSolver final : public Solver {
  public:
-  LbmSolver(const LbmParams& p, const LbmFields& f) : sim_(p, f) {
-    const std::size_t n = static_cast<std::size_t>(p.rows) * p.cols;
+  LbmSolver(const LbmParams& p, const LbmFields& f, LbmDecomposition d) : sim_(p, f, d), ranks_(d.ranks) {
+    const std::size_t n = sim_.slab().rows * static_cast<std::size_t>(p.cols);  // this rank's rows
     h_.resize(n);
     eta_.resize(n);
     u_.resize(2 * n);
     bed_.resize(n);
     sim_.bed(bed_);
   }
-  MemoryEstimate memory() const override { return lbm_memory(sim_.params()); }
+  MemoryEstimate memory() const override { return lbm_memory(sim_.params(), ranks_); }
 
   void step() override { sim_.step(); }
   double time() const override { return sim_.time_s(); }
@@ -48,7 +49,9 @@ class LbmSolver final : public Solver {
     refresh();
     sim_.velocity(u_);
     const std::size_t r = height_rows(), c = height_cols();
-    return {{"h", {r, c}, h_}, {"u", {r, c, 2}, u_}, {"eta", {r, c}, eta_}};
+    if (ranks_ == 1) return {{"h", {r, c}, h_}, {"u", {r, c, 2}, u_}, {"eta", {r, c}, eta_}};
+    const std::size_t rg = static_cast<std::size_t>(sim_.params().rows), r0 = sim_.slab().row0;
+    return {{"h", {r, c}, h_, {rg, c}, r0}, {"u", {r, c, 2}, u_, {rg, c, 2}, r0}, {"eta", {r, c}, eta_, {rg, c}, r0}};
   }
   json meta() const override {
     const auto& p = sim_.params();
@@ -72,7 +75,8 @@ class LbmSolver final : public Solver {
     refresh();
     return eta_;
   }
-  std::size_t height_rows() const override { return static_cast<std::size_t>(sim_.params().rows); }
+  /// This rank's rows (all rows in one process).
+  std::size_t height_rows() const override { return sim_.slab().rows; }
   std::size_t height_cols() const override { return static_cast<std::size_t>(sim_.params().cols); }
   /// Cell centres ((c + 1/2) dx, (r + 1/2) dx), the rest level (mean initial eta, the flat
   /// ground that far down), the bed, the obstacles, the fixed step; no toggles.
@@ -95,6 +99,7 @@ class LbmSolver final : public Solver {
     for (std::size_t i = 0; i < h_.size(); ++i) eta_[i] = h_[i] + bed_[i];
   }
   LbmShallow sim_;
+  int ranks_ = 1;
   std::vector<float> h_, eta_, u_, bed_;
 };
 
@@ -404,18 +409,28 @@ void check_scene(const LbmScene& s, const ParseNotes& notes) {
 
 }  // namespace
 
-MemoryEstimate lbm_memory(const LbmParams& p) {
+MemoryEstimate lbm_memory(const LbmParams& p, int ranks) {
   const std::uint64_t cells = static_cast<std::uint64_t>(p.rows) * p.cols;
-  const std::uint64_t lattice = static_cast<std::uint64_t>(p.rows + 2) * (p.cols + 2);  // with the ghost ring
+  // the largest rank's rows (row_slab: the first ranks hold one row more) and its lattice rows:
+  // one rank has a ghost row each side, several ranks two halo rows each side and an image row
+  const std::uint64_t rows = (static_cast<std::uint64_t>(p.rows) + ranks - 1) / ranks;
+  const std::uint64_t lattice = (rows + (ranks > 1 ? 5 : 2)) * (p.cols + 2);
   MemoryEstimate m;
   m.size_key = "$.lbm.grid.rows, $.lbm.grid.cols";
   // two sets of 9 populations, depth now and next, bed, the wet/dry outflow limiter (floats), the
   // solid flags (bytes)
   m.add("lattice", lattice * (18 * 4 + 4 * 4 + 1));
-  // the scene's fields (bed, depth, ux, uy, solid) and the solver's outputs (h, eta, u, v, bed)
+  // the scene's fields (bed, depth, ux, uy, solid): every rank parses the whole scene
   m.add("scene fields", cells * (4 * 4 + 1));
-  m.add("output fields", cells * 5 * 4);
+  m.add("output fields", rows * p.cols * 5 * 4);  // this rank's rows of h, eta, u, v, bed
+  if (ranks > 1) m.add("halo buffers", 4 * 11 * 4 * static_cast<std::uint64_t>(p.cols));  // halo.cpp
   return m;
+}
+
+MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks) {
+  LbmParams p;
+  parse_grid(scene.root().object("lbm"), p);
+  return lbm_memory(p, ranks);
 }
 
 LbmScene parse_lbm_scene(const Scene& scene) {
@@ -428,7 +443,7 @@ LbmScene parse_lbm_scene(const Scene& scene) {
                  "force"});
   LbmParams& p = s.params;
   parse_grid(lb, p);
-  require_memory(lbm_memory(p));  // before the bed and initial fields, the first allocations
+  require_memory(lbm_memory(p, comm::size()));  // before the bed and initial fields, the first allocations
   const std::optional<double> tau = parse_water(lb, p);
   parse_bed(lb, scene, p, s.fields);
   const DamFlow dam = parse_initial(lb, p, s.fields);
@@ -446,7 +461,12 @@ LbmScene parse_lbm_scene(const Scene& scene) {
 }
 
 std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene) {
-  auto solver = std::make_unique<LbmSolver>(scene.params, scene.fields);
+  std::unique_ptr<LbmSolver> solver;
+  try {  // on MPI ranks (comm.hpp) each holds its rows
+    solver = std::make_unique<LbmSolver>(scene.params, scene.fields, LbmDecomposition{comm::size(), comm::rank()});
+  } catch (const LbmRefused& e) {
+    throw SceneError("$.lbm.grid.rows", e.what());
+  }
   solver->from_scene.request = scene.render;
   solver->from_scene.obstacles = scene.obstacles;
   return solver;

@@ -32,6 +32,16 @@ std::uint64_t available_memory();
 /// is larger than available_memory().
 void require_memory(const MemoryEstimate& need);
 
+/// While one lives (on any thread), require_memory() refuses nothing: `huygens run --dry-run`
+/// parses a scene only to size it for other machines and allocates none of its grids.
+class MemoryCheckOff {
+ public:
+  MemoryCheckOff();
+  ~MemoryCheckOff();
+  MemoryCheckOff(const MemoryCheckOff&) = delete;
+  MemoryCheckOff& operator=(const MemoryCheckOff&) = delete;
+};
+
 /// Bytes as "123 MiB" or "1.25 GiB".
 std::string format_bytes(std::uint64_t bytes);
 

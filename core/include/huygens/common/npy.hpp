@@ -10,6 +10,11 @@
 
 namespace huygens {
 
+/// The bytes before the data of a float32 C-order .npy of this shape: magic, version 1.0, header
+/// length and the header dict padded to a multiple of 64 bytes (write_npy writes exactly these;
+/// the MPI dump writer writes them on rank 0 and each rank's rows after them).
+std::string npy_header(const std::vector<std::size_t>& shape);
+
 /// Writes `data` with the given shape (product of shape == data.size()). Throws on I/O error.
 void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape);
 

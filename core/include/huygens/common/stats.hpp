@@ -21,6 +21,8 @@ struct StageStat {
   std::uint64_t bytes = 0;
   /// Full-grid (N x N) FFTs the stage performed, summed over calls.
   std::uint64_t transforms = 0;
+  /// Bytes the stage sent to other MPI ranks, summed over calls (unit: bytes; 0 in one process).
+  std::uint64_t sent = 0;
 };
 
 class StageStats {

@@ -167,6 +167,9 @@ class ShipWaves {
   /// non-finite values before it is added (P x P values per ship, small against N x N): returns
   /// false, and leaves z without that ship's patch, when one is not finite.
   bool add(cfloat* z, double t, double dt);
+  /// The same on a slab: z holds the global rows [row0, row0 + rows) of the n x n field, and
+  /// only the patch rows that land there are added (every rank of a slab run calls it).
+  bool add_rows(cfloat* z, int row0, int rows, double t, double dt);
   /// Test hook (tests only; no scene or command reaches it): the next add() writes one NaN
   /// into the first ship's patch before its check, as if the kernels had produced it.
   void poison_next_add_for_test() { poison_ = true; }

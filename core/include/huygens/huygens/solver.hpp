@@ -81,7 +81,10 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options =
 /// The bytes the solver of `scene` allocates (grids, tables, patches), before any is allocated;
 /// parse_huygens_scene() refuses a scene that needs more than available_memory().
 MemoryEstimate huygens_memory(const HuygensScene& scene);
-/// The "huygens" solver of a scene (make_solver's factory for this solver).
+/// meta.json of a Huygens scene (the global grid; HuygensSolver::meta and the slab solver).
+nlohmann::json huygens_meta(const HuygensScene& scene, int transforms_per_step, double still_energy_j);
+/// The "huygens" solver of a scene (make_solver's factory for this solver); with MPI initialised
+/// and more than one rank in MPI_COMM_WORLD, the slab solver (slab_solver.hpp).
 std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
 
 class HuygensSolver : public Solver {

@@ -44,10 +44,23 @@ double jonswap(const WindParams& p, const Water& w, double om);
 /// Wavenumber-plane density F(kx, ky) = S(omega) D(theta) c_g / k (unit: m^4).
 double wind_density(const WindParams& p, const Water& w, double kx, double ky);
 
+/// Rows of the spectrum a slab rank holds (slab_fft.hpp): indices [row0, row0 + count) of kx
+/// (transposed layout) or of ky (normal layout).
+struct WindRows {
+  int row0 = 0;
+  int count = 0;
+  bool transposed = true;
+};
+
 /// The ambient wind sea on an n x n grid of side length_m, advanced by steps of dt.
 class WindSea {
  public:
   WindSea(const WindParams& p, const Water& w, int n, double length_m, double dt);
+  /// The sea of a slab rank: base() holds only `rows` of the spectrum (transposed: row = kx
+  /// index, column = ky index; normal: row = ky, column = kx), count x n values; omega is kept on the quadrant only.
+  /// spectrum() and spectrum_at() are for the whole grid (the one-process constructor) only; grid_variance() sums this
+  /// rank's modes.
+  WindSea(const WindParams& p, const Water& w, int n, double length_m, double dt, WindRows rows);
 
   /// W^(t) for the current time (FFTW order; an unnormalised inverse FFT gives the spatial
   /// wave field in m^2/s): pass as StokesHeight::compute's `extra`. It starts at t = 0; after
@@ -80,8 +93,13 @@ class WindSea {
   const cfloat* phase_quadrant() const { return phase_.data(); }
 
  private:
+  /// Fills w0_[m] for the mode of FFT indices (column c = kx, row r = ky); returns its omega.
+  double fill_mode(const WindParams& p, const Water& w, double dk, int c, int r, std::size_t m);
+  void init_phase(const Water& w, double dk);
+
   int n_;
   double dt_;
+  int omega_stride_ = n_;  // row length of omega_ (n, or N/2 + 1 when it holds the quadrant only)
   long long steps_ = 0;
   double variance_ = 0;
   std::vector<double> omega_;  // per mode (unit: rad/s)

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "huygens/common/comm.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/common/stats.hpp"
 
@@ -147,11 +148,23 @@ std::array<double, 9> lbm_equilibrium(double g_lat, double h, double ux, double 
 /// consistent sides. Returns the lattice quantities.
 LbmLattice lbm_check(const LbmParams& p, const LbmFields& init);
 
+/// How a run is split over MPI ranks (comm.hpp, docs/scale.md): rank `rank` of `ranks` holds the
+/// rows row_slab(rows, ranks, rank) and keeps halo rows of its neighbours (one row of populations,
+/// two of depth) refreshed every step with non-blocking messages; every decision that depends on
+/// the whole domain (the wet/dry pass, the redo of a step, a bad cell) is agreed by a reduction, so
+/// the fields are bitwise those of one process. Each rank needs at least 3 rows. Default: one rank.
+struct LbmDecomposition {
+  int ranks = 1;
+  int rank = 0;
+};
+
 /// The solver state. Built from params and initial fields (after lbm_check); step() does no
 /// allocation, logging or I/O.
 class LbmShallow {
  public:
-  LbmShallow(const LbmParams& p, const LbmFields& init);
+  LbmShallow(const LbmParams& p, const LbmFields& init, LbmDecomposition d = {});
+  /// The global rows this rank holds (all rows with one rank).
+  RowSlab slab() const { return {static_cast<std::size_t>(row0_), static_cast<std::size_t>(rows_)}; }
 
   /// One step: boundary fill, then one fused stream-collide pass (OpenMP over rows).
   /// Throws NonFiniteError("stream_collide", step) or LbmDryError.
@@ -167,16 +180,16 @@ class LbmShallow {
   double time_s() const { return static_cast<double>(steps_) * p_.dt_s; }
   const StageStats& stats() const { return stats_; }
 
-  /// Total water volume over fluid cells, accumulated in double (unit: m^3 per metre of
-  /// width for a 1-row channel: sum h dx^2).
+  /// Total water volume over this rank's fluid cells, accumulated in double (unit: m^3 per metre
+  /// of width for a 1-row channel: sum h dx^2).
   double volume_m3() const;
-  /// Depth h, row-major (rows, cols); 0 in obstacle cells (unit: m).
+  /// Depth h of this rank's rows, row-major (slab().rows, cols); 0 in obstacle cells (unit: m).
   void depth(std::span<float> out) const;
-  /// Velocity (rows, cols, 2) = (u_x, u_y); 0 in obstacle cells (unit: m/s).
+  /// Velocity (slab().rows, cols, 2) = (u_x, u_y); 0 in obstacle cells (unit: m/s).
   void velocity(std::span<float> out) const;
-  /// Bed elevation (rows, cols) (unit: m).
+  /// Bed elevation (slab().rows, cols) (unit: m).
   void bed(std::span<float> out) const;
-  /// Depth of one cell (unit: m).
+  /// Depth of one cell of this rank's rows (global row; unit: m).
   float depth_at(int row, int col) const;
   /// Velocity of one cell (unit: m/s).
   std::array<float, 2> velocity_at(int row, int col) const;
@@ -188,8 +201,10 @@ class LbmShallow {
 
   /// Bytes the stream-collide pass reads and writes per fluid cell.
   int bytes_per_cell() const;
-  /// Fluid cells with depth below min_depth_m after the last step (or initially).
+  /// Fluid cells with depth below min_depth_m after the last step (or initially), over all ranks.
   std::size_t dry_cells() const { return dry_; }
+  /// Bytes this rank sent to its neighbours so far (halo rows; unit: byte).
+  std::uint64_t bytes_sent() const { return xchg_.bytes_sent(); }
 
  private:
   struct Rule {
@@ -205,10 +220,31 @@ class LbmShallow {
     std::uint32_t begin, end;  // cell indices [begin, end) of one row
   };
 
+  // Index of cell (global row, col) in this rank's lattice: rows row0_ - halo_ .. row0_ + rows_ +
+  // halo_ - 1, then the periodic image row (y-periodic sides on several ranks).
   std::size_t idx(int row, int col) const {
-    return static_cast<std::size_t>(row + 1) * stride_ + kPad + static_cast<std::size_t>(col);
+    int lr = row - row0_;
+    if (lr < -halo_ || lr >= rows_ + halo_) lr = rows_ + halo_;  // the image row
+    return static_cast<std::size_t>(lr + halo_) * stride_ + kPad + static_cast<std::size_t>(col);
   }
-  void build_rules();
+  void init_lattice(const LbmFields& in);
+  void build_rules(const LbmFields& in);
+  std::vector<Rule> make_rules(int r0, int r1, int s0, int s1, const std::vector<std::uint8_t>& solid) const;
+  // decomposition (halo.cpp)
+  void set_slab(LbmDecomposition d);
+  // Calls fn(global row) for every row of this rank's lattice (its rows, halo rows, image row).
+  template <class Fn>
+  void for_lattice_rows(Fn fn) const {
+    for (int r = row0_ - halo_; r < row0_ + rows_ + halo_; ++r) fn(r);
+    if (image_row_ >= 0) fn(image_row_);
+  }
+  void exchange_halos();
+  void start_halos();
+  void finish_halos();
+  void all_wet_kernel(int& flagged);
+  void all_wet_overlapped(int& flagged);
+  void exchange_theta();
+  void agree(int& flagged, int& bad);
   void fill_ghosts(bool wet_dry);
   void set_ghost_depths();
   template <int Mode>
@@ -240,6 +276,17 @@ class LbmShallow {
   std::int64_t steps_ = 0;
   StageStats stats_;
   int st_fill_ = 0, st_kernel_ = 0;
+  // decomposition over ranks (halo.cpp): this rank's rows [row0_, row0_ + rows_), halo rows each side
+  int ranks_ = 1, rank_ = 0, row0_ = 0, rows_ = 0, halo_ = 1;
+  int image_row_ = -1;             // global row of the periodic image row, -1 without
+  std::vector<Rule> depth_rules_;  // several ranks: rules of own and halo cells that set ghost depths
+  std::vector<Span> halo_spans_;   // fluid cells of the first halo rows and the image row
+  // the all-wet pass on several ranks: rows and rules that read no halo (inner) and the edge rows'
+  std::vector<Span> inner_spans_, edge_spans_;
+  std::vector<Rule> inner_rules_, edge_rules_;
+  std::vector<float> send_[3], recv_[3];  // halo messages: to/from below, above, periodic image
+  HaloExchange xchg_{12};
+  int st_halo_ = -1, st_reduce_ = -1;
 };
 
 }  // namespace huygens

@@ -34,9 +34,13 @@ struct LbmScene {
 /// Parses the scene's "lbm" block and checks it with lbm_check(); throws SceneError naming the
 /// JSON path.
 LbmScene parse_lbm_scene(const Scene& scene);
-/// The bytes the solver of a grid allocates (lattice, scene and output fields), before any is
-/// allocated; parse_lbm_scene() refuses a scene that needs more than available_memory().
-MemoryEstimate lbm_memory(const LbmParams& params);
+/// The bytes the solver of a grid allocates on the largest of `ranks` MPI ranks (lattice, scene
+/// and output fields, halo buffers), before any is allocated; parse_lbm_scene() refuses a scene
+/// that needs more than available_memory() on a rank of this run.
+MemoryEstimate lbm_memory(const LbmParams& params, int ranks = 1);
+/// The estimate of an "lbm" scene on `ranks` ranks from its grid block alone (huygens run --dry-run:
+/// nothing is allocated or refused). Throws SceneError for a bad grid block.
+MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks);
 /// The Solver of a parsed scene.
 std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene);
 /// parse_lbm_scene() then make_lbm_solver() (this solver uses no RunOptions).

@@ -22,11 +22,18 @@
 namespace huygens {
 
 /// A named output array for dumps: `name` is the file prefix (eta, h, u, pos), `shape`
-/// its C-order shape, `data` a view valid until the next step.
+/// its C-order shape, `data` a view valid until the next step. On MPI ranks (comm.hpp) a rank
+/// holds rows [row0, row0 + shape[0]) of the field's `global_shape` (the dump writes them at
+/// their place in one file); empty `global_shape` means the rank holds it all (one process).
 struct OutputField {
   std::string name;
   std::vector<std::size_t> shape;
   std::span<const float> data;
+  std::vector<std::size_t> global_shape = {};
+  std::size_t row0 = 0;
+
+  /// The shape of the whole field (global_shape, or shape when it is empty).
+  const std::vector<std::size_t>& full_shape() const { return global_shape.empty() ? shape : global_shape; }
 };
 
 /// Options that come from the command line rather than the scene.
