@@ -3,8 +3,8 @@
 // fewest ranks (powers of two) on which it fits a given memory per rank. Nothing runs.
 //   LBM: lbm_memory(params, P) (its largest rank: ceil(rows / P) rows, halos, the whole scene
 //        fields every rank parses).
-//   Huygens: each part of huygens_memory(scene) on ceil(N / P) of the N rows (the slabs of
-//        fftwf_mpi_local_size_2d), except the ship patches every rank holds whole.
+//   Huygens: the slab solver's huygens_slab_memory(scene, P) (its slabs of
+//        fftwf_mpi_local_size_2d); P = 1 the one-process solver's huygens_memory.
 //   SPH: not distributed (docs/scale.md): one process holds it all, whatever P.
 #include <cstdio>
 #include <functional>
@@ -17,6 +17,7 @@
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/huygens/slab_solver.hpp"
 #include "huygens/huygens/solver.hpp"
 #include "huygens/lbm/solver.hpp"
 #include "huygens/sph/solver.hpp"
@@ -25,9 +26,13 @@ namespace huygens {
 
 namespace {
 
-// The estimate of the largest rank of `ranks`.
+// The estimate of the largest rank of `ranks`: the slab solver's own (what a run under mpirun
+// checks) when MPI is built, else each part scaled to ceil(N / P) rows.
 MemoryEstimate huygens_rank_memory(const HuygensScene& s, int ranks) {
   const MemoryEstimate whole = huygens_memory(s);
+#ifdef HUYGENS_HAVE_MPI
+  if (ranks > 1) return huygens_slab_memory(s, ranks);
+#endif
   const std::uint64_t n = static_cast<std::uint64_t>(s.params.n);
   const std::uint64_t rows = (n + static_cast<std::uint64_t>(ranks) - 1) / static_cast<std::uint64_t>(ranks);
   MemoryEstimate m;
