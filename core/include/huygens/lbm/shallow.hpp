@@ -213,7 +213,11 @@ class LbmShallow {
   void set_ghost_depths();
   template <int Mode>
   void stream_collide(int& flagged);
+  struct WetDryView;
+  WetDryView wet_dry_view(const float* flags) const;
+  void flag_supercritical();
   void outflow_limiter();
+  float wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* dst) const;
   void stream_collide_wet_dry(int& dry, int& bad);
   void unshift();
   void throw_bad_cell() const;
