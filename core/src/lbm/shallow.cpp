@@ -761,16 +761,24 @@ struct LbmShallow::WetDryView {
   // neighbour's state is computed once.
   void faces(std::ptrdiff_t c, std::ptrdiff_t row, std::ptrdiff_t col, WdFace* out) const {
     std::ptrdiff_t img[9];
-    LinkState st[9];
-    st[0] = state(c);
-    for (int a = 1; a < 9; ++a) {
-      img[a] = image(c - off[a]);
-      if (img[a] >= 0) st[a] = state(img[a]);
-    }
+    for (int a = 1; a < 9; ++a) img[a] = image(c - off[a]);
+    StateCache st{this, c, img, {}, {}};
     for (int a = 1; a < 9; ++a) out[a] = face(c, a, row, col, img, st);
   }
+  // States of cell c (slot 0) and of its neighbours' real cells, computed when a face needs them.
+  struct StateCache {
+    const WetDryView* v;
+    std::ptrdiff_t c;
+    const std::ptrdiff_t* img;
+    LinkState s[9];
+    bool have[9] = {};
+    const LinkState& get(int a) {
+      if (!have[a]) s[a] = v->state(a == 0 ? c : img[a]), have[a] = true;
+      return s[a];
+    }
+  };
   WdFace face(std::ptrdiff_t c, int a, std::ptrdiff_t row, std::ptrdiff_t col, const std::ptrdiff_t* img,
-              const LinkState* st) const {
+              StateCache& st) const {
     const std::ptrdiff_t n = c - off[a];
     const int b = kOpp[a];
     WdFace f{0.0f, src[b * P + c], 0.0f, 0.0f, 0.0, img[a], false};
@@ -785,15 +793,17 @@ struct LbmShallow::WetDryView {
       const bool closed = (wc != wn) && (wc ? hc + zc <= zi + hmin : hn + zi <= zc + hmin);
       if (!closed && (wc != wn || fv_flag(flags[c]) || fv_flag(flags[f.img]))) {
         const std::ptrdiff_t behind = wc && wn ? along(row, col, a, -2) : -1;
-        const LinkState sb = behind >= 0 ? state(behind) : st[0];
-        const LinkState* pa = img[b] >= 0 ? &st[b] : nullptr;  // the cell ahead, c + e_a
+        const LinkState sc = st.get(0), sn = st.get(a);
+        const LinkState sb = behind >= 0 ? state(behind) : sc;
+        const LinkState sa = img[b] >= 0 ? st.get(b) : sc;  // the cell ahead, c + e_a
+        const LinkState* pa = img[b] >= 0 ? &sa : nullptr;
         const LinkState* pb = behind >= 0 ? &sb : nullptr;
         float m;
         if (a == 1 || a == 2 || a == 5 || a == 6) {
-          muscl_link(a, pb, st[a], st[0], pa, g, hmin, m, f.pi);
+          muscl_link(a, pb, sn, sc, pa, g, hmin, m, f.pi);
           f.flux = m;
         } else {
-          muscl_link(b, pa, st[0], st[a], pb, g, hmin, m, f.pi);
+          muscl_link(b, pa, sc, sn, pb, g, hmin, m, f.pi);
           f.flux = -m;
         }
         if (wc && wn) f.pi += -kb[a] * (hc + hn) * (zc - zi);
