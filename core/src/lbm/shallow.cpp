@@ -887,17 +887,22 @@ void LbmShallow::outflow_limiter() {
 namespace {
 
 // Makes the nine floats sum to `mass` (double) as closely as floats allow: the rounding left by
-// the collision goes into the rest population, what that rounds off into the next one, and so on,
-// so each step leaves a residual of the order of a float ulp of a cell's smallest population
-// instead of its depth (the volume is kept to ~1e-10 relative over 1e5 steps, docs/lbm.md).
+// the collision goes into the rest population, what that rounds off into the opposite pairs of
+// links in equal halves (no momentum: still water stays still), so each step leaves a residual of
+// the order of a float ulp of a cell's populations instead of its depth (docs/lbm.md).
 void keep_mass(double mass, float* op) {
   double sum = 0.0;
   for (int a = 0; a < 9; ++a) sum += op[a];
   double r = mass - sum;
-  for (int a = 0; a < 9 && r != 0.0; ++a) {
-    const float nv = static_cast<float>(op[a] + r);
-    r -= double(nv) - double(op[a]);
-    op[a] = nv;
+  const float n0 = static_cast<float>(op[0] + r);
+  r -= double(n0) - double(op[0]);
+  op[0] = n0;
+  for (int a = 1; a < 9 && r != 0.0; a += a == 2 || a == 6 ? 3 : 1) {  // pairs (1,3) (2,4) (5,7) (6,8)
+    const int b = kOpp[a];
+    const float na = static_cast<float>(op[a] + 0.5 * r), nb = static_cast<float>(op[b] + 0.5 * r);
+    r -= (double(na) - double(op[a])) + (double(nb) - double(op[b]));
+    op[a] = na;
+    op[b] = nb;
   }
 }
 
