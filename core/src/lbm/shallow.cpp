@@ -1032,7 +1032,9 @@ float LbmShallow::wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* 
   for (int a = 1; a < 9; ++a) {
     const WdFace& f = fc[a];
     const std::ptrdiff_t other = f.fv ? f.img : c - view.off[a];
-    const float th = fv_theta(f.flux < 0.0f ? theta[c] : theta[other]);
+    // the drained cell's theta, chosen by the sign of the unrounded exchange (both cells see it)
+    const double fx = f.fv ? double(f.flux) : f.vx - double(f.p2);
+    const float th = fv_theta(fx < 0.0 ? theta[c] : theta[other]);
     const float v = th >= 1.0f ? f.v : f.p2 + th * f.flux;
     fp[a] = v;
     const float m = f.fv ? th * f.flux : v - f.p2, pi = f.fv ? th * f.pi : v + f.p2;
