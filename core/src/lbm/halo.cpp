@@ -4,7 +4,8 @@
 // ny - 1 on rank 0, row 0 on the last rank: the source of the periodic ghosts). Per step and
 // neighbour a rank sends its edge row's 9 populations and its two edge rows' depths, 11 cols floats
 // (the image partner: 10 cols), and in the wet/dry pass its edge row's outflow limiter theta (cols
-// floats). The rules, kernels and collisions are those of one process (shallow.cpp).
+// floats) and its second row's populations (9 cols floats: the MUSCL slopes of the HLL faces read
+// two rows beyond the slab). The rules, kernels and collisions are those of one process (shallow.cpp).
 #include <algorithm>
 
 #include "huygens/lbm/shallow.hpp"
@@ -14,6 +15,7 @@ namespace huygens {
 namespace {
 constexpr int kTagDown = 101, kTagUp = 102, kTagImage = 103;  // populations and depth
 constexpr int kThetaDown = 104, kThetaUp = 105, kThetaImage = 106;
+constexpr int kSecondDown = 107, kSecondUp = 108;  // the second rows' populations (wet/dry pass)
 }  // namespace
 
 void LbmShallow::set_slab(LbmDecomposition d) {
@@ -151,6 +153,32 @@ void LbmShallow::exchange_theta() {
   if (lo >= 0) std::copy_n(recv_[0].data(), nx, theta + idx(first - 1, 0));
   if (hi >= 0) std::copy_n(recv_[1].data(), nx, theta + idx(last + 1, 0));
   if (img >= 0) std::copy_n(recv_[2].data(), nx, theta + idx(image_row_, 0));
+  stats_[st_halo_].sent = xchg_.bytes_sent();
+}
+
+// The wet/dry pass's MUSCL slopes read the states of the cells two links away: each neighbour
+// sends the 9 populations of its second row (9 cols floats; their depth came with the halo
+// message), after any unshift of this step, into the second halo row. y-periodic sides on several
+// ranks would need a second image row: such a run stops when a cell dries (step()).
+void LbmShallow::exchange_second_rows() {
+  if (ranks_ == 1) return;
+  StageTimer t(stats_[st_halo_]);
+  const std::size_t nx = static_cast<std::size_t>(p_.cols);
+  const LbmPeers peer = peers(rank_, ranks_, image_row_);
+  const int first = row0_, last = row0_ + rows_ - 1;
+  auto pack = [&](std::vector<float>& m, int row) {
+    for (int a = 0; a < 9; ++a) std::copy_n(fa_.data() + a * plane_ + idx(row, 0), nx, m.data() + a * nx);
+  };
+  auto unpack = [&](const std::vector<float>& m, int row) {
+    for (int a = 0; a < 9; ++a) std::copy_n(m.data() + a * nx, nx, fa_.data() + a * plane_ + idx(row, 0));
+  };
+  if (peer.lo >= 0) xchg_.recv(peer.lo, kSecondUp, recv_[0].data(), 9 * nx);
+  if (peer.hi >= 0) xchg_.recv(peer.hi, kSecondDown, recv_[1].data(), 9 * nx);
+  if (peer.lo >= 0) pack(send_[0], first + 1), xchg_.send(peer.lo, kSecondDown, send_[0].data(), 9 * nx);
+  if (peer.hi >= 0) pack(send_[1], last - 1), xchg_.send(peer.hi, kSecondUp, send_[1].data(), 9 * nx);
+  xchg_.wait();
+  if (peer.lo >= 0) unpack(recv_[0], first - 2);
+  if (peer.hi >= 0) unpack(recv_[1], last + 2);
   stats_[st_halo_].sent = xchg_.bytes_sent();
 }
 

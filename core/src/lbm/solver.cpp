@@ -68,7 +68,7 @@ class LbmSolver final : public Solver {
              {{"h", "depth (m), 0 in obstacles"},
               {"u", "velocity (m/s), (rows, cols, 2)"},
               {"eta", "surface elevation h + z_b (m)"}}},
-            {"dry_cells", "wetting and drying: h < min_depth_m is dry, at rest, passes no water"}};
+            {"dry_cells", "wetting and drying: h < min_depth_m is dry and passes no water on"}};
   }
   const StageStats& stats() const override { return sim_.stats(); }
   std::span<const float> height() override {

@@ -11,17 +11,20 @@
 // Sides and obstacles are ghost cells a precomputed rule list fills before each step (bounce-back,
 // mirror, periodic image, Zou-He inflow and outflow). Populations are stored minus the still-water
 // equilibrium of the mean depth, unshifted once a cell is dry (or from the start).
-// Wetting and drying (a pass of its own while a cell is dry): a cell with h < h_min is dry; its
-// collision puts all its water at rest (f0 = h, f_a = 0), so it passes nothing on. The face between
-// x and n = x - e_a carries the pair f*_a(n) + f*_abar(x), shared out so that each cell receives
-// one part (mass is exchanged, never made): wet-wet faces stream with the bed term, dry-dry faces
-// stream; a face between a wet cell w and a dry cell d is closed (both bounce back) unless
-// h_w + z_w > z_d + h_min, so still water next to dry land stays still; on an open one w receives
-// its own equilibrium of that link without the pressure part lambda_a g h^2 / 6 (an empty
-// neighbour moving with it) and d the rest. An outflow limiter scales each face's net flux by
-// theta = min(1, h / outflow) of the cell it drains (every depth stays >= 0), and speeds are capped
-// at the Riemann bound max(|u| + 2 sqrt(g h)) of the initial state. A negative depth stops the run
-// (LbmDryError). Why each choice, and measurements: docs/lbm.md.
+// Wetting and drying (a pass of its own while a cell is dry): a cell with h < h_min is dry. The
+// face between x and n = x - e_a carries the pair f*_a(n) + f*_abar(x). A face with a dry side
+// (open only if the water stands above the dry bed: still water next to land stays still) or a
+// wet cell above Froude 0.8 takes a finite-volume flux instead: MUSCL-Hancock HLL of the link's
+// own 1D problem (mass M and momentum Pi along e_a, which a uniform equilibrium would stream), and
+// every cell with such a face is updated as h += sum M_a, J += sum e_a Pi_a and set to the
+// equilibrium of (h, J) (the D2Q9 BGK relaxation is not dissipative beyond Froude 1: it holds an
+// expansion jump at the sonic point of a dry-bed dam break). Dry-dry faces exchange nothing, other
+// faces stream with the bed term (wet-wet) or bounce back (closed). An outflow limiter scales each
+// face's net flux by theta = min(1, h / outflow) of the cell it drains (every depth stays >= 0),
+// speeds are capped at the Riemann bound max(|u| + 2 sqrt(g h)) of the initial state, and each
+// cell's populations are made to sum to its mass balance accumulated in double (the face
+// exchanges are exact negatives of each other). A negative depth stops the run (LbmDryError).
+// Why each choice, and measurements: docs/lbm.md.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -150,7 +153,8 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& init);
 
 /// How a run is split over MPI ranks (comm.hpp, docs/scale.md): rank `rank` of `ranks` holds the
 /// rows row_slab(rows, ranks, rank) and keeps halo rows of its neighbours (one row of populations,
-/// two of depth) refreshed every step with non-blocking messages; every decision that depends on
+/// two of depth; two of populations in a wet/dry step, for the MUSCL slopes) refreshed every step
+/// with non-blocking messages; every decision that depends on
 /// the whole domain (the wet/dry pass, the redo of a step, a bad cell) is agreed by a reduction, so
 /// the fields are bitwise those of one process. Each rank needs at least 3 rows. Default: one rank.
 struct LbmDecomposition {
@@ -244,15 +248,21 @@ class LbmShallow {
   void all_wet_kernel(int& flagged);
   void all_wet_overlapped(int& flagged);
   void exchange_theta();
+  void exchange_second_rows();
   void agree(int& flagged, int& bad);
   void fill_ghosts(bool wet_dry);
   void set_ghost_depths();
   template <int Mode>
   void stream_collide(int& flagged);
+  struct WetDryView;
+  WetDryView wet_dry_view(const float* flags) const;
+  void flag_supercritical();
   void outflow_limiter();
+  float wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* dst) const;
   void stream_collide_wet_dry(int& dry, int& bad);
   void unshift();
   void throw_bad_cell() const;
+  void throw_periodic_wet_dry() const;
 
   static constexpr std::size_t kPad = 16;  // interior column 0 starts 64-byte aligned
   static constexpr std::uint32_t kNone = 0xffffffffu;
