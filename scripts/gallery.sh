@@ -23,6 +23,7 @@ shots=(
   "pool 0.3 perspective"
   "sph_dam_break 0.3 perspective"
   "sph_dam_break 0.15 particles"
+  "sph_wedge 0.4 particles"
   "dam_break 10 perspective,plan,dye"
   "channel 20 perspective,plan,speed,dye"
   "flood 12 perspective,plan"
