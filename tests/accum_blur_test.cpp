@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "caustics_cpu.hpp"  // blur121_f32
 #include "gl/gl.hpp"
 
 using namespace huygens;
@@ -148,6 +149,29 @@ TEST_P(AccumBlurGpu, FloatPathMatchesExactBlur) {
   double max_err = 0;
   for (std::size_t i = 0; i < sums.size(); ++i) max_err = std::max(max_err, std::abs(f[i] * 255.0 - sums[i] / 16.0));
   EXPECT_LT(max_err, 1e-3) << "float blur, in 8-bit levels";
+}
+
+// A float source takes the four-tap bilinear path (blur_float_linear.frag): the same kernel
+// to float rounding, clamp to edge included (an 8-bit source read through 8-bit filter weights
+// was 1 level off, which is why GL_R8 keeps the nine-tap path).
+TEST_P(AccumBlurGpu, FloatSourceBilinearPathMatchesExactBlur) {
+  context();
+  const int n = GetParam();
+  viz::AccumBlur blur(n, n);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<float> img(std::size_t(n) * n);
+  for (float& v : img) v = u(rng) < 0.02f ? 40.0f * u(rng) : u(rng);  // a few bright focal texels
+  gl::Texture src(n, n, GL_R32F);
+  src.upload(img.data(), GL_RED, GL_FLOAT);
+  blur.blur_float(src);
+  const auto f = gl::read_pixels_f32(blur.float_framebuffer(), 1);
+  const std::vector<float> ref = viz::blur121_f32(img, n, n);
+  double max_rel = 0;
+  for (std::size_t i = 0; i < ref.size(); ++i)
+    max_rel = std::max(max_rel, std::abs(double(f[i]) - ref[i]) / std::max(double(ref[i]), 1e-3));
+  std::printf("[ float blur ] %dx%d R32F source: max relative error %.2e\n", n, n, max_rel);
+  EXPECT_LT(max_rel, 1e-5);
 }
 
 INSTANTIATE_TEST_SUITE_P(Sizes, AccumBlurGpu, ::testing::Values(64, 512));

@@ -36,13 +36,24 @@ AccumBlur::AccumBlur(int width, int height)
   split_ = gl::program_from_strings(vs, gl::shader_source("blur_split.frag"), "blur_split");
   combine_ = gl::program_from_strings(vs, gl::shader_source("blur_combine.frag"), "blur_combine");
   float_ = gl::program_from_strings(vs, gl::shader_source("blur_float.frag"), "blur_float");
+  float_linear_ = gl::program_from_strings(vs, gl::shader_source("blur_float_linear.frag"), "blur_float_linear");
+  // the float blur reads its source bilinearly (four taps, blur_float.frag) through a sampler
+  // object, so the source texture's own filter stays as its owner set it
+  glGenSamplers(1, &linear_);
+  glSamplerParameteri(linear_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glSamplerParameteri(linear_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(linear_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(linear_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   split_.set("u_src", 0);
   split_.set("u_split_lut", 1);
   combine_.set("u_accum", 0);
   combine_.set("u_combine_lut", 1);
   float_.set("u_src", 0);
+  float_linear_.set("u_src", 0);
   gl::check("AccumBlur setup");
 }
+
+AccumBlur::~AccumBlur() { glDeleteSamplers(1, &linear_); }
 
 const gl::Texture& AccumBlur::blur_emulated(const gl::Texture& src) {
   if (src.width() != w_ || src.height() != h_ || src.internal_format() != GL_R8)
@@ -81,9 +92,12 @@ const gl::Texture& AccumBlur::blur_float(const gl::Texture& src) {
   vao_.bind();
   glDisable(GL_BLEND);
   fb_outf_.bind();
-  float_.use();
+  const bool linear = src.internal_format() == GL_R32F;
+  (linear ? float_linear_ : float_).use();
   src.bind(0);
+  if (linear) glBindSampler(0, linear_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindSampler(0, 0);
   gl::check("AccumBlur::blur_float");
   return outf_;
 }

@@ -8,8 +8,10 @@
 // A second pass reads c (green) and d (blue) and writes, through a 256 x 256 lookup,
 // the gray level c + floor((d + 7) / 16) into a GL_R8 target. Equal bit for bit to
 // accum_blur_reference() (tests/accum_blur_test.cpp).
-// Float path: one pass, nine texelFetch taps weighted [1 2 1; 2 4 2; 1 2 1] / 16, into
-// GL_R32F. Both clamp to edge.
+// Float path: one pass into GL_R32F, nine texelFetch taps weighted [1 2 1; 2 4 2; 1 2 1] / 16;
+// for a GL_R32F source the same kernel as four bilinear taps at (+-1/2, +-1/2) texel (each
+// averages a 2 x 2 block; faster under llvmpipe, and exact there because float textures are
+// filtered in float, unlike 8-bit ones). Both clamp to edge.
 #pragma once
 
 #include "accum_blur_cpu.hpp"
@@ -21,6 +23,9 @@ class AccumBlur {
  public:
   /// Allocates the targets and lookup tables for width x height images (a current GL context is needed).
   AccumBlur(int width, int height);
+  ~AccumBlur();
+  AccumBlur(const AccumBlur&) = delete;
+  AccumBlur& operator=(const AccumBlur&) = delete;
 
   /// Blur an 8-bit GL_R8 texture of the constructed size by the emulation; returns the GL_R8 result.
   const gl::Texture& blur_emulated(const gl::Texture& src_r8);
@@ -38,8 +43,9 @@ class AccumBlur {
   int w_, h_;
   gl::Texture split_lut_, combine_lut_, accum_, out8_, outf_;
   gl::Framebuffer fb_accum_, fb_out8_, fb_outf_;
-  gl::Program split_, combine_, float_;
+  gl::Program split_, combine_, float_, float_linear_;
   gl::VertexArray vao_;
+  GLuint linear_ = 0;
 };
 
 }  // namespace huygens::viz
