@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <ctime>
 #include <glm/gtc/type_ptr.hpp>
 #include <numbers>
 #include <string>
@@ -115,6 +116,13 @@ float hash01(std::uint32_t x, std::uint32_t y) {
   std::uint32_t h = x * 374761393u + y * 668265263u;
   h = (h ^ (h >> 13)) * 1274126177u;
   return static_cast<float>((h ^ (h >> 16)) & 0xffffu) / 65536.0f;
+}
+
+// CPU time of this process, all its threads (llvmpipe's rasteriser threads included) (unit: ms).
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point t0) {
@@ -646,13 +654,16 @@ void WaterRenderer::draw_ships(const OrbitCamera& camera, const RenderSettings& 
 void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, const RenderTarget& target) {
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
-  auto lap = [&](double& slot) {
+  double c0 = process_cpu_ms();
+  auto lap = [&](double& slot, double& cpu_slot) {
     if (!times.enabled) return;
     glFinish();
     slot = elapsed_ms(t0);
+    cpu_slot = process_cpu_ms() - c0;
     t0 = clock::now();
+    c0 = process_cpu_ms();
   };
-  if (times.enabled) glFinish(), t0 = clock::now();
+  if (times.enabled) glFinish(), t0 = clock::now(), c0 = process_cpu_ms();
 
   // upload: view-dependent coefficients, ground texture, the frame's heights
   update_linearisation(camera, s.index);
@@ -663,12 +674,12 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
     glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(mesh_h_.size() * sizeof(float)), mesh_h_.data());
     heights_dirty_ = false;
   }
-  lap(times.upload);
+  lap(times.upload, times.cpu.upload);
 
   // caustics into their texture (lights the ground; flat light when off)
   const bool use_caustics = s.caustics && caustics_ && caustics_->available();
   if (use_caustics) caustics_->run(eta_, ships_, s);
-  lap(times.caustics);
+  lap(times.caustics, times.cpu.caustics);
 
   const double aspect = static_cast<double>(target.width()) / target.height();
   const glm::mat4 mvp = mvp_of(camera, aspect);
@@ -689,11 +700,11 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
 
   if (s.draw_water) draw_surface(camera, s, mvp);
   if (s.draw_water && !s.deep_water) draw_water_sides(camera, s, mvp);
-  lap(times.surface);
+  lap(times.surface, times.cpu.surface);
 
   if (s.draw_ship && !ships_.empty()) draw_ships(camera, s, mvp);
   draw_solids(camera, s, mvp);
-  lap(times.ship);
+  lap(times.ship, times.cpu.ship);
   // ground seen directly, drawn last so the depth test skips what the water and ships cover;
   // deep water has no floor (the background is the clear colour)
   if (has_bed_) {
@@ -709,9 +720,9 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
     else
       glDrawArrays(GL_TRIANGLES, 0, 6);
   }
-  lap(times.ground);
+  lap(times.ground, times.cpu.ground);
   tone_map(s, target);
-  lap(times.tonemap);
+  lap(times.tonemap, times.cpu.tonemap);
 
   glBindVertexArray(0);
   glUseProgram(0);

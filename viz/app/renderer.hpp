@@ -159,6 +159,11 @@ class RenderTarget {
 struct RenderTimes {
   bool enabled = false;
   double prepare = 0, upload = 0, caustics = 0, ground = 0, surface = 0, ship = 0, tonemap = 0;
+  /// The same passes in process CPU time (all threads, llvmpipe's included; unit: ms): on a
+  /// shared machine steadier than the wall times above, which wait for other programs too.
+  struct Cpu {
+    double upload = 0, caustics = 0, ground = 0, surface = 0, ship = 0, tonemap = 0;
+  } cpu;
 };
 
 class CausticsStage;  // wraps the caustics pass (viz/caustics.hpp) when it is built
