@@ -69,6 +69,12 @@ CausticsRenderer::CausticsRenderer(const CausticsParams& params)
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh_.indices.size() * sizeof(std::uint32_t)), mesh_.indices.data(),
                GL_STATIC_DRAW);
   glBindVertexArray(0);
+  // explicit mode's draw list (caustics_mesh_triangles): at most the mesh's own triangles
+  glGenBuffers(1, &ebo_draw_);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_draw_);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh_.indices.size() * sizeof(std::uint32_t)), nullptr,
+               GL_STREAM_DRAW);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   // shadow polygon buffer
   glGenVertexArrays(1, &vao_shadow_);
   glBindVertexArray(vao_shadow_);
@@ -86,6 +92,7 @@ CausticsRenderer::~CausticsRenderer() {
   glDeleteBuffers(1, &vbo_ground_);
   glDeleteBuffers(1, &vbo_surface_);
   glDeleteBuffers(1, &ebo_);
+  glDeleteBuffers(1, &ebo_draw_);
   glDeleteBuffers(1, &vbo_shadow_);
   glDeleteVertexArrays(1, &vao_);
   glDeleteVertexArrays(1, &vao_shadow_);
@@ -189,30 +196,18 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
+  GLsizei draw_count = GLsizei(mesh_.indices.size());
   if (explicit_mode) {
     explicit_prog_.use();
     // per triangle: unit * (surface area) / (ground area), both in texels of the caustics
     // texture (the still-water projection maps one onto the other; surface = the beam
-    // cross-section, CausticsParams::flux_by_beam_area)
-    const float unit = params_.float_target ? 1.0f : params_.unit_level_u8 / 255.0f;
-    const float tw = float(params_.texture_width), th = float(params_.texture_height);
-    const std::size_t n_tri = mesh_.indices.size() / 3, nv = std::size_t(mesh_.cols) * mesh_.rows;
-    gains_.resize(n_tri);
-    auto pos = [&](const std::vector<float>& main, const std::vector<float>& skirt, std::uint32_t v, int c) {
-      return v < nv ? main[2 * std::size_t(v) + c] : skirt[2 * (std::size_t(v) - nv) + c];
-    };
-    for (std::size_t t = 0; t < n_tri; ++t) {
-      const std::uint32_t a = mesh_.indices[3 * t], b = mesh_.indices[3 * t + 1], c = mesh_.indices[3 * t + 2];
-      auto area = [&](const std::vector<float>& m, const std::vector<float>& sk) {
-        const float ax = pos(m, sk, a, 0) * tw, ay = pos(m, sk, a, 1) * th;
-        const float e1x = pos(m, sk, b, 0) * tw - ax, e1y = pos(m, sk, b, 1) * th - ay;
-        const float e2x = pos(m, sk, c, 0) * tw - ax, e2y = pos(m, sk, c, 1) * th - ay;
-        return 0.5f * std::abs(e1x * e2y - e1y * e2x);
-      };
-      const float ground = area(mesh_.ground_uv, mesh_.skirt_ground_uv);
-      const float surface = area(mesh_.surface_uv, mesh_.skirt_surface_uv);
-      gains_[t] = unit * surface / std::max(ground, 1e-6f * surface);
-    }
+    // cross-section, CausticsParams::flux_by_beam_area); uniform blocks merged into fans
+    caustics_mesh_triangles(params_, mesh_);
+    const auto& gains_ = mesh_.gains;
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_draw_);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, GLsizeiptr(mesh_.draw_indices.size() * sizeof(std::uint32_t)),
+                    mesh_.draw_indices.data());
+    draw_count = GLsizei(mesh_.draw_indices.size());
     glBindBuffer(GL_TEXTURE_BUFFER, gain_buffer_);
     glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(gains_.size() * sizeof(float)), gains_.data(), GL_STREAM_DRAW);
     glActiveTexture(GL_TEXTURE1);
@@ -227,7 +222,8 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
     mip_prog_.set("u_isotropic", params_.mip_isotropic_lod ? 1 : 0);
     mip_->bind(0);
   }
-  glDrawElements(GL_TRIANGLES, GLsizei(mesh_.indices.size()), GL_UNSIGNED_INT, nullptr);
+  glDrawElements(GL_TRIANGLES, draw_count, GL_UNSIGNED_INT, nullptr);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);  // the vertex array's own element buffer again
   glDisable(GL_BLEND);
   glBindVertexArray(0);
   gl::check("CausticsRenderer::render");

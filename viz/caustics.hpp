@@ -62,7 +62,7 @@ class CausticsRenderer {
   gl::Texture target_;
   gl::Framebuffer fb_;
   gl::Program mip_prog_, explicit_prog_, shadow_prog_;
-  GLuint vao_ = 0, vbo_ground_ = 0, vbo_surface_ = 0, ebo_ = 0, vbo_shadow_ = 0, vao_shadow_ = 0;
+  GLuint vao_ = 0, vbo_ground_ = 0, vbo_surface_ = 0, ebo_ = 0, ebo_draw_ = 0, vbo_shadow_ = 0, vao_shadow_ = 0;
   // MIP map (surface coordinates, 4x the target size) and its per-level framebuffers 0..2
   std::optional<gl::Texture> mip_;
   std::vector<gl::Framebuffer> mip_fb_;
@@ -71,8 +71,7 @@ class CausticsRenderer {
   std::optional<gl::Texture> mask_;
   std::optional<gl::Framebuffer> mask_fb_;
   double cpu_seconds_ = 0.0;
-  // explicit mode: one gain per triangle, read by gl_PrimitiveID from a buffer texture
-  std::vector<float> gains_;
+  // explicit mode: one gain per triangle (CausticsMesh::gains), read by gl_PrimitiveID from a buffer texture
   GLuint gain_buffer_ = 0, gain_texture_ = 0;
 
  public:

@@ -123,6 +123,11 @@ void caustics_mesh_init(const CausticsParams& p, CausticsMesh& m) {
     }
   m.skirt_ground_uv.assign(2 * m.skirt_anchor.size(), 0.0f);
   m.skirt_surface_uv.assign(2 * m.skirt_anchor.size(), 0.0f);
+  m.draw_indices.clear();
+  m.draw_indices.reserve(m.indices.size());
+  m.gains.clear();
+  m.gains.reserve(m.indices.size() / 3);
+  m.cell_gain.assign(m.indices.size() / 3, 0.0f);
 }
 
 void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, CausticsMesh& m) {
@@ -212,6 +217,138 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
     }
   }
   m.skirt_reach = r;
+}
+
+namespace {
+
+// Draw list of caustics_mesh_triangles: vertex positions in texels, the gain of a triangle, the
+// flatness test of a block and its fan.
+class TriangleList {
+ public:
+  TriangleList(const CausticsParams& p, CausticsMesh& m)
+      : m_(m),
+        tw_(float(p.texture_width)),
+        th_(float(p.texture_height)),
+        unit_(p.float_target ? 1.0f : p.unit_level_u8 / 255.0f),
+        dg_(p.merge_gain_tolerance),
+        dp_(p.merge_position_tolerance),
+        nv_(std::size_t(m.cols) * m.rows) {}
+
+  // unit * (surface area) / (ground area) of triangle (a, b, c), areas in texels
+  float gain(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    const float ground = area(m_.ground_uv, m_.skirt_ground_uv, a, b, c);
+    const float surface = area(m_.surface_uv, m_.skirt_surface_uv, a, b, c);
+    return unit_ * surface / std::max(ground, 1e-6f * surface);
+  }
+  void emit(std::uint32_t a, std::uint32_t b, std::uint32_t c, float g) {
+    m_.draw_indices.insert(m_.draw_indices.end(), {a, b, c});
+    m_.gains.push_back(g);
+  }
+  // the block of `size` cells at cell (i0, j0): one fan if uniform, else its quarters, else cells
+  void block(int i0, int j0, int size) {
+    if (size >= 4 && uniform(i0, j0, size)) return fan(i0, j0, size);
+    if (size > 4) {
+      const int h = size / 2;
+      for (const auto& [di, dj] : {std::pair{0, 0}, {0, h}, {h, 0}, {h, h}}) block(i0 + di, j0 + dj, h);
+      return;
+    }
+    for (int i = i0; i < i0 + size; ++i)
+      for (int j = j0; j < j0 + size; ++j) cell(i, j);
+  }
+  void cell(int i, int j) {
+    const std::size_t t = 2 * (std::size_t(i) * (m_.cols - 1) + j);
+    for (std::size_t k = t; k < t + 2; ++k)
+      emit(m_.indices[3 * k], m_.indices[3 * k + 1], m_.indices[3 * k + 2], m_.cell_gain[k]);
+  }
+
+ private:
+  float coord(const std::vector<float>& main, const std::vector<float>& skirt, std::uint32_t v, int c) const {
+    const float s = c == 0 ? tw_ : th_;
+    return s * (v < nv_ ? main[2 * std::size_t(v) + c] : skirt[2 * (std::size_t(v) - nv_) + c]);
+  }
+  float area(const std::vector<float>& m, const std::vector<float>& sk, std::uint32_t a, std::uint32_t b,
+             std::uint32_t c) const {
+    const float ax = coord(m, sk, a, 0), ay = coord(m, sk, a, 1);
+    const float e1x = coord(m, sk, b, 0) - ax, e1y = coord(m, sk, b, 1) - ay;
+    const float e2x = coord(m, sk, c, 0) - ax, e2y = coord(m, sk, c, 1) - ay;
+    return 0.5f * std::abs(e1x * e2y - e1y * e2x);
+  }
+  std::uint32_t vid(int i, int j) const { return std::uint32_t(i * m_.cols + j); }
+  // every vertex of the block within dp_ texels of the bilinear map through its corners
+  bool near_bilinear(const std::vector<float>& uv, int i0, int j0, int size) const {
+    const std::uint32_t c00 = vid(i0, j0), c01 = vid(i0, j0 + size), c10 = vid(i0 + size, j0),
+                        c11 = vid(i0 + size, j0 + size);
+    const float inv = 1.0f / float(size);
+    for (int c = 0; c < 2; ++c) {
+      const float s = c == 0 ? tw_ : th_;
+      const float p00 = uv[2 * c00 + c], p01 = uv[2 * c01 + c], p10 = uv[2 * c10 + c], p11 = uv[2 * c11 + c];
+      for (int i = 0; i <= size; ++i) {
+        const float v = float(i) * inv;
+        const float a = p00 + v * (p10 - p00), b = p01 + v * (p11 - p01);
+        for (int j = 0; j <= size; ++j) {
+          const float want = a + float(j) * inv * (b - a);
+          if (s * std::abs(uv[2 * std::size_t(vid(i0 + i, j0 + j)) + c] - want) > dp_) return false;
+        }
+      }
+    }
+    return true;
+  }
+  bool uniform(int i0, int j0, int size) const {
+    float lo = 3.4e38f, hi = 0.0f;
+    for (int i = i0; i < i0 + size; ++i) {
+      const std::size_t t = 2 * (std::size_t(i) * (m_.cols - 1) + j0);
+      for (std::size_t k = t; k < t + 2 * std::size_t(size); ++k) {
+        lo = std::min(lo, m_.cell_gain[k]);
+        hi = std::max(hi, m_.cell_gain[k]);
+      }
+    }
+    return hi <= lo * (1.0f + dg_) && near_bilinear(m_.ground_uv, i0, j0, size) &&
+           near_bilinear(m_.surface_uv, i0, j0, size);
+  }
+  // fan from the centre vertex to the 4 size boundary vertices, counter-clockwise
+  void fan(int i0, int j0, int size) {
+    const std::uint32_t centre = vid(i0 + size / 2, j0 + size / 2);
+    auto boundary = [&](int k) {  // k-th boundary vertex from the corner (i0, j0)
+      const int side = k / size, o = k % size;
+      return side == 0   ? vid(i0, j0 + o)
+             : side == 1 ? vid(i0 + o, j0 + size)
+             : side == 2 ? vid(i0 + size, j0 + size - o)
+                         : vid(i0 + size - o, j0);
+    };
+    std::uint32_t prev = boundary(0);
+    for (int k = 1; k <= 4 * size; ++k) {
+      const std::uint32_t next = boundary(k % (4 * size));
+      emit(centre, prev, next, gain(centre, prev, next));
+      prev = next;
+    }
+  }
+
+  CausticsMesh& m_;
+  float tw_, th_, unit_, dg_, dp_;
+  std::size_t nv_;
+};
+
+}  // namespace
+
+void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& m) {
+  TriangleList list(p, m);
+  const std::size_t n_tri = m.indices.size() / 3;
+  m.cell_gain.resize(n_tri);
+  for (std::size_t t = 0; t < n_tri; ++t)
+    m.cell_gain[t] = list.gain(m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]);
+  m.draw_indices.clear();
+  m.gains.clear();
+  const int cells_x = m.cols - 1, cells_y = m.rows - 1;
+  const int b = p.merge_block >= 4 ? p.merge_block : 0;
+  // whole blocks, then the cells of the partial blocks along the top and right edges
+  const int bx = b ? cells_x / b : 0, by = b ? cells_y / b : 0;
+  for (int bi = 0; bi < by; ++bi)
+    for (int bj = 0; bj < bx; ++bj) list.block(bi * b, bj * b, b);
+  for (int i = 0; i < cells_y; ++i)
+    for (int j = (i < by * b ? bx * b : 0); j < cells_x; ++j) list.cell(i, j);
+  // the skirt's triangles follow the mesh cells' in `indices`
+  for (std::size_t t = 2 * std::size_t(cells_x) * cells_y; t < n_tri; ++t)
+    list.emit(m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2], m.cell_gain[t]);
 }
 
 int mesh_size_for_field(const HeightfieldView& f, double per_wavelength, int min_n) {

@@ -86,6 +86,14 @@ struct CausticsParams {
   /// outside the domain see the border's height continued flat (the field's edge value), i.e.
   /// the still-water light 1 in a strip D tan(theta_t) wide on the sun's side.
   bool cover_domain = false;
+  /// Explicit mode: the largest square block of mesh cells (a power of 2 >= 4) drawn as one fan
+  /// where its light is uniform (caustics_mesh_triangles); 0 draws every cell's two triangles.
+  int merge_block = 0;
+  /// A block is merged when its cells' gains agree to this ratio, max / min - 1 (unit: 1) ...
+  float merge_gain_tolerance = 0.005f;
+  /// ... and every vertex inside it is within this distance, ground and surface coordinates
+  /// alike, of the bilinear map through its four corners (unit: texels).
+  float merge_position_tolerance = 0.05f;
 };
 
 /// Mesh vertices per side that resolve the field's caustics: `per_wavelength` cells per dominant
@@ -144,10 +152,28 @@ struct CausticsMesh {
   std::vector<float> skirt_ground_uv;       ///< skirt vertices in ground texture coordinates (2 per vertex)
   std::vector<float> skirt_surface_uv;      ///< skirt vertices in surface coordinates (2 per vertex)
   float skirt_reach = 1;                    ///< the reach r of the last update (unit: mesh cells)
+  /// The triangles to draw (caustics_mesh_triangles): `indices`, or with merged blocks fewer
+  /// (capacity reserved at init: no allocation per frame), and each one's gain.
+  std::vector<std::uint32_t> draw_indices;
+  std::vector<float> gains;
+  std::vector<float> cell_gain;  ///< scratch: the gain of every triangle of `indices`
   std::size_t vertex_count() const { return std::size_t(cols) * rows + skirt_anchor.size(); }
 };
 void caustics_mesh_init(const CausticsParams& p, CausticsMesh& mesh);
 void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& field, CausticsMesh& mesh);
+
+/// Explicit mode's draw list after caustics_mesh_update: per triangle the gain
+/// unit * (surface area) / (ground area), both in texels (unit = 1 in a float target,
+/// unit_level_u8 / 255 in the 8-bit one; the surface area is the beam cross-section, so every
+/// triangle delivers exactly the light its surface triangle receives). With merge_block > 0 a
+/// block of merge_block^2 cells whose light is uniform (gains within merge_gain_tolerance,
+/// vertices within merge_position_tolerance of the corners' bilinear map), else each of its
+/// quarters recursively down to 4 x 4 cells, is drawn as a fan from its centre vertex to every
+/// vertex on its boundary: 4 b triangles instead of 2 b^2, the same light in total (the fan
+/// tiles the same polygon, so the surface areas sum to the same beam), and no cracks next to
+/// finer blocks (the boundary keeps all its vertices). Under llvmpipe the caustics pass costs
+/// about its triangle count, and still or uniformly sloped water is most of many scenes.
+void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& mesh);
 
 /// Ship shadow: a convex hull outline (counter-clockwise or clockwise, metres, surface frame),
 /// at height `height_m` above the surface at rest; it is projected along the sun onto the
