@@ -127,6 +127,55 @@ TEST(Caustics, FlatSurfaceGivesUniformLight) {
       }
 }
 
+// Merged blocks (CausticsParams::merge_block, caustics_mesh_triangles): a ring wave in the middle
+// of still water, oblique sun. Drawing the uniform blocks as fans keeps the total light (to float
+// rounding) and every blurred texel within 1 % of unit light of the full mesh's, with far fewer
+// triangles; merging every block regardless of its light (the control) moves texels by far more,
+// so the comparison sees a wrong merge.
+TEST(Caustics, MergedUniformBlocksKeepTheLight) {
+  context();
+  Field f = ring_wave(257, 2.0, 0.5, 0.8);
+  for (int i = 0; i < f.n; ++i)
+    for (int j = 0; j < f.n; ++j) {  // still water beyond 0.25 L from the centre
+      const double r = std::hypot(i - 128.0, j - 128.0) / 256.0;
+      const double w = std::clamp((0.25 - r) / 0.1, 0.0, 1.0);
+      f.eta[std::size_t(i) * f.n + j] *= float(w * w * (3 - 2 * w));
+    }
+  const int tex = 512;
+  viz::AccumBlur blur(tex, tex);
+  auto run = [&](int block, float gain_tol, float pos_tol, std::size_t* drawn) {
+    auto p = params(256, tex, CausticsArea::Explicit, CausticsProjection::Exact, true);
+    p.sun_dir = {0.3f, -0.2f, -1.0f};
+    p.cover_domain = true;
+    p.merge_block = block;
+    p.merge_gain_tolerance = gain_tol;
+    p.merge_position_tolerance = pos_tol;
+    viz::CausticsRenderer r(p);
+    r.render(f.view());
+    *drawn = r.mesh().gains.size();
+    blur.blur_float(r.texture());
+    return gl::read_pixels_f32(blur.float_framebuffer(), 1);
+  };
+  std::size_t n_full = 0, n_merged = 0, n_all = 0;
+  const auto full = run(0, 0.005f, 0.05f, &n_full);
+  const auto merged = run(16, 0.005f, 0.05f, &n_merged);
+  const auto all = run(16, 1e9f, 1e9f, &n_all);  // control: every block merged
+  auto max_diff = [&](const std::vector<float>& a) {
+    double m = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, double(std::abs(a[k] - full[k])));
+    return m;
+  };
+  const double rel_total = total(merged) / total(full) - 1.0;
+  std::printf(
+      "[ merge ] triangles %zu -> %zu (all merged: %zu); total light %+.1e; max texel diff %.4f "
+      "(all merged: %.4f)\n",
+      n_full, n_merged, n_all, rel_total, max_diff(merged), max_diff(all));
+  EXPECT_LT(double(n_merged), 0.5 * double(n_full));
+  EXPECT_LT(std::abs(rel_total), 1e-4);
+  EXPECT_LT(max_diff(merged), 0.01);
+  EXPECT_GT(max_diff(all), 0.05);
+}
+
 TEST(Caustics, TotalLightEqualsLightEnteringTheSurface) {
   context();
   // windowed sea: field and slope vanish at the border, so every triangle lands on the ground

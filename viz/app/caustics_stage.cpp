@@ -11,38 +11,20 @@
 namespace huygens {
 namespace {
 
-// The caustics texture: 512 texels along the field's longer side, 1024 for fields of more than
-// 256 points a side (the kelvin wake's focal points were 10 cm texels, 15 px squares, at 512);
-// the shorter side in proportion, so texels are square (a 2:1 channel got a square texture
-// before, twice the texels it could show across, at twice the fill and blur cost).
-struct Extent2 {
-  int cols = 0, rows = 0;
-};
-Extent2 texture_size(const GridPlacement& g) {
-  const int side = std::max(g.rows, g.cols) > 256 ? 1024 : 512;
-  const double aspect = double(std::min(g.rows, g.cols) - 1) / double(std::max(g.rows, g.cols) - 1);
-  const int short_side = std::max(16, static_cast<int>(std::lround(side * aspect)));
-  return g.cols >= g.rows ? Extent2{side, short_side} : Extent2{short_side, side};
-}
-
-// The mesh: `n` vertices along the field's longer side, the shorter side in proportion (square
-// cells, at most the field's points), so a 2:1 field gets half the rows it got as an n x n mesh.
-Extent2 mesh_extent(const GridPlacement& g, int n) {
-  const int lo = static_cast<int>(std::min(g.rows, g.cols)), hi = static_cast<int>(std::max(g.rows, g.cols));
-  n = std::min(n, hi);
-  const int m = std::clamp(static_cast<int>(std::lround(double(n - 1) * (lo - 1) / (hi - 1))) + 1, 2, lo);
-  return g.cols >= g.rows ? Extent2{n, m} : Extent2{m, n};
-}
+// The caustics texture's side: 512 texels, 1024 for fields of more than 256 points a side (the
+// kelvin wake's focal points were 10 cm texels, 15 px squares, at 512). Square also for a
+// non-square field, and the mesh n x n: on the 2:1 channel, a texture (or a mesh) with the
+// field's aspect, i.e. half the texels (rows) across, lost the sharp focal points of the
+// grid-scale ripples at the cylinder (up to 132/255 on 0.06 % of the pixels at 1280x720).
+int texture_side(const GridPlacement& g) { return std::max(g.rows, g.cols) > 256 ? 1024 : 512; }
 
 // The pass's parameters for a caustics mode (RenderSettings::caustics_mode, docs/viz.md
 // "Caustics"): the light-conserving default (explicit area, float target, float blur) or the
 // paper's MIP trick and 8-bit target. The texture always covers the floor under the water.
-viz::CausticsParams mode_params(CausticsMode mode, Extent2 mesh, Extent2 texture) {
+viz::CausticsParams mode_params(CausticsMode mode, int mesh, int texture) {
   viz::CausticsParams p;
-  p.texture_width = texture.cols;
-  p.texture_height = texture.rows;
-  p.mesh_cols = mesh.cols;
-  p.mesh_rows = mesh.rows;
+  p.texture_width = p.texture_height = texture;
+  p.mesh_cols = p.mesh_rows = mesh;
   p.cover_domain = true;
   p.area = mode == CausticsMode::conserving || mode == CausticsMode::explicit_u8 ? viz::CausticsArea::Explicit
                                                                                  : viz::CausticsArea::Mip;
@@ -52,8 +34,7 @@ viz::CausticsParams mode_params(CausticsMode mode, Extent2 mesh, Extent2 texture
   // at full mesh resolution, sun 30 degrees: 3 % too much light in the interior, docs/viz.md)
   if (mode == CausticsMode::conserving) p.projection = viz::CausticsProjection::Exact;
   // and draws blocks of up to 16 x 16 cells whose light is uniform as one fan each (to 0.5 % in
-  // gain and 0.05 texel in position; caustics_mesh_triangles): under llvmpipe a triangle costs
-  // about 0.2 us (docs/viz.md "Speed")
+  // gain and 0.05 texel in position; caustics_mesh_triangles): fewer triangles, the same light
   if (mode == CausticsMode::conserving) p.merge_block = 16;
   return p;
 }
@@ -69,7 +50,7 @@ int quantised_mesh(int want, int current) {
 class PaperCaustics final : public CausticsStage {
  public:
   PaperCaustics(const GridPlacement& grid, double ground_z)
-      : grid_(grid), depth_(static_cast<float>(-ground_z)), blur_(texture_size(grid).cols, texture_size(grid).rows) {}
+      : grid_(grid), depth_(static_cast<float>(-ground_z)), blur_(texture_side(grid), texture_side(grid)) {}
 
   bool available() const override { return true; }
 
@@ -81,7 +62,8 @@ class PaperCaustics final : public CausticsStage {
         s.caustics_mesh > 0 ? s.caustics_mesh : quantised_mesh(viz::mesh_size_for_field(field), caustics_ ? mesh_ : 0);
     if (!caustics_ || mesh != mesh_ || s.caustics_mode != mode_) {
       caustics_.reset();
-      caustics_.emplace(mode_params(s.caustics_mode, mesh_extent(grid_, mesh), texture_size(grid_)));
+      caustics_.emplace(mode_params(s.caustics_mode, std::min(mesh, static_cast<int>(std::max(grid_.rows, grid_.cols))),
+                                    texture_side(grid_)));
       mesh_ = mesh;
       mode_ = s.caustics_mode;
     }
