@@ -21,8 +21,10 @@ uniform int u_isotropic;   // 1: level of detail from the area scale sqrt|det J|
 out vec4 o_color;
 void main() {
 #ifdef EXPLICIT
-  float m = (u_use_mask != 0) ? texture(u_mask, v_surface).r : 1.0;
-  o_color = vec4(texelFetch(u_gain, gl_PrimitiveID).r * m);
+  // a negative gain takes still-water light away (CausticsParams::skip_still): never masked
+  float g = texelFetch(u_gain, gl_PrimitiveID).r;
+  float m = (u_use_mask != 0 && g > 0.0) ? texture(u_mask, v_surface).r : 1.0;
+  o_color = vec4(g * m);
 #else
   if (u_isotropic != 0) {
     // isotropic variant (not in the paper): texels per pixel from the triangle's area scale,

@@ -143,8 +143,9 @@ TEST(Caustics, MergedUniformBlocksKeepTheLight) {
     }
   const int tex = 512;
   viz::AccumBlur blur(tex, tex);
-  auto run = [&](int block, float gain_tol, float pos_tol, std::size_t* drawn) {
+  auto run = [&](int block, float gain_tol, float pos_tol, std::size_t* drawn, bool skip_still = false) {
     auto p = params(256, tex, CausticsArea::Explicit, CausticsProjection::Exact, true);
+    p.skip_still = skip_still;
     p.sun_dir = {0.3f, -0.2f, -1.0f};
     p.cover_domain = true;
     p.merge_block = block;
@@ -153,13 +154,17 @@ TEST(Caustics, MergedUniformBlocksKeepTheLight) {
     viz::CausticsRenderer r(p);
     r.render(f.view());
     *drawn = r.mesh().gains.size();
+    if (skip_still) *drawn = r.mesh().rest_uv.size() / 8;  // footprints: blocks drawn (+ 2 edge strips)
     blur.blur_float(r.texture());
     return gl::read_pixels_f32(blur.float_framebuffer(), 1);
   };
   std::size_t n_full = 0, n_merged = 0, n_all = 0;
   const auto full = run(0, 0.005f, 0.05f, &n_full);
   const auto merged = run(16, 0.005f, 0.05f, &n_merged);
-  const auto all = run(16, 1e9f, 1e9f, &n_all);  // control: every block merged
+  const auto all = run(16, 1e9f, 1e9f, &n_all);                  // control: every block merged
+  std::size_t n_skip = 0, n_skip_all = 0;                        // blocks drawn of the 15 x 15
+  const auto skip = run(16, 0.005f, 0.05f, &n_skip, true);       // still blocks not drawn
+  const auto skip_all = run(16, 0.5f, 1e9f, &n_skip_all, true);  // control: the ring's outskirts "still" too
   auto max_diff = [&](const std::vector<float>& a) {
     double m = 0;
     for (std::size_t k = 0; k < a.size(); ++k) m = std::max(m, double(std::abs(a[k] - full[k])));
@@ -174,6 +179,16 @@ TEST(Caustics, MergedUniformBlocksKeepTheLight) {
   EXPECT_LT(std::abs(rel_total), 1e-4);
   EXPECT_LT(max_diff(merged), 0.01);
   EXPECT_GT(max_diff(all), 0.05);
+  // skip_still: the target starts at still-water light, the still blocks are not drawn, the
+  // others take their footprint's light away and add their triangles'
+  std::printf(
+      "[ merge ] skip_still: blocks drawn %zu of 225 (control %zu); total light %+.1e; max texel diff %.4f "
+      "(control %.4f)\n",
+      n_skip, n_skip_all, total(skip) / total(full) - 1.0, max_diff(skip), max_diff(skip_all));
+  EXPECT_LT(n_skip, 225u / 2);
+  EXPECT_LT(std::abs(total(skip) / total(full) - 1.0), 1e-4);
+  EXPECT_LT(max_diff(skip), 0.01);
+  EXPECT_GT(max_diff(skip_all), 0.05);
 }
 
 TEST(Caustics, TotalLightEqualsLightEnteringTheSurface) {

@@ -2,6 +2,7 @@
 #include "caustics.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -55,7 +56,8 @@ CausticsRenderer::CausticsRenderer(const CausticsParams& params)
   glGenBuffers(1, &vbo_ground_);
   glBindBuffer(GL_ARRAY_BUFFER, vbo_ground_);
   // mesh vertices, then the skirt's (CausticsMesh)
-  const auto vbo_bytes = GLsizeiptr(2 * mesh_.vertex_count() * sizeof(float));
+  // mesh vertices, the skirt's, then skip_still's rest footprints' corners
+  const auto vbo_bytes = GLsizeiptr((2 * mesh_.vertex_count() + mesh_.rest_uv.capacity()) * sizeof(float));
   glBufferData(GL_ARRAY_BUFFER, vbo_bytes, nullptr, GL_STREAM_DRAW);
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glEnableVertexAttribArray(0);
@@ -72,7 +74,7 @@ CausticsRenderer::CausticsRenderer(const CausticsParams& params)
   // explicit mode's draw list (caustics_mesh_triangles): at most the mesh's own triangles
   glGenBuffers(1, &ebo_draw_);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_draw_);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh_.indices.size() * sizeof(std::uint32_t)), nullptr,
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(mesh_.draw_indices.capacity() * sizeof(std::uint32_t)), nullptr,
                GL_STREAM_DRAW);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   // shadow polygon buffer
@@ -182,16 +184,37 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
 
   // GPU: all projected triangles, additive
   glBindVertexArray(vao_);
-  auto upload = [](GLuint vbo, const std::vector<float>& mesh, const std::vector<float>& skirt) {
+  if (explicit_mode) {
+    // per triangle: unit * (surface area) / (ground area), both in texels of the caustics
+    // texture (the still-water projection maps one onto the other; surface = the beam
+    // cross-section, CausticsParams::flux_by_beam_area); uniform blocks merged into fans, still
+    // ones skipped (skip_still) unless under the ship's shadow
+    std::array<float, 4> box{1.0f, 1.0f, 0.0f, 0.0f};
+    if (has_ship) {
+      const float W = float(field.cols - 1) * field.dx_m, H = float(field.rows - 1) * field.dx_m;
+      box = {3.4e38f, 3.4e38f, -3.4e38f, -3.4e38f};
+      for (const auto& q : shadow)
+        box = {std::min(box[0], q[0] / W), std::min(box[1], q[1] / H), std::max(box[2], q[0] / W),
+               std::max(box[3], q[1] / H)};
+    }
+    caustics_mesh_triangles(params_, mesh_, box);
+  }
+  auto upload = [&](GLuint vbo, const std::vector<float>& mesh, const std::vector<float>& skirt) {
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
     glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(mesh.size() * sizeof(float)), mesh.data());
     glBufferSubData(GL_ARRAY_BUFFER, GLintptr(mesh.size() * sizeof(float)), GLsizeiptr(skirt.size() * sizeof(float)),
                     skirt.data());
+    const std::vector<float>& rest = mesh_.rest_uv;
+    if (explicit_mode && !rest.empty())
+      glBufferSubData(GL_ARRAY_BUFFER, GLintptr((mesh.size() + skirt.size()) * sizeof(float)),
+                      GLsizeiptr(rest.size() * sizeof(float)), rest.data());
   };
   upload(vbo_ground_, mesh_.ground_uv, mesh_.skirt_ground_uv);
   upload(vbo_surface_, mesh_.surface_uv, mesh_.skirt_surface_uv);
   fb_.bind();
-  glClearColor(0, 0, 0, 0);
+  // skip_still: still-water light 1 to start with, the still blocks are not drawn
+  const float start = explicit_mode && mesh_.start_still ? 1.0f : 0.0f;
+  glClearColor(start, start, start, start);
   glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
@@ -199,10 +222,6 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
   GLsizei draw_count = GLsizei(mesh_.indices.size());
   if (explicit_mode) {
     explicit_prog_.use();
-    // per triangle: unit * (surface area) / (ground area), both in texels of the caustics
-    // texture (the still-water projection maps one onto the other; surface = the beam
-    // cross-section, CausticsParams::flux_by_beam_area); uniform blocks merged into fans
-    caustics_mesh_triangles(params_, mesh_);
     const auto& gains_ = mesh_.gains;
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_draw_);
     glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, GLsizeiptr(mesh_.draw_indices.size() * sizeof(std::uint32_t)),

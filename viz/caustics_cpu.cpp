@@ -128,6 +128,11 @@ void caustics_mesh_init(const CausticsParams& p, CausticsMesh& m) {
   m.gains.clear();
   m.gains.reserve(m.indices.size() / 3);
   m.cell_gain.assign(m.indices.size() / 3, 0.0f);
+  // skip_still: at most one footprint per 4 x 4 cells, plus the two edge strips
+  m.rest_uv.clear();
+  m.rest_uv.reserve(8 * (std::size_t(m.cols / 4 + 1) * (m.rows / 4 + 1) + 2));
+  m.draw_indices.reserve(m.indices.size() + m.rest_uv.capacity() / 8 * 6);
+  m.gains.reserve(m.indices.size() / 3 + m.rest_uv.capacity() / 8 * 2);
 }
 
 void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, CausticsMesh& m) {
@@ -255,6 +260,37 @@ class TriangleList {
     for (int i = i0; i < i0 + size; ++i)
       for (int j = j0; j < j0 + size; ++j) cell(i, j);
   }
+  // still water: gains within dg_ of 1, every vertex within dp_ texels of its rest position,
+  // its surface outside the box `shadow`
+  bool still(int i0, int j0, int size, const std::array<float, 4>& shadow) const {
+    float u0 = 3.4e38f, v0 = 3.4e38f, u1 = -3.4e38f, v1 = -3.4e38f;
+    for (int i = i0; i <= i0 + size; ++i)
+      for (int j = j0; j <= j0 + size; ++j) {
+        const std::size_t v = vid(i, j);
+        const float ru = float(j) / float(m_.cols - 1), rv = float(i) / float(m_.rows - 1);
+        if (tw_ * std::abs(m_.ground_uv[2 * v] - ru) > dp_ || th_ * std::abs(m_.ground_uv[2 * v + 1] - rv) > dp_)
+          return false;
+        u0 = std::min(u0, m_.surface_uv[2 * v]), u1 = std::max(u1, m_.surface_uv[2 * v]);
+        v0 = std::min(v0, m_.surface_uv[2 * v + 1]), v1 = std::max(v1, m_.surface_uv[2 * v + 1]);
+      }
+    if (u1 >= shadow[0] && u0 <= shadow[2] && v1 >= shadow[1] && v0 <= shadow[3]) return false;
+    for (int i = i0; i < i0 + size; ++i) {
+      const std::size_t t = 2 * (std::size_t(i) * (m_.cols - 1) + j0);
+      for (std::size_t k = t; k < t + 2 * std::size_t(size); ++k)
+        if (std::abs(m_.cell_gain[k] - unit_) > dg_ * unit_) return false;
+    }
+    return true;
+  }
+  // light -1 over the rest footprint of cells [i0, i1) x [j0, j1): two triangles on new vertices
+  void remove_rest_light(int i0, int j0, int i1, int j1) {
+    if (i1 <= i0 || j1 <= j0) return;
+    const auto base = std::uint32_t(m_.vertex_count() + m_.rest_uv.size() / 2);
+    const float u0 = float(j0) / float(m_.cols - 1), u1 = float(j1) / float(m_.cols - 1);
+    const float v0 = float(i0) / float(m_.rows - 1), v1 = float(i1) / float(m_.rows - 1);
+    m_.rest_uv.insert(m_.rest_uv.end(), {u0, v0, u1, v0, u1, v1, u0, v1});
+    emit(base, base + 1, base + 2, -unit_);
+    emit(base, base + 2, base + 3, -unit_);
+  }
   void cell(int i, int j) {
     const std::size_t t = 2 * (std::size_t(i) * (m_.cols - 1) + j);
     for (std::size_t k = t; k < t + 2; ++k)
@@ -330,7 +366,7 @@ class TriangleList {
 
 }  // namespace
 
-void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& m) {
+void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& m, std::array<float, 4> shadow_uv) {
   TriangleList list(p, m);
   const std::size_t n_tri = m.indices.size() / 3;
   m.cell_gain.resize(n_tri);
@@ -338,14 +374,25 @@ void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& m) {
     m.cell_gain[t] = list.gain(m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]);
   m.draw_indices.clear();
   m.gains.clear();
+  m.rest_uv.clear();
   const int cells_x = m.cols - 1, cells_y = m.rows - 1;
   const int b = p.merge_block >= 4 ? p.merge_block : 0;
+  const bool skip = b && p.skip_still && p.float_target && p.area == CausticsArea::Explicit;
+  m.start_still = skip;
   // whole blocks, then the cells of the partial blocks along the top and right edges
   const int bx = b ? cells_x / b : 0, by = b ? cells_y / b : 0;
   for (int bi = 0; bi < by; ++bi)
-    for (int bj = 0; bj < bx; ++bj) list.block(bi * b, bj * b, b);
+    for (int bj = 0; bj < bx; ++bj) {
+      if (skip && list.still(bi * b, bj * b, b, shadow_uv)) continue;
+      if (skip) list.remove_rest_light(bi * b, bj * b, (bi + 1) * b, (bj + 1) * b);
+      list.block(bi * b, bj * b, b);
+    }
   for (int i = 0; i < cells_y; ++i)
     for (int j = (i < by * b ? bx * b : 0); j < cells_x; ++j) list.cell(i, j);
+  if (skip) {  // the edge strips' footprints
+    list.remove_rest_light(0, bx * b, by * b, cells_x);
+    list.remove_rest_light(by * b, 0, cells_y, cells_x);
+  }
   // the skirt's triangles follow the mesh cells' in `indices`
   for (std::size_t t = 2 * std::size_t(cells_x) * cells_y; t < n_tri; ++t)
     list.emit(m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2], m.cell_gain[t]);

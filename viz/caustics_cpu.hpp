@@ -94,6 +94,12 @@ struct CausticsParams {
   /// ... and every vertex inside it is within this distance, ground and surface coordinates
   /// alike, of the bilinear map through its four corners (unit: texels).
   float merge_position_tolerance = 0.05f;
+  /// Explicit mode, float target, merge_block > 0: the target starts at still-water light 1
+  /// and the blocks of merge_block^2 cells that are still (gains within merge_gain_tolerance of
+  /// 1, vertices within merge_position_tolerance of their rest positions, away from the ship's
+  /// shadow) are not drawn; every other block takes its rest footprint's light 1 away (a quad of
+  /// gain -1) and adds its triangles' (caustics_mesh_triangles).
+  bool skip_still = false;
 };
 
 /// Mesh vertices per side that resolve the field's caustics: `per_wavelength` cells per dominant
@@ -157,6 +163,10 @@ struct CausticsMesh {
   std::vector<std::uint32_t> draw_indices;
   std::vector<float> gains;
   std::vector<float> cell_gain;  ///< scratch: the gain of every triangle of `indices`
+  /// skip_still: the rest footprints' corners (ground = surface coordinates, 2 per vertex),
+  /// numbered after the skirt's vertices in `draw_indices` (capacity reserved at init)
+  std::vector<float> rest_uv;
+  bool start_still = false;  ///< the draw list assumes a target cleared to still-water light
   std::size_t vertex_count() const { return std::size_t(cols) * rows + skirt_anchor.size(); }
 };
 void caustics_mesh_init(const CausticsParams& p, CausticsMesh& mesh);
@@ -173,7 +183,10 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& field,
 /// tiles the same polygon, so the surface areas sum to the same beam), and no cracks next to
 /// finer blocks (the boundary keeps all its vertices). Under llvmpipe the caustics pass costs
 /// about its triangle count, and still or uniformly sloped water is most of many scenes.
-void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& mesh);
+/// `shadow_uv` (skip_still): the bounding box (u0, v0, u1, v1) of the ship's shadow in surface
+/// coordinates; blocks reaching into it are drawn (the shadow's mask darkens them).
+void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& mesh,
+                             std::array<float, 4> shadow_uv = {1.0f, 1.0f, 0.0f, 0.0f});
 
 /// Ship shadow: a convex hull outline (counter-clockwise or clockwise, metres, surface frame),
 /// at height `height_m` above the surface at rest; it is projected along the sun onto the
