@@ -131,6 +131,7 @@ void caustics_mesh_init(const CausticsParams& p, CausticsMesh& m) {
   // skip_still: at most one footprint per 4 x 4 cells, plus the two edge strips
   m.rest_uv.clear();
   m.rest_uv.reserve(8 * (std::size_t(m.cols / 4 + 1) * (m.rows / 4 + 1) + 2));
+  m.block_still.reserve(std::size_t(m.cols / 4 + 1) * (m.rows / 4 + 1));
   m.draw_indices.reserve(m.indices.size() + m.rest_uv.capacity() / 8 * 6);
   m.gains.reserve(m.indices.size() / 3 + m.rest_uv.capacity() / 8 * 2);
 }
@@ -377,13 +378,23 @@ void caustics_mesh_triangles(const CausticsParams& p, CausticsMesh& m, std::arra
   m.rest_uv.clear();
   const int cells_x = m.cols - 1, cells_y = m.rows - 1;
   const int b = p.merge_block >= 4 ? p.merge_block : 0;
-  const bool skip = b && p.skip_still && p.float_target && p.area == CausticsArea::Explicit;
+  const int bx = b ? cells_x / b : 0, by = b ? cells_y / b : 0;
+  // skip_still pays a footprint's fill for every block it draws: worth it only when at least
+  // half the blocks are still
+  bool skip = b && p.skip_still && p.float_target && p.area == CausticsArea::Explicit;
+  m.block_still.assign(std::size_t(bx) * by, 0);
+  if (skip) {
+    std::size_t n_still = 0;
+    for (int bi = 0; bi < by; ++bi)
+      for (int bj = 0; bj < bx; ++bj)
+        n_still += m.block_still[std::size_t(bi) * bx + bj] = list.still(bi * b, bj * b, b, shadow_uv) ? 1 : 0;
+    skip = 2 * n_still >= m.block_still.size();
+  }
   m.start_still = skip;
   // whole blocks, then the cells of the partial blocks along the top and right edges
-  const int bx = b ? cells_x / b : 0, by = b ? cells_y / b : 0;
   for (int bi = 0; bi < by; ++bi)
     for (int bj = 0; bj < bx; ++bj) {
-      if (skip && list.still(bi * b, bj * b, b, shadow_uv)) continue;
+      if (skip && m.block_still[std::size_t(bi) * bx + bj]) continue;
       if (skip) list.remove_rest_light(bi * b, bj * b, (bi + 1) * b, (bj + 1) * b);
       list.block(bi * b, bj * b, b);
     }

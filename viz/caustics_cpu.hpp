@@ -94,11 +94,11 @@ struct CausticsParams {
   /// ... and every vertex inside it is within this distance, ground and surface coordinates
   /// alike, of the bilinear map through its four corners (unit: texels).
   float merge_position_tolerance = 0.05f;
-  /// Explicit mode, float target, merge_block > 0: the target starts at still-water light 1
-  /// and the blocks of merge_block^2 cells that are still (gains within merge_gain_tolerance of
-  /// 1, vertices within merge_position_tolerance of their rest positions, away from the ship's
-  /// shadow) are not drawn; every other block takes its rest footprint's light 1 away (a quad of
-  /// gain -1) and adds its triangles' (caustics_mesh_triangles).
+  /// Explicit mode, float target, merge_block > 0, at least half the blocks still: the target starts at still-water
+  /// light 1 and the blocks of merge_block^2 cells that are still (gains within merge_gain_tolerance of 1, vertices
+  /// within merge_position_tolerance of their rest positions, away from the ship's shadow) are not drawn; every other
+  /// block takes its rest footprint's light 1 away (a quad of gain -1) and adds its triangles'
+  /// (caustics_mesh_triangles).
   bool skip_still = false;
 };
 
@@ -166,7 +166,8 @@ struct CausticsMesh {
   /// skip_still: the rest footprints' corners (ground = surface coordinates, 2 per vertex),
   /// numbered after the skirt's vertices in `draw_indices` (capacity reserved at init)
   std::vector<float> rest_uv;
-  bool start_still = false;  ///< the draw list assumes a target cleared to still-water light
+  bool start_still = false;               ///< the draw list assumes a target cleared to still-water light
+  std::vector<std::uint8_t> block_still;  ///< scratch: 1 per still block (skip_still)
   std::size_t vertex_count() const { return std::size_t(cols) * rows + skirt_anchor.size(); }
 };
 void caustics_mesh_init(const CausticsParams& p, CausticsMesh& mesh);
