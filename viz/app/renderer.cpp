@@ -563,6 +563,36 @@ void WaterRenderer::draw_water_sides(const OrbitCamera& camera, const RenderSett
   glUniform1i(ship_prog_.loc("u_solid"), 0);
 }
 
+void WaterRenderer::set_tank(const std::array<double, 3>& box_m) { tank_ = box_m; }
+
+// The tank's side walls (set_tank) the eye is inside of, from the floor to the lid.
+void WaterRenderer::draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
+  if (tank_[0] <= 0.0) return;
+  const glm::dvec3 eye = camera.eye();
+  const float X = static_cast<float>(tank_[0]), Y = static_cast<float>(tank_[1]);
+  const float z0 = static_cast<float>(ground_z_), z1 = static_cast<float>(tank_[2]) - offset_;
+  std::vector<float> tri;
+  auto wall = [&](float ax, float ay, float bx, float by) {
+    const float p[4][3] = {{ax, ay, z0}, {bx, by, z0}, {bx, by, z1}, {ax, ay, z1}};
+    for (int k : {0, 1, 2, 0, 2, 3}) tri.insert(tri.end(), p[k], p[k] + 3);
+  };
+  if (eye.y > 0.0) wall(0, 0, X, 0);
+  if (eye.y < Y) wall(0, Y, X, Y);
+  if (eye.x > 0.0) wall(0, 0, 0, Y);
+  if (eye.x < X) wall(X, 0, X, Y);
+  glBindVertexArray(ship_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
+  ship_prog_.use();
+  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
+  const glm::vec3 e(eye);
+  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(e));
+  glUniform1i(ship_prog_.loc("u_solid"), 3);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(tri.size() / 3));
+  glUniform1i(ship_prog_.loc("u_solid"), 0);
+}
+
 // Obstacles as solids (flat-shaded, the ship program's solid colour).
 void WaterRenderer::draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
   if (solids_.empty() || !s.draw_solids) return;
@@ -748,6 +778,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
 
   if (s.draw_ship && !ships_.empty()) draw_ships(camera, s, mvp);
   draw_solids(camera, s, mvp);
+  draw_tank(camera, s, mvp);
   lap(times.ship);
   // ground seen directly, drawn last so the depth test skips what the water and ships cover;
   // deep water has no floor (the background is the clear colour)

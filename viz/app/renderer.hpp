@@ -198,6 +198,10 @@ class WaterRenderer {
   /// so its heights are only kept from dropping below the mesh's top (a dry column then lies
   /// inside the solid), and the plan view shows its footprint's outline.
   void set_obstacles(std::span<const RenderObstacle> obstacles);
+  /// A particle solver's container, the box (0, 0, 0)-(box_m) (m, before the height offset): its
+  /// four side walls from the floor to the lid, pale, each left out while the eye is outside
+  /// it (the tank seen through its near walls: a backdrop for a slab seen from the side).
+  void set_tank(const std::array<double, 3>& box_m);
   /// Draws `values` (rows x cols, the visible field) as a colour map seen from straight above,
   /// with a colour bar, axes in metres and a title (plan view, docs/viz.md); `diverging` uses
   /// a blue-white-red map symmetric about 0, else a sequential one from the minimum.
@@ -223,6 +227,7 @@ class WaterRenderer {
   void build_ground_texture(const RenderSettings& s);
   void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void add_mesh_solids(std::span<const RenderObstacle> obstacles);
+  void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void tone_map(const RenderSettings& s, const RenderTarget& target);
@@ -246,6 +251,7 @@ class WaterRenderer {
   GLsizei ship_vertex_count_ = 0;
   GLsizei ground_vertex_count_ = 0;
   std::vector<float> solids_;               // obstacle triangles (x, y, z)
+  std::array<double, 3> tank_{};            // set_tank's box (m); 0 = none
   std::vector<std::uint32_t> fill_from_;    // per grid point: the point whose height it shows
   std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline

@@ -74,6 +74,13 @@ SceneView scene_view(const RenderInfo& info) {
   return v;
 }
 
+void place_scene(WaterRenderer& renderer, const SceneView& view) {
+  renderer.set_height_offset(view.height_offset);
+  renderer.set_bed(view.bed);
+  renderer.set_obstacles(view.obstacles);
+  if (view.slab && view.particle_box) renderer.set_tank(*view.particle_box);
+}
+
 namespace {
 constexpr double kDeg = std::numbers::pi / 180.0;
 // How far the target sits behind a followed ship, in camera distances: the wake behind it

@@ -61,6 +61,10 @@ struct SceneView {
 
 SceneView scene_view(const RenderInfo& info);
 
+/// Gives the renderer what the view places in the scene: the rest level, the bed, the obstacles
+/// and, for a particle solver's slab, its container's walls (WaterRenderer::set_tank).
+void place_scene(WaterRenderer& renderer, const SceneView& view);
+
 /// The ships of a frame pair at display time t (FramePair::ship), each with its hull.
 void frame_ships(const SceneView& view, const FramePair& frames, double t, std::vector<ShipPose>& out);
 
