@@ -18,7 +18,8 @@ uniform sampler2D u_dye;    // R32F: dye in [0, 1] at the grid points (u_use_dye
 uniform int u_use_dye;
 uniform sampler2D u_bed;    // R32F: the bed's height at the grid points (u_use_bed; m, drawn frame)
 uniform int u_use_bed;
-uniform float u_dry_depth;  // water thinner than this over a bed is not drawn (m)
+uniform float u_dry_depth;  // water thinner than this over a bed (or u_hide_dry) is not drawn (m)
+uniform int u_hide_dry;     // leave out thin water over the flat floor too (the SPH look)
 uniform vec3 u_dye_colour;
 // (u_eye, u_ortho, u_view_dir, u_index, u_water_colour, u_sky*, u_sun_dir, u_deep: ground_common.glsl)
 uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
@@ -46,6 +47,8 @@ void main() {
   if (u_use_bed != 0) {
     floor_z = texture(u_bed, tc).r;
     if (v_pos.z - floor_z < u_dry_depth) discard;
+  } else if (u_hide_dry != 0 && v_pos.z - floor_z < u_dry_depth) {
+    discard;
   }
   vec2 G;
   if (u_exact != 0 || u_use_bed != 0) {

@@ -356,7 +356,7 @@ TEST_F(VizRender, HeadlessRenderIsDeterministic) {
 }
 
 // Golden images of the shipped scenes at 256 x 256. Generated once (see tests/golden/README.md):
-//   huygens-viz scenes/NAME.json --headless --time 1 --frames 3 --screenshot tests/golden/NAME.png
+//   huygens-viz scenes/NAME.json --headless --time 1 --frames 3 --size 256x256 --screenshot tests/golden/NAME.png
 // Tolerance: max-abs difference <= 24/255 on any channel, and at most 0.5 % of the pixels
 // differing by more than 4/255 (room for a different LLVM/Mesa rounding, not for a changed
 // picture). On failure actual/expected/diff PNGs are written next to the test's temp dir.
@@ -364,11 +364,16 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
   const char* golden_env = std::getenv("HUYGENS_GOLDEN_DIR");  // set by CTest (tests/CMakeLists.txt)
   const std::filesystem::path golden_dir = golden_env && *golden_env ? golden_env : "tests/golden";
   int compared = 0;
-  // every shipped scene; the SPH scenes at t = 0.1 s (their adaptive step makes 1 s cost a
-  // minute of CPU), the others at t = 1 s
-  const std::pair<const char*, double> shots[] = {{"default", 1.0},       {"ring", 1.0},      {"ocean", 1.0},
-                                                  {"kelvin", 1.0},        {"pond", 1.0},      {"pool", 0.1},
-                                                  {"sph_dam_break", 0.1}, {"dam_break", 1.0}, {"channel", 1.0}};
+  // every shipped scene (checked below: a scene without a golden fails); the SPH scenes at
+  // t = 0.1 s (their adaptive step makes 1 s cost a minute of CPU), the others at t = 1 s
+  const std::pair<const char*, double> shots[] = {
+      {"default", 1.0},       {"ring", 1.0},      {"ocean", 1.0},   {"kelvin", 1.0}, {"pond", 1.0},     {"pool", 0.1},
+      {"sph_dam_break", 0.1}, {"dam_break", 1.0}, {"channel", 1.0}, {"flood", 1.0},  {"sph_wedge", 0.1}};
+  for (const auto& e : std::filesystem::directory_iterator(huygens::test::scenes_dir()))
+    if (e.path().extension() == ".json")
+      EXPECT_TRUE(std::any_of(std::begin(shots), std::end(shots),
+                              [&](const auto& shot) { return e.path().stem() == shot.first; }))
+          << e.path() << " is shipped without a golden image";
   for (const auto& [name, t] : shots) {
     const std::filesystem::path scene =
         std::filesystem::path(huygens::test::scenes_dir()) / (std::string(name) + ".json");
@@ -376,7 +381,7 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
     if (!std::filesystem::exists(scene)) continue;  // scenes arrive with their solvers
     ASSERT_TRUE(std::filesystem::exists(golden))
         << "missing golden " << golden << "; generate it with\n  huygens-viz " << scene << " --headless --time " << t
-        << " --frames 3 --screenshot " << golden;
+        << " --frames 3 --size 256x256 --screenshot " << golden;
     HeadlessOptions o;
     o.time = t;
     o.frames = 3;
@@ -657,6 +662,60 @@ TEST_F(VizRender, ShipHullAtItsPositionAndHeading) {
   }
 }
 
+// A mesh obstacle (RenderObstacle::Kind::mesh, an SPH scene's OBJ) is drawn as its triangles,
+// not as its bounding box: seen from straight above, a tetrahedron standing out of shallow water
+// covers its triangular footprint and leaves the corner of its bounding box outside the
+// triangle as it was; its faces are lit (two faces turned differently differ in shade).
+TEST_F(VizRender, MeshObstacleIsDrawnAsItsTrianglesLit) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  // 10 cm of water: a solid under the surface is not seen through it (the refraction shows the floor)
+  r.set_heights(std::vector<float>(kN * kN, static_cast<float>(0.1 - kDepth)));
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = 4.0;
+  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
+  cam.distance = 10.0;
+  cam.pitch = 1.5707963267948966;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::uniform;
+  s.sun_dir = glm::vec3(0.3f, 0.5f, 0.8f);
+  const int W = 128, H = 128;
+  const double m_per_px = cam.ortho_height / H;
+  auto pixel = [&](const gl::Image8& img, double x, double y, int c) {
+    const int j = static_cast<int>(std::floor((x - cam.target.x) / m_per_px + 0.5 * W));
+    const int i = static_cast<int>(std::floor(0.5 * H - (y - cam.target.y) / m_per_px));
+    return channel(img, j, i, c);
+  };
+  auto differ = [&](const gl::Image8& a, const gl::Image8& b, double x, double y) {
+    double d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(pixel(a, x, y, c) - pixel(b, x, y, c)));
+    return d;
+  };
+  const gl::Image8 none = render(r, cam, s, W, H);
+  // base triangle (cx - 1, cy - 1), (cx + 1, cy - 1), (cx, cy + 1) on the floor, apex above the water
+  const float cx = static_cast<float>(cam.target.x), cy = static_cast<float>(cam.target.y), fz = -kDepth;
+  const std::array<float, 3> A{cx - 1, cy - 1, fz}, B{cx + 1, cy - 1, fz}, C{cx, cy + 1, fz}, D{cx, cy - 0.4f, 1.0f};
+  RenderObstacle tet;
+  tet.kind = RenderObstacle::Kind::mesh;
+  tet.min_m = {cx - 1.0, cy - 1.0, fz};
+  tet.max_m = {cx + 1.0, cy + 1.0, 1.0};
+  for (const auto& t : {std::array{A, C, B}, std::array{A, B, D}, std::array{B, C, D}, std::array{C, A, D}})
+    for (const auto& v : t) tet.triangles_m.insert(tet.triangles_m.end(), v.begin(), v.end());
+  r.set_obstacles(std::span(&tet, 1));
+  const gl::Image8 img = render(r, cam, s, W, H);
+  EXPECT_GT(differ(img, none, cx, cy - 0.7), 0.05) << "the face toward -y";
+  EXPECT_GT(differ(img, none, cx + 0.3, cy + 0.2), 0.05) << "the face toward +x, +y";
+  EXPECT_LT(differ(img, none, cx - 0.85, cy + 0.85), 1e-6) << "the bounding box's corner, outside the triangle";
+  EXPECT_LT(differ(img, none, cx + 1.3, cy), 1e-6) << "beyond the footprint";
+  auto luminance = [&](double x, double y) {
+    return (pixel(img, x, y, 0) + pixel(img, x, y, 1) + pixel(img, x, y, 2)) / 3;
+  };
+  EXPECT_GT(std::abs(luminance(cx, cy - 0.7) - luminance(cx + 0.3, cy + 0.2)), 0.02)
+      << "two faces turned differently are shaded differently";
+  if (::testing::Test::HasFailure()) write_debug("mesh_obstacle.png", img);
+}
+
 // ---------------------------------------------------------------------------------
 // Caustics energy on real solver fields (docs/viz.md "Caustics"): the mean floor light the
 // caustics stage gives (as the renderer samples it: texture value x scale(), after its blur),
@@ -865,6 +924,27 @@ TEST_F(VizRender, ParticleViewDrawsSpeedsNearestFirstAndObstacles) {
   expect_colour(1.5, 0.5, glm::vec3(0.55f), "the obstacle covers the particle behind it");
   expect_colour(0.6, 0.2, glm::vec3(236, 240, 244) / 255.0f, "the tank where no particle is");
   if (::testing::Test::HasFailure()) write_debug("particle_view.png", img);
+  // a mesh obstacle: its triangles, lit, not its bounding box (a face toward the viewer, -y)
+  RenderObstacle tri;
+  tri.kind = RenderObstacle::Kind::mesh;
+  tri.min_m = {0.9, 0.05, 0.0};
+  tri.max_m = {1.3, 0.05, 0.3};
+  tri.triangles_m = {0.9f, 0.05f, 0.0f, 1.3f, 0.05f, 0.0f, 1.1f, 0.05f, 0.3f};
+  render_particles(parts, box, 0.05, std::span(&tri, 1), "test", 0.0, target);
+  const gl::Image8 mesh_img = target.read();
+  const double lit = 0.35 + 0.65 / std::sqrt(0.3 * 0.3 + 1.0 + 0.8 * 0.8);  // n = -y, light (-0.3, -1, 0.8)
+  for (int ch = 0; ch < 3; ++ch) {
+    const double c = glm::vec3(0.62f, 0.60f, 0.57f)[ch] * lit;
+    EXPECT_NEAR(channel(mesh_img, static_cast<int>(p.x0 + 1.1 / box[0] * p.width),
+                        static_cast<int>(p.y0 + p.height - 0.1 / box[2] * p.height), ch),
+                c, 1.0 / 255.0 + 1e-6)
+        << "inside the triangle, lit, channel " << ch;
+    EXPECT_NEAR(channel(mesh_img, static_cast<int>(p.x0 + 0.95 / box[0] * p.width),
+                        static_cast<int>(p.y0 + p.height - 0.25 / box[2] * p.height), ch),
+                glm::vec3(236, 240, 244)[ch] / 255.0, 1e-6)
+        << "the bounding box's corner outside the triangle, channel " << ch;
+  }
+  if (::testing::Test::HasFailure()) write_debug("particle_view_mesh.png", mesh_img);
 }
 
 // Dye (dye.hpp): a uniform flow of exactly one grid point per step along x moves the bands

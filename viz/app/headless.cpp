@@ -12,9 +12,7 @@ namespace huygens {
 HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   const SceneView view = scene_view(scene.info);
   WaterRenderer renderer(view.grid, view.ground_z, opt.subsample);
-  renderer.set_height_offset(view.height_offset);
-  renderer.set_bed(view.bed);
-  renderer.set_obstacles(view.obstacles);
+  place_scene(renderer, view);
   const GridPlacement& g = view.grid;
   const double aspect = static_cast<double>(opt.width) / opt.height;
   const std::string name = scene.name;

@@ -215,9 +215,7 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
       "%d displayed frames per step\n\n",
       view.grid.rows, view.grid.cols, subsample, step_ms, vs.info.display_per_step);
   WaterRenderer renderer(view.grid, view.ground_z, subsample);
-  renderer.set_height_offset(view.height_offset);
-  renderer.set_bed(view.bed);
-  renderer.set_obstacles(view.obstacles);
+  place_scene(renderer, view);
   std::array<ShipState, kMaxFrameShips> states{};
   std::vector<ShipPose> ships;
   for (std::size_t i = 0; i < solver.ship_poses(states) && i < view.hulls.size(); ++i)

@@ -99,6 +99,9 @@ struct RenderSettings {
   /// 8-bit modes: blur in float instead of the paper's accumulation-buffer emulation (float
   /// targets always blur in float).
   bool blur_float = false;
+  /// Leave out water thinner than WaterRenderer::kDryDepth over the flat floor too (the SPH
+  /// look: a column the particles have left is dry, not a film of water on the floor).
+  bool hide_dry = false;
   bool draw_water = true;
   bool draw_ship = true;
   /// Obstacles (RenderInfo::obstacles) as solid blocks above the water.
@@ -190,8 +193,15 @@ class WaterRenderer {
   /// Water thinner than this is not drawn over a bed (unit: m).
   static constexpr float kDryDepth = 0.002f;
   /// Obstacles: drawn as solids, and the heights inside them (a solver leaves them dry or
-  /// empty) replaced by the nearest water point's, so the surface closes around them.
+  /// empty) replaced by the nearest water point's, so the surface closes around them. A mesh
+  /// obstacle is drawn as its triangles (lit like the other solids); the water may run over it,
+  /// so its heights are only kept from dropping below the mesh's top (a dry column then lies
+  /// inside the solid), and the plan view shows its footprint's outline.
   void set_obstacles(std::span<const RenderObstacle> obstacles);
+  /// A particle solver's container, the box (0, 0, 0)-(box_m) (m, before the height offset): its
+  /// four side walls from the floor to the lid, pale, each left out while the eye is outside
+  /// it (the tank seen through its near walls: a backdrop for a slab seen from the side).
+  void set_tank(const std::array<double, 3>& box_m);
   /// Draws `values` (rows x cols, the visible field) as a colour map seen from straight above,
   /// with a colour bar, axes in metres and a title (plan view, docs/viz.md); `diverging` uses
   /// a blue-white-red map symmetric about 0, else a sequential one from the minimum.
@@ -216,6 +226,8 @@ class WaterRenderer {
   void update_linearisation(const OrbitCamera& camera, float index);
   void build_ground_texture(const RenderSettings& s);
   void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  void add_mesh_solids(std::span<const RenderObstacle> obstacles);
+  void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void tone_map(const RenderSettings& s, const RenderTarget& target);
@@ -238,8 +250,11 @@ class WaterRenderer {
   GLuint ship_vao_ = 0, ship_vbo_ = 0;
   GLsizei ship_vertex_count_ = 0;
   GLsizei ground_vertex_count_ = 0;
-  std::vector<float> solids_;             // obstacle triangles (x, y, z)
-  std::vector<std::uint32_t> fill_from_;  // per grid point: the point whose height it shows
+  std::vector<float> solids_;               // obstacle triangles (x, y, z)
+  std::array<double, 3> tank_{};            // set_tank's box (m); 0 = none
+  std::vector<std::uint32_t> fill_from_;    // per grid point: the point whose height it shows
+  std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
+  std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
   gl::Program tone_prog_;
   GLuint empty_vao_ = 0;
   bool heights_dirty_ = true;

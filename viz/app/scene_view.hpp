@@ -42,7 +42,9 @@ struct SceneView {
   /// a floor with an adaptive step is SPH, with a fixed step shallow water (LBM); an elevation
   /// field with a wind sea is the open ocean, without one a pool).
   Look look = Look::pool;
-  /// A quasi-2D slab (one side over 8x the other): seen from low along its short side, no deck.
+  /// A quasi-2D slab (one side over 8x the other; a particle solver's tank over 2.5x): seen from
+  /// low along its short side (a particle solver's: its container floor to lid), no deck, a
+  /// plain floor, no caustics.
   bool slab = false;
   /// Start in the plan view ("view": "plan").
   bool plan_view = false;
@@ -58,6 +60,10 @@ struct SceneView {
 };
 
 SceneView scene_view(const RenderInfo& info);
+
+/// Gives the renderer what the view places in the scene: the rest level, the bed, the obstacles
+/// and, for a particle solver's slab, its container's walls (WaterRenderer::set_tank).
+void place_scene(WaterRenderer& renderer, const SceneView& view);
 
 /// The ships of a frame pair at display time t (FramePair::ship), each with its hull.
 void frame_ships(const SceneView& view, const FramePair& frames, double t, std::vector<ShipPose>& out);
@@ -89,7 +95,8 @@ struct ViewerSolver {
 
 /// Loads `arg` through load_scene and makes its solver; an empty `arg` is the built-in
 /// default.json, and an `arg` that names no file but a built-in scene ("ocean" or "ocean.json")
-/// is that scene (both compiled into the program, parsed by parse_scene_text).
+/// is that scene (both compiled into the program, parsed by parse_scene_text; the files a built-in
+/// scene names, its OBJ meshes, are compiled in too: Scene::embedded).
 /// Throws SceneError for a bad scene or a file that does not exist.
 ViewerSolver open_viewer_solver(const std::string& arg, const RunOptions& options);
 

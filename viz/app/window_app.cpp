@@ -474,9 +474,7 @@ GLFWwindow* open_window(const WindowOptions& opt, const std::string& scene_name)
 // The renderer for the scene's view at mesh subsampling `subsample`, showing the current field.
 std::unique_ptr<WaterRenderer> make_renderer(const App& a, int subsample) {
   auto r = std::make_unique<WaterRenderer>(a.view.grid, a.view.ground_z, subsample);
-  r->set_height_offset(a.view.height_offset);
-  r->set_bed(a.view.bed);
-  r->set_obstacles(a.view.obstacles);
+  place_scene(*r, a.view);
   r->times.enabled = true;
   r->set_heights(a.field);
   return r;
