@@ -22,6 +22,7 @@
 #include "camera.hpp"
 #include "caustics_stage.hpp"
 #include "dye.hpp"
+#include "foam.hpp"
 #include "gl.hpp"
 #include "headless.hpp"
 #include "huygens/pipeline/runner.hpp"
@@ -855,6 +856,86 @@ TEST_F(VizRender, ParticleViewDrawsSpeedsNearestFirstAndObstacles) {
   expect_colour(1.5, 0.5, glm::vec3(0.55f), "the obstacle covers the particle behind it");
   expect_colour(0.6, 0.2, glm::vec3(236, 240, 244) / 255.0f, "the tank where no particle is");
   if (::testing::Test::HasFailure()) write_debug("particle_view.png", img);
+}
+
+// Foam (foam.hpp), on a strip 160 points long (dx = 0.25 m, flat bed at 0): a moving bore
+// (Rankine-Hugoniot: 1 m of still water ahead, 1.5 m behind, bore speed S = sqrt(g h1 (h1 + h0) /
+// (2 h0)) = 4.29 m/s, h u = S (h - h0), a tanh front 0.5 m wide) seeds foam at its front, where
+// eta_t / c = S |dh/dx| / c peaks near 0.6, and nowhere in the still water ahead or in the
+// subcritical flow behind it (Froude 0.37); still water seeds none. Then the foam is carried
+// by a uniform flow of one point per step exactly like the dye's step carries it (a shift) and
+// halves every half-life; a steady fast sheet (Froude 10) holds it at f* = r / (lambda + r).
+TEST(VizFoam, BoreSeedsStillWaterDoesNotAdvectedLikeTheDyeHalvesInTheHalfLife) {
+  GridPlacement g;
+  g.rows = 4, g.cols = 160, g.dx = 0.25;
+  const std::size_t R = g.rows, C = g.cols, n = R * C;
+  const double h0 = 1.0, h1 = 1.5, grav = 9.81, S = std::sqrt(grav * h1 * (h1 + h0) / (2.0 * h0));
+  std::vector<float> height(n), u(2 * n, 0.0f);
+  FoamField foam(g, {});
+  // still water: no seed, no foam
+  std::fill(height.begin(), height.end(), static_cast<float>(h0));
+  foam.step(height, u, 0.1);
+  EXPECT_EQ(*std::max_element(foam.seed().begin(), foam.seed().end()), 0.0f) << "still water";
+  EXPECT_EQ(*std::max_element(foam.values().begin(), foam.values().end()), 0.0f) << "still water";
+  // the bore, its front at x = 20 m (point 80) moving along +x
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j) {
+      const double x = g.x(j), h = h0 + (h1 - h0) * 0.5 * (1.0 - std::tanh((x - 20.0) / 0.5));
+      height[i * C + j] = static_cast<float>(h);
+      u[2 * (i * C + j)] = static_cast<float>(S * (h - h0) / h);
+    }
+  foam.step(height, u, 0.05);
+  const std::span<const float> row1 = foam.seed().subspan(C, C);
+  const auto top = std::max_element(row1.begin(), row1.end());
+  EXPECT_GT(*top, 0.5f) << "at the front";
+  EXPECT_NEAR(g.x(static_cast<std::size_t>(top - row1.begin())), 20.0, 0.5) << "the seed's peak at the front";
+  for (std::size_t j = 0; j < C; ++j) {
+    if (std::abs(g.x(j) - 20.0) > 2.5) {
+      EXPECT_EQ(row1[j], 0.0f) << "away from the front, point " << j;
+    }
+  }
+  EXPECT_GT(foam.values()[C + 80], 0.2f) << "foam at the front after 0.05 s of seeding";
+  // carried: one point per step along +x in still water at rest depth (no seed): the dye's step
+  // shifts the pattern, the foam fades by 2^(-dt / half-life) per step
+  const std::vector<float> start(foam.values().begin(), foam.values().end());
+  std::fill(height.begin(), height.end(), static_cast<float>(h0));
+  const double dt = 0.25, half = foam.params().half_life_s;
+  for (std::size_t k = 0; k < 2 * n; k += 2) u[k] = static_cast<float>(g.dx / dt), u[k + 1] = 0.0f;
+  std::vector<float> dyed = start, next(n);
+  const int steps = static_cast<int>(std::lround(half / dt));  // exactly one half-life
+  ASSERT_DOUBLE_EQ(steps * dt, half);
+  for (int k = 0; k < steps; ++k) {
+    foam.step(height, u, dt);
+    advect_semi_lagrangian(g, u, dt, dyed, next);
+    dyed.swap(next);
+  }
+  EXPECT_EQ(*std::max_element(foam.seed().begin(), foam.seed().end()), 0.0f) << "Froude 0.32, no seed";
+  for (std::size_t k = 0; k < n; ++k) EXPECT_NEAR(foam.values()[k], 0.5f * dyed[k], 1e-6f) << "point " << k;
+  for (std::size_t j = static_cast<std::size_t>(steps); j < C; ++j)
+    EXPECT_NEAR(foam.values()[C + j], 0.5f * start[C + j - steps], 1e-6f) << "shifted by " << steps << ", point " << j;
+  // a steady sheet at Froude 10 (over froude_full): f* = r / (lambda + r) everywhere
+  ASSERT_LT(foam.params().froude_full, 10.0);
+  for (std::size_t k = 0; k < 2 * n; k += 2) u[k] = static_cast<float>(10.0 * std::sqrt(grav * h0));
+  for (int k = 0; k < 100; ++k) foam.step(height, u, 0.1);
+  const double lambda = std::log(2.0) / half, r = 1.0 / foam.params().seed_time_s;
+  for (std::size_t k = 0; k < n; ++k) EXPECT_NEAR(foam.values()[k], r / (lambda + r), 1e-5) << "point " << k;
+}
+
+// Foam behind an obstacle (foam.hpp's shear seed): a shear layer u = U tanh(y / delta) (U =
+// 0.3 m/s, delta = 2 cm, 0.1 m deep: |omega| sqrt(h / g) = 1.5 at y = 0, Froude 0.3) seeds along
+// its middle and not in the uniform flow on either side.
+TEST(VizFoam, ShearLayerSeeds) {
+  GridPlacement g;
+  g.rows = 40, g.cols = 10, g.dx = 0.01;
+  const std::size_t R = g.rows, C = g.cols;
+  std::vector<float> height(R * C, 0.1f), u(2 * R * C, 0.0f);
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j) u[2 * (i * C + j)] = static_cast<float>(0.3 * std::tanh((g.y(i) - 0.2) / 0.02));
+  FoamField foam(g, {});
+  foam.step(height, u, 0.01);
+  EXPECT_EQ(foam.seed()[20 * C + 5], 1.0f) << "in the shear layer";
+  EXPECT_EQ(foam.seed()[3 * C + 5], 0.0f) << "in the uniform flow";
+  EXPECT_EQ(foam.seed()[37 * C + 5], 0.0f) << "in the uniform flow";
 }
 
 // Dye (dye.hpp): a uniform flow of exactly one grid point per step along x moves the bands
