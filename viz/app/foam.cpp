@@ -59,7 +59,8 @@ void FoamField::compute_seed(std::span<const float> height, std::span<const floa
       const double omega = (dx > 0 ? (velocity[2 * ke + 1] - velocity[2 * kw + 1]) / dx : 0.0) -
                            (dy > 0 ? (velocity[2 * kn] - velocity[2 * ks]) / dy : 0.0);
       const double c = std::sqrt(g * h);
-      const double fr = std::hypot(velocity[2 * k], velocity[2 * k + 1]) / c, b = -div / c, w = std::abs(omega) * h / c;
+      const double ux = velocity[2 * k], uy = velocity[2 * k + 1];
+      const double fr = std::sqrt(ux * ux + uy * uy) / c, b = -div / c, w = std::abs(omega) * h / c;
       s_[k] = std::max({ramp(fr, p_.froude_on, p_.froude_full), ramp(b, p_.breaking_on, p_.breaking_full),
                         ramp(w, p_.shear_on, p_.shear_full)});
     }

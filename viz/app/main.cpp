@@ -13,8 +13,12 @@
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app.hpp"
+#include "dye.hpp"
+#include "foam.hpp"
 #include "gl.hpp"
 #include "huygens/common/atomic_file.hpp"
 #include "huygens/common/memory.hpp"
@@ -199,6 +203,33 @@ std::vector<std::string> benchmark_row(WaterRenderer& renderer, const OrbitCamer
           fmt("%.1f", 100.0 * sim_per_frame / (sim_per_frame + total)) + " %"};
 }
 
+// A flow's dye and foam (LBM; dye.hpp, foam.hpp): their CPU step per displayed frame (median of
+// 10, unit: ms) with the solver's velocity now, and both handed to the renderer so the surface
+// pass draws them as in the app. {0, 0} when the solver has no velocity on the visible grid.
+std::pair<double, double> flow_step_times(Solver& solver, const ViewerSolver& vs, const SceneView& view,
+                                          WaterRenderer& renderer, DyeField& dye, FoamField& foam) {
+  const std::vector<OutputField> outs = solver.outputs();
+  const std::size_t n = view.grid.rows * view.grid.cols;
+  std::span<const float> u;
+  for (const OutputField& f : outs)
+    if (f.name == "u" && f.data.size() == 2 * n) u = f.data;
+  if (u.empty()) return {0.0, 0.0};
+  const std::span<const float> eta = solver.height();
+  using clock = std::chrono::steady_clock;
+  std::vector<double> d_ms, f_ms;
+  for (int i = 0; i < 10; ++i) {
+    auto t0 = clock::now();
+    dye.advect(u, vs.info.frame_dt_s);
+    d_ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - t0).count());
+    t0 = clock::now();
+    foam.step(eta, u, vs.info.frame_dt_s);
+    f_ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - t0).count());
+  }
+  renderer.set_dye(dye.values());
+  renderer.set_foam(foam.values());
+  return {median(d_ms), median(f_ms)};
+}
+
 // Per-pass render times (median of repeated frames, glFinish around each pass) and the
 // simulation's share of a frame: one full step per display_per_step frames.
 int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample) {
@@ -231,6 +262,9 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   const GridPlacement& g = view.grid;
   OrbitCamera cam = setup.camera;
   if (view.follow_ship && !ships.empty()) follow_ship(view, ships[0], cam);
+  DyeField dye(view.grid);
+  FoamField foam(view.grid, vs.info.bed_m);
+  const auto [dye_ms, foam_ms] = flow_step_times(solver, vs, view, renderer, dye, foam);
   Table t({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship+solids", "tone map",
            "render total", "caustics / rest", "sim/frame", "sim share"});
   for (auto [w, h] : {std::pair{1280, 720}, std::pair{640, 360}})
@@ -249,6 +283,11 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   }
   std::printf("camera move: linearised refraction coefficients recomputed in %.2f ms (median of 5, CPU)\n",
               median(lin_ms));
+  if (dye_ms > 0.0 || foam_ms > 0.0)
+    std::printf(
+        "flow (once per new frame, CPU, median of 10): dye step %.2f ms, foam step %.2f ms; drawn in the surface "
+        "pass above: dye %s, foam %s\n",
+        dye_ms, foam_ms, settings.dye ? "on" : "off", settings.foam ? "on" : "off");
   std::printf(
       "times in ms per displayed frame (median of 10 after 2 warm-up frames, glFinish after each pass);\n"
       "sim share = simulation time per displayed frame / (simulation + render) when both run on one core.\n");
