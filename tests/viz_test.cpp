@@ -448,6 +448,60 @@ TEST(VizWindow, XvfbRunsSixtyFramesAndTakesAScreenshot) {
   EXPECT_GT(var, 25.0) << "the screenshot looks blank";
 }
 
+// Foam over the water (RenderSettings::foam, surface.frag): black opaque water, ambient light
+// only, seen straight down; f = 1 on a 1.25 m square in the middle. There the pixel is the foam
+// colour times a = clamp(0.25 + 1.5 q), q the value noise: at least 0.25 K, K where a saturates,
+// rough (some pixels saturated, not all); outside it and with the foam off, the black water.
+TEST_F(VizRender, FoamIsAWhiteRoughOverlayWhereTheFieldIsOne) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  std::vector<float> foam(kN * kN, 0.0f);
+  for (std::size_t i = 44; i < 84; ++i)
+    for (std::size_t j = 44; j < 84; ++j) foam[i * kN + j] = 1.0f;
+  r.set_foam(foam);
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = 3.6;
+  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
+  cam.distance = 10.0;
+  cam.pitch = 1.5707963267948966;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::uniform;
+  s.ground_uniform = glm::vec3(0.0f);
+  s.absorption = true;
+  s.absorb_rgb = glm::vec3(1e4f);  // opaque water of the water colour
+  s.water_colour = glm::vec3(0.0f);
+  const int W = 256, H = 256;
+  const gl::Image8 img = render(r, cam, s, W, H);
+  const double K = s.foam_colour.r, tol = 1.5 / 255.0;
+  int saturated = 0, n = 0;
+  double sum = 0, sum2 = 0;
+  for (int y = H / 2 - 20; y < H / 2 + 20; ++y)
+    for (int x = W / 2 - 20; x < W / 2 + 20; ++x) {
+      const double v = channel(img, x, y, 0);
+      EXPECT_GE(v, 0.25 * K - tol) << x << ", " << y;
+      EXPECT_LE(v, K + tol) << x << ", " << y;
+      EXPECT_NEAR(channel(img, x, y, 2), v * s.foam_colour.b / K, tol) << "white, " << x << ", " << y;
+      saturated += v >= K - tol;
+      sum += v, sum2 += v * v, ++n;
+    }
+  const double sd = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+  std::printf("foam: mean %.3f, sd %.3f, %.0f %% of the pixels at the foam colour\n", sum / n, sd,
+              100.0 * saturated / n);
+  EXPECT_GT(saturated, n / 5) << "opaque where the noise is high";
+  EXPECT_LT(saturated, n * 9 / 10) << "rough: thinner where the noise is low";
+  EXPECT_GT(sd, 0.05) << "rough";
+  for (int y : {2, H - 12})
+    for (int x : {2, W - 12})
+      for (int dy = 0; dy < 10; ++dy)
+        for (int dx = 0; dx < 10; ++dx) EXPECT_LE(channel(img, x + dx, y + dy, 0), tol) << "no foam there";
+  s.foam = false;
+  const gl::Image8 off = render(r, cam, s, W, H);
+  EXPECT_LE(channel(off, W / 2, H / 2, 0), tol) << "foam off";
+  if (::testing::Test::HasFailure()) write_debug("foam.png", img);
+}
+
 // Issue 5, defect 2 (short dark lines on the ground): the whole chain, caustics pass (MIP
 // mode, 8-bit target, accumulation-buffer emulation: the app's defaults) and the lit ground seen
 // through the water. A gentle plane wave over the visible field, the default oblique sun,
