@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -873,6 +874,15 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   std::printf("plan view: %d grid points, worst colour difference %.4f (1/255 = %.4f)\n", checked, worst, 1 / 255.0);
   EXPECT_LE(worst, 0.5 / 255.0 + 1e-6);
   if (worst > 0.5 / 255.0 + 1e-6) write_debug("plan_view.png", img);
+  // NaN (dry land over terrain) is drawn sand, the rest as before
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN / 4; ++j) v[i * kN + j] = std::numeric_limits<float>::quiet_NaN();
+  r.render_plan(v, "depth", 1000.0, "mm", false, "test", target);
+  const gl::Image8 dry = target.read();
+  EXPECT_GE(r.plan.hi, max_abs) << "the finite values still set the range";
+  const int xd = static_cast<int>(r.plan.x0 + 0.1 * r.plan.width),
+            yd = static_cast<int>(r.plan.y0 + 0.5 * r.plan.height);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(channel(dry, xd, yd, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6);
 }
 
 // The particle view (plot.hpp, render_particles): particles seen from the side (-y) as discs

@@ -16,6 +16,8 @@ namespace huygens {
 
 /// The plot's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
 glm::vec3 plan_colour(double t, bool diverging);
+/// The plan view's colour of a NaN value (dry land over terrain): a sand tone outside both maps.
+inline const glm::vec3 kPlanDryLand(0.80f, 0.72f, 0.55f);
 
 /// A "nice" step (1, 2 or 5 times a power of ten) giving about `n` intervals over `range`.
 double nice_step(double range, int n);

@@ -740,10 +740,10 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
                                 const RenderTarget& target) {
   const std::size_t R = grid_.rows, C = grid_.cols;
   // the colour range: symmetric about 0 (heights) or from the minimum (depths), rounded out to
-  // the colour bar's ticks; obstacles (fill_from_) are grey
+  // the colour bar's ticks; obstacles (fill_from_) are grey, NaN values (dry land) sand
   double lo = 1e300, hi = -1e300;
   for (std::size_t k = 0; k < R * C; ++k) {
-    if (!fill_from_.empty() && fill_from_[k] != k) continue;
+    if ((!fill_from_.empty() && fill_from_[k] != k) || !std::isfinite(values[k])) continue;
     lo = std::min(lo, unit_scale * values[k]);
     hi = std::max(hi, unit_scale * values[k]);
   }
@@ -755,8 +755,10 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   std::vector<std::uint8_t> px(R * C * 4);
   for (std::size_t k = 0; k < R * C; ++k) {
     const bool solid = !fill_from_.empty() && fill_from_[k] != k;
-    const glm::vec3 c =
-        solid ? glm::vec3(0.55f) : plan_colour((unit_scale * values[k] - spec.lo) / (spec.hi - spec.lo), diverging);
+    const bool dry = !std::isfinite(values[k]);
+    const glm::vec3 c = solid ? glm::vec3(0.55f)
+                        : dry ? kPlanDryLand
+                              : plan_colour((unit_scale * values[k] - spec.lo) / (spec.hi - spec.lo), diverging);
     for (int ch = 0; ch < 3; ++ch) px[4 * k + ch] = static_cast<std::uint8_t>(std::lround(255.0f * c[ch]));
     px[4 * k + 3] = 255;
   }

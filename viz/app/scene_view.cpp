@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -241,12 +242,18 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
   double range = 0.0;
   if (!view.plan_depth)
     for (float& x : v) x -= static_cast<float>(view.height_offset);
-  else if (view.bed.size() == v.size())
-    for (std::size_t k = 0; k < v.size(); ++k) v[k] = std::max(0.0f, v[k] - view.bed[k]);
-  for (float x : v) range = std::max(range, static_cast<double>(std::abs(x)));
+  else if (view.bed.size() == v.size())  // dry land (thinner than the perspective's kDryDepth): NaN, drawn as land
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const float d = v[k] - view.bed[k];
+      v[k] = d < WaterRenderer::kDryDepth ? std::numeric_limits<float>::quiet_NaN() : d;
+    }
+  for (float x : v)
+    if (std::isfinite(x)) range = std::max(range, static_cast<double>(std::abs(x)));
   const double scale = range < 0.02 ? 1000.0 : range < 2.0 ? 100.0 : 1.0;
   const std::string unit = scale == 1000.0 ? "mm" : scale == 100.0 ? "cm" : "m";
-  renderer.render_plan(v, view.plan_depth ? "depth" : "height", scale, unit, !view.plan_depth, title, target);
+  std::string label = title;
+  if (view.plan_depth && view.bed.size() == v.size()) label += "   sand: dry land";
+  renderer.render_plan(v, view.plan_depth ? "depth" : "height", scale, unit, !view.plan_depth, label, target);
 }
 
 bool solver_has_velocity(Solver& solver) {
