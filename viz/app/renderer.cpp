@@ -319,6 +319,16 @@ void WaterRenderer::set_dye(std::span<const float> dye) {
   dye_tex_.upload(dye.data(), GL_RED, GL_FLOAT);
 }
 
+void WaterRenderer::set_foam(std::span<const float> foam) {
+  has_foam_ = foam.size() == grid_.rows * grid_.cols;
+  if (!has_foam_) return;
+  if (foam_tex_.width() != static_cast<int>(grid_.cols)) {
+    foam_tex_ = gl::Texture(static_cast<int>(grid_.cols), static_cast<int>(grid_.rows), GL_R32F);
+    foam_tex_.set_filter(GL_LINEAR, GL_LINEAR);
+  }
+  foam_tex_.upload(foam.data(), GL_RED, GL_FLOAT);
+}
+
 void WaterRenderer::set_bed(std::span<const float> bed) {
   has_bed_ = bed.size() == grid_.rows * grid_.cols;
   if (!has_bed_) return;
@@ -674,6 +684,11 @@ void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings
   glUniform1i(p.loc("u_dye"), 4);
   glUniform3fv(p.loc("u_dye_colour"), 1, glm::value_ptr(s.dye_colour));
   if (dye) dye_tex_.bind(4);
+  const bool foam = s.foam && has_foam_;
+  glUniform1i(p.loc("u_use_foam"), foam ? 1 : 0);
+  glUniform1i(p.loc("u_foam"), 6);
+  glUniform3fv(p.loc("u_foam_colour"), 1, glm::value_ptr(s.foam_colour));
+  if (foam) foam_tex_.bind(6);
   coef_tex_.bind(3);
   glUniform1i(p.loc("u_use_bed"), has_bed_ ? 1 : 0);
   glUniform1i(p.loc("u_bed"), 5);

@@ -109,6 +109,12 @@ struct RenderSettings {
   /// Tint the water with the dye the flow carries (set_dye; LBM scenes, paper 002).
   bool dye = true;
   glm::vec3 dye_colour{0.75f, 0.12f, 0.45f};
+  /// Foam the flow carries (set_foam; LBM scenes, paper 002 sec. 3.2, foam.hpp) as a white,
+  /// rough overlay on the water: C' = mix(C, foam_colour (ambient + sun_light n.l / l_z), a)
+  /// (lit like the flat ground where the water is flat), a = clamp(f (0.25 + 1.5 q)), q a fixed
+  /// value noise over the grid points (surface.frag).
+  bool foam = true;
+  glm::vec3 foam_colour{0.95f, 0.96f, 0.97f};
   GroundPattern ground = GroundPattern::tiles;
   /// Checker/tile squares across the visible region (unit: 1).
   int ground_squares = 8;
@@ -185,6 +191,8 @@ class WaterRenderer {
   void set_ships(std::span<const ShipPose> ships) { ships_.assign(ships.begin(), ships.end()); }
   /// Dye per grid point (rows x cols, in [0, 1]; dye.hpp) that tints the water; empty = none.
   void set_dye(std::span<const float> dye);
+  /// Foam per grid point (rows x cols, in [0, 1]; foam.hpp) drawn over the water; empty = none.
+  void set_foam(std::span<const float> foam);
   /// The bed under the water (rows x cols, m, the heights' frame before the offset; RenderInfo::
   /// bed_m) for shallow water over terrain: drawn as lit terrain, the water refracted down to it
   /// and left out where it is thinner than kDryDepth (dry land shows). Empty = a flat floor.
@@ -241,8 +249,8 @@ class WaterRenderer {
   std::vector<ShipPose> ships_;
 
   gl::Program surface_prog_, ground_prog_, ship_prog_;
-  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_, bed_tex_;
-  bool has_dye_ = false, has_bed_ = false;
+  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_, foam_tex_, bed_tex_;
+  bool has_dye_ = false, has_foam_ = false, has_bed_ = false;
   GLuint terrain_vao_ = 0, terrain_vbo_ = 0;
   GLuint surface_vao_ = 0, surface_static_vbo_ = 0, surface_h_vbo_ = 0, surface_lin_vbo_ = 0, surface_ibo_ = 0;
   GLsizei surface_index_count_ = 0;

@@ -198,6 +198,7 @@ void frame_ships(const SceneView& view, const FramePair& frames, double t, std::
 
 void apply_render_request(const RenderRequest& request, RenderSettings& s) {
   if (request.caustics) s.caustics = *request.caustics;
+  if (request.foam) s.foam = *request.foam;
   if (request.blur) {
     s.blur = *request.blur != BlurMode::none;
     s.blur_float = *request.blur == BlurMode::float_target;
@@ -254,6 +255,10 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
   }
   if (quantity == PlanQuantity::dye && dye.size() == field.size()) {
     renderer.render_plan(dye, "dye", 1.0, "1", false, title, target);
+    return;
+  }
+  if (quantity == PlanQuantity::foam && data.foam.size() == field.size()) {
+    renderer.render_plan(data.foam, "foam", 1.0, "1", false, title, target);
     return;
   }
   // a height about rest (m); LBM/SPH: the depth above the bed (the height itself on a flat bed,

@@ -110,9 +110,9 @@ struct ViewSetup {
 ViewSetup view_setup(const ViewerSolver& vs, double aspect);
 
 /// What the plan view shows: the level (the height about rest, or the depth for LBM/SPH), the
-/// flow's speed |u| or the dye it carries (both need the frames' velocity: LBM scenes), or the
-/// particles seen from the side coloured by speed (particle solvers: SPH scenes).
-enum class PlanQuantity { level, speed, dye, particles };
+/// flow's speed |u|, the dye or the foam it carries (these need the frames' velocity: LBM
+/// scenes), or the particles seen from the side coloured by speed (particle solvers: SPH scenes).
+enum class PlanQuantity { level, speed, dye, foam, particles };
 
 /// The frame's data a plan view may show (empty spans: not there).
 struct PlanData {
@@ -122,19 +122,21 @@ struct PlanData {
   std::span<const float> velocity;
   /// The dye (rows x cols, in [0, 1]; dye.hpp).
   std::span<const float> dye;
+  /// The foam (rows x cols, in [0, 1]; foam.hpp).
+  std::span<const float> foam;
   /// x, y, z, speed per particle (Frame::particles).
   std::span<const float> particles;
 };
 
 /// Plan view at time `t_s` (WaterRenderer::render_plan): the level of data.field (the height
-/// about rest with a diverging map, or the depth, sequential), the speed of data.velocity, the dye,
+/// about rest with a diverging map, or the depth, sequential), the speed of data.velocity, the dye, the foam,
 /// in mm, cm or m (mm/s, cm/s, m/s) by its range; or the particle view (render_particles); titled
 /// with the scene's name and the time.
 void render_plan_view(WaterRenderer& renderer, const SceneView& view, const PlanData& data, PlanQuantity quantity,
                       double t_s, const std::string& name, const RenderTarget& target);
 
 /// True when the solver's outputs include a velocity on the visible grid (an LBM's "u"): its
-/// frames carry it (Frame::velocity) for the speed and dye views.
+/// frames carry it (Frame::velocity) for the speed, dye and foam views.
 bool solver_has_velocity(Solver& solver);
 
 /// Base names of the built-in scenes, space separated.

@@ -97,6 +97,8 @@ struct RenderRequest {
   /// "sun": {"elevation_deg", "azimuth_deg"}: the sun's elevation above the horizon and its
   /// azimuth from +x toward +y (unit: deg).
   std::optional<double> sun_elevation_deg, sun_azimuth_deg;
+  /// "foam": draw the foam a flow carries (LBM scenes; default on).
+  std::optional<bool> foam;
 };
 
 /// A feature the solver switches at run time on cmd::Toggle (a viewer shows a checkbox for it).
