@@ -84,9 +84,11 @@ std::vector<ValidationRow> sph_kernel_rows(float support_factor) {
   rows.push_back(
       check(c, "viscosity Laplacian second moment, V = m/rho0" + at + " (1)", lap2 / s6, 1, rel(lap2 / s6, 1), 0.01));
   rows.push_back(check(c, "spiky gradient antisymmetry |grad W(r) + grad W(-r)| (1/m^4)", anti, 0, anti, 1e-7));
-  rows.push_back(check(c, "spiky value lattice sum" + at + " (unused: cusp at 0) (1)", ssp, 1, rel(ssp, 1), 0.01));
-  rows.push_back(check(c, "viscosity value lattice sum without r = 0" + at + " (unused: singular) (1)", svi, 1,
-                       rel(svi, 1), 0.01));
+  // reported, not judged: the solver uses spiky and viscosity only through their gradient and
+  // Laplacian, so their value sums at h = 2 dx are no target (the convergence rows below are)
+  rows.push_back(report_only(c, "spiky value lattice sum" + at + " (unused: cusp at 0) (1)", ssp, 1, rel(ssp, 1)));
+  rows.push_back(report_only(c, "viscosity value lattice sum without r = 0" + at + " (unused: singular) (1)", svi, 1,
+                             rel(svi, 1)));
   double t6, tsp, tvi, tm, tl, ta;
   lattice(8.f, t6, tsp, tvi, tm, tl, ta);
   rows.push_back(check(c, "spiky value lattice sum at h = 8 dx (convergence) (1)", tsp, 1, rel(tsp, 1), 0.01));

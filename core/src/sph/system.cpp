@@ -110,7 +110,7 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   pbk_ = p_.impact_beta * h_ * h_ / rho0;
   const int layers = sph_boundary_layers(h_, dx);
   sph_sample_container(p_.container_m, dx, layers, bsample_);
-  for (const auto& o : p_.obstacles) sph_sample_obstacle(o, dx, layers, bsample_);
+  for (const auto& o : p_.obstacles) sph_sample_obstacle(o, p_.container_m, dx, layers, bsample_);
 
   dt_hist_.assign(std::max<std::size_t>(dt_history, 1), 0.0);
   sid_.neighbours = stats_.add("neighbour search");
