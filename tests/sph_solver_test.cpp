@@ -105,6 +105,14 @@ TEST(SphScene, TheOldViscosityKeyIsRefusedNamingTheNewOne) {
   EXPECT_NE(std::string(e.what()).find("\"viscosity_m2s\""), std::string::npos) << e.what();
 }
 
+TEST(SphScene, TheMethodKeyChoosesThePressureSolver) {
+  EXPECT_EQ(parse_sph_scene(parse_scene_text(with(""))).params.method, SphMethod::wcsph);
+  EXPECT_EQ(parse_sph_scene(parse_scene_text(with(R"(, "method": "dfsph")"))).params.method, SphMethod::dfsph);
+  const SceneError e = error_of(with(R"(, "method": "pcisph")"));
+  EXPECT_EQ(e.path(), "$.sph.method");
+  EXPECT_NE(std::string(e.what()).find("dfsph"), std::string::npos) << e.what();
+}
+
 TEST(SphScene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(path_of(with(R"(, "bogus": 1)")), "$.sph.bogus");
   EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1], )" + kOkFluid + "}}"),

@@ -108,7 +108,10 @@ class SphSolver final : public Solver {
             {"impact_beta", p.impact_beta},
             {"viscosity_total_m2s", sys_.viscosity()},
             {"container_m", p.container_m},
-            {"pressure_model", "weakly compressible, Tait equation of state"},
+            {"method", p.method == SphMethod::dfsph ? "dfsph" : "wcsph"},
+            {"pressure_model", p.method == SphMethod::dfsph
+                                   ? "divergence-free SPH (Bender and Koschier 2015), Akinci boundary"
+                                   : "weakly compressible, Tait equation of state"},
             {"tait_gamma", p.tait_gamma},
             {"grid", {{"rows", hf_.rows}, {"cols", hf_.cols}, {"dx", hf_.cell_m}}},
             {"dx", hf_.cell_m},
@@ -388,13 +391,15 @@ SphScene parse_sph_scene(const Scene& scene) {
   root.allow_only({"solver", "sph", "description"});
   const JsonIn s = root.object("sph");
   s.reject_renamed({{"viscosity_m2ps", "viscosity_m2s"}});
-  s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
+  s.allow_only({"method", "spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
                 "impact_alpha", "impact_beta", "wall_alpha", "sound_speed_mps", "gravity_mps2", "container_m", "fluid",
                 "obstacles", "boundary", "time", "surface"});
   // walls and obstacles are boundary particles (the mirror images and the position clamp are gone)
   s.string("boundary", "particles", {"particles"});
   SphScene out;
   SphParams& p = out.params;
+  // the pressure solver: an unknown name is a SceneError at $.sph.method listing both
+  p.method = s.string("method", "wcsph", {"wcsph", "dfsph"}) == "dfsph" ? SphMethod::dfsph : SphMethod::wcsph;
   parse_fluid_params(s, p);
   parse_fluid_blocks(s, p);
   check_sound_speed(s, p);
@@ -424,7 +429,9 @@ MemoryEstimate sph_memory(const SphScene& scene) {
   m.size_key = "$.sph.spacing_m";
   // 22 float arrays per particle (system.hpp), the grid's cell and order per particle, a dump's
   // (n, 3) positions; the grid's two cell arrays; the heightfield's columns (height, normals)
-  m.add("particles", static_cast<std::uint64_t>(particles * (22 * 4 + 2 * 4 + 3 * 4)));
+  // (DFSPH: 10 more, dfsph.hpp)
+  const double arrays = p.method == SphMethod::dfsph ? 32 : 22;
+  m.add("particles", static_cast<std::uint64_t>(particles * (arrays * 4 + 2 * 4 + 3 * 4)));
   m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4));
   m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4));
   // 9 float arrays per boundary particle (system.hpp) and the 7 of its sample
