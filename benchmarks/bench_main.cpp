@@ -61,13 +61,15 @@ const char* kUsage =
     "sections: all (default)";
 
 // The parts a section offers (SECTION:PART); other sections have none.
-const std::map<std::string, std::vector<std::string>> kParts = {{"stress", {"huygens", "sph", "lbm"}}};
+const std::map<std::string, std::vector<std::string>> kParts = {{"stress", {"huygens", "sph", "lbm"}},
+                                                                {"sph", {"throughput", "grid", "front", "methods"}}};
 
 void print_help(const std::map<std::string, huygens::bench::Section>& sections) {
   std::printf("%s", kUsage);
   for (const auto& [name, fn] : sections) std::printf(", %s", name.c_str());
   std::printf(
-      "\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm)\n"
+      "\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm, sph:throughput, sph:grid, "
+      "sph:front, sph:methods)\n"
       "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
       "  --csv FILE also write every table's rows as CSV (checked before the run, written atomically)\n"
       "  --threads  comma-separated thread counts to sweep, each in [1, 1024] (default 1,<cores>)\n"
@@ -106,7 +108,9 @@ bool parse_bench_args(int argc, char** argv, const std::map<std::string, huygens
       const std::string section = a.substr(0, colon), part = a.substr(colon + 1);
       const auto parts = kParts.find(section);
       if (parts == kParts.end() || std::find(parts->second.begin(), parts->second.end(), part) == parts->second.end())
-        throw UsageError("unknown section part '" + a + "' (parts: stress:huygens, stress:sph, stress:lbm)");
+        throw UsageError(
+            "unknown section part '" + a +
+            "' (parts: stress:huygens, stress:sph, stress:lbm, sph:throughput, sph:grid, sph:front, sph:methods)");
       chosen.push_back(section);  // SECTION:PART runs one part (e.g. stress:sph)
       ctx.parts.push_back(part);
     } else {

@@ -2,7 +2,8 @@
 // 30 000 and 300 000 particles and each thread count, split into neighbour search, density,
 // forces and integration; the same physics with an O(n^2) all-pairs neighbour search measured in
 // the same run (speed-up and agreement); run time against error (density error and dam-break
-// front error against particle spacing and time step).
+// front error against particle spacing and time step); WCSPH against DFSPH (wall time per simulated
+// second, mean dt and front error at 16 and 24 particles across the dam-break column).
 #include <omp.h>
 
 #include <algorithm>
@@ -32,13 +33,15 @@ SphParams pool_params(std::size_t n) {
 
 struct Measured {
   std::vector<double> T, Z;
-  double max_comp = 0, wall = 0;
-  std::int64_t steps = 0;
+  double max_comp = 0, wall = 0, sim = 0;
+  std::int64_t steps = 0, iterations = 0;
+  std::size_t particles = 0;
 };
 
-Measured dam(int na, float cfl, double T_end) {
+Measured dam(int na, float cfl, double T_end, SphMethod method = SphMethod::wcsph) {
   const float a = 0.05715f, dx = a / na;
   SphParams p;
+  p.method = method;
   p.spacing_m = dx;
   p.cfl = cfl;
   p.container_m = {8 * a, 4 * dx, 4 * a};
@@ -57,7 +60,26 @@ Measured dam(int na, float cfl, double T_end) {
   }
   m.wall = seconds_since(t0);
   m.steps = s.steps();
+  m.sim = s.time();
+  m.iterations = s.dfsph_total_iterations();
+  m.particles = s.count();
   return m;
+}
+
+// Mean and largest relative front error against the Martin & Moyce points up to T_end (%).
+std::pair<double, double> front_errors(const Measured& m, double T_end) {
+  double sum = 0, mx = 0;
+  int cnt = 0;
+  for (const MartinMoycePoint& p : martin_moyce_1952()) {
+    if (p.T > T_end) continue;
+    auto it = std::lower_bound(m.T.begin(), m.T.end(), p.T);
+    if (it == m.T.end() || it == m.T.begin()) continue;
+    const double e = std::fabs(m.Z[static_cast<std::size_t>(it - m.T.begin())] - p.Z) / p.Z;
+    sum += e;
+    mx = std::max(mx, e);
+    ++cnt;
+  }
+  return {100 * sum / std::max(cnt, 1), 100 * mx};
 }
 
 // Throughput and stage split.
@@ -131,8 +153,6 @@ void sph_grid_vs_all_pairs(Context& ctx) {
 
 // Run time against error: dam-break front and density error against spacing and time step.
 void sph_front_error(Context& ctx) {
-  std::vector<std::pair<double, double>> pts;
-  for (const MartinMoycePoint& p : martin_moyce_1952()) pts.emplace_back(p.T, p.Z);
   const double T_end = ctx.quick ? 2.5 : 5.0;
   Table t({"particles across a", "spacing mm", "cfl", "steps", "wall s", "max density error %",
            "mean front error % (T <= " + num(T_end, 2) + ")", "max front error %"});
@@ -141,28 +161,56 @@ void sph_front_error(Context& ctx) {
   for (int na : nas)
     for (float cfl : cfls) {
       const Measured m = dam(na, cfl, T_end);
-      double sum = 0, mx = 0;
-      int cnt = 0;
-      for (const auto& [T, Z] : pts) {
-        if (T > T_end) continue;
-        auto it = std::lower_bound(m.T.begin(), m.T.end(), T);
-        if (it == m.T.end() || it == m.T.begin()) continue;
-        const double zs = m.Z[static_cast<std::size_t>(it - m.T.begin())];
-        const double e = std::fabs(zs - Z) / Z;
-        sum += e;
-        mx = std::max(mx, e);
-        ++cnt;
-      }
+      const auto [mean, mx] = front_errors(m, T_end);
       t.add({std::to_string(na), num(57.15 / na, 3), num(cfl, 3), std::to_string(m.steps), num(m.wall, 3),
-             num(100 * m.max_comp, 3), num(100 * sum / std::max(cnt, 1), 3), num(100 * mx, 3)});
+             num(100 * m.max_comp, 3), num(mean, 3), num(mx, 3)});
     }
   ctx.report("sph", "run time against error: Martin & Moyce dam break (both series)", t);
+}
+
+// WCSPH against DFSPH on the Martin & Moyce dam break (the validate set-up): wall seconds per simulated
+// second, mean dt, particle-steps/s and the front error, per resolution and thread count.
+void sph_methods(Context& ctx) {
+  const double T_end = ctx.quick ? 2.5 : 5.0;
+  Table t({"method", "across a", "particles", "threads", "steps", "mean dt ms", "iterations/step", "wall s",
+           "wall s per simulated s", "Mparticle-steps/s", "mean front error %", "max front error %"});
+  Table r({"across a", "threads", "WCSPH / DFSPH wall per simulated s", "front error WCSPH / DFSPH %"});
+  const std::vector<int> nas = ctx.quick ? std::vector<int>{16} : std::vector<int>{16, 24};
+  const std::vector<int> ths = ctx.quick ? std::vector<int>{ctx.threads.back()} : ctx.threads;
+  for (int na : nas)
+    for (int th : ths) {
+      omp_set_num_threads(th);
+      double per_sim[2] = {0, 0}, err[2] = {0, 0};
+      for (int k = 0; k < 2; ++k) {
+        const SphMethod method = k == 0 ? SphMethod::wcsph : SphMethod::dfsph;
+        const Measured m = dam(na, 0.15f, T_end, method);
+        const auto [mean, mx] = front_errors(m, T_end);
+        per_sim[k] = m.wall / m.sim;
+        err[k] = mean;
+        const double ps = double(m.particles) * double(m.steps) / m.wall;
+        t.add({k == 0 ? "wcsph" : "dfsph", std::to_string(na), std::to_string(m.particles), std::to_string(th),
+               std::to_string(m.steps), num(1e3 * m.sim / double(m.steps), 4),
+               k == 0 ? "-" : num(double(m.iterations) / double(m.steps), 3), num(m.wall, 3), num(per_sim[k], 4),
+               num(ps * 1e-6, 3), num(mean, 3), num(mx, 3)});
+      }
+      r.add({std::to_string(na), std::to_string(th), num(per_sim[0] / per_sim[1], 3),
+             num(err[0], 3) + " / " + num(err[1], 3)});
+    }
+  omp_set_num_threads(ctx.threads.back());
+  ctx.report("sph",
+             "WCSPH vs DFSPH: Martin & Moyce dam break to T = " + num(T_end, 2) +
+                 " (goal: DFSPH >= 5x less wall time per simulated second at equal front error)",
+             t);
+  ctx.report("sph", "WCSPH vs DFSPH: ratios", r);
 }
 
 }  // namespace
 
 void bench_sph(Context& ctx) {
-  for (const auto part : {sph_throughput, sph_grid_vs_all_pairs, sph_front_error}) part(ctx);
+  if (ctx.part("throughput")) sph_throughput(ctx);
+  if (ctx.part("grid")) sph_grid_vs_all_pairs(ctx);
+  if (ctx.part("front")) sph_front_error(ctx);
+  if (ctx.part("methods")) sph_methods(ctx);
 }
 
 }  // namespace huygens::bench

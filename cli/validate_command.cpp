@@ -40,7 +40,7 @@ int cmd_validate(int argc, char** argv) {
     if (!found) throw UsageError("unknown validation case '" + n + "' (huygens validate --list)");
   }
   Table t({"case", "quantity", "measured", "expected", "error", "tolerance", "result"});
-  int failed = 0, passed = 0;
+  int failed = 0, passed = 0, reported = 0;
   for (const auto& c : cases) {
     if (!names.empty() && std::find(names.begin(), names.end(), c.name) == names.end()) continue;
     std::fprintf(stderr, "validating %s ...\n", c.name.c_str());
@@ -51,13 +51,14 @@ int cmd_validate(int argc, char** argv) {
       rows.push_back(ValidationRow{c.name, std::string("exception: ") + e.what(), 0, 0, 0, 0, false});
     }
     for (const auto& r : rows) {
-      t.add({r.case_name, r.quantity, num(r.measured, 6), num(r.expected, 6), num(r.error, 3), num(r.tolerance, 3),
-             r.pass ? "pass" : "FAIL"});
-      (r.pass ? passed : failed)++;
+      t.add({r.case_name, r.quantity, num(r.measured, 6), num(r.expected, 6), num(r.error, 3),
+             r.judged ? num(r.tolerance, 3) : "-", r.judged ? (r.pass ? "pass" : "FAIL") : "report"});
+      (r.judged ? (r.pass ? passed : failed) : reported)++;
     }
   }
   std::printf("%s", t.text().c_str());
-  std::printf("validate: %d passed, %d failed\n", passed, failed);
+  std::printf("validate: %d passed, %d failed", passed, failed);
+  std::printf(reported ? ", %d reported (no target)\n" : "\n", reported);
   return failed ? 1 : 0;
 }
 

@@ -1,19 +1,24 @@
-# huygens_embed(TARGET SYMBOL FILES f1 [f2 ...])
+# huygens_embed(TARGET SYMBOL [BASE dir] FILES f1 [f2 ...])
 # Compiles the given files into TARGET, so that a program needs no path of the source tree
 # at run time (shaders, shipped scenes, reference data). Generates <SYMBOL>.hpp/.cpp in the
 # build tree declaring
 #   namespace huygens::embedded { std::string_view SYMBOL(std::string_view file_name); }
-# which returns a file's bytes by its base name ("default.json"), or an empty view.
+# which returns a file's bytes by its base name ("default.json"), or with BASE by its path
+# relative to that folder ("meshes/wedge.obj"), or an empty view.
 # The files are read at configure time and re-read when they change.
 function(huygens_embed target symbol)
-  cmake_parse_arguments(E "" "" "FILES" ${ARGN})
+  cmake_parse_arguments(E "" "BASE" "FILES" ${ARGN})
   set(dir ${CMAKE_CURRENT_BINARY_DIR}/embedded)
   set(cases "")
   set(arrays "")
   set(i 0)
   foreach(f IN LISTS E_FILES)
     get_filename_component(abs ${f} ABSOLUTE)
-    get_filename_component(name ${f} NAME)
+    if(E_BASE)
+      file(RELATIVE_PATH name ${E_BASE} ${abs})
+    else()
+      get_filename_component(name ${f} NAME)
+    endif()
     set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${abs})
     file(READ ${abs} hex HEX)
     string(LENGTH "${hex}" hex_len)

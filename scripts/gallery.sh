@@ -2,7 +2,8 @@
 # Renders every shipped scene headless at a telling time into docs/gallery/ (640x360 PNGs), in
 # the perspective view and, where a picture should be read (the Kelvin angle, the
 # Cauchy-Poisson ring, the dam-break front, the vortex street), in the plan view too; the LBM
-# flows also as speed and as the dye they carried since t = 0, the SPH dam break as particles.
+# flows also as speed and as the dye and foam they carried since t = 0, the SPH dam breaks as
+# particles.
 #   scripts/gallery.sh [BUILD_DIR]      (default: build; needs huygens-viz built there)
 # EGL surfaceless (Mesa llvmpipe): no display needed. The images are what the README shows.
 set -euo pipefail
@@ -21,12 +22,13 @@ shots=(
   "kelvin 15 perspective,plan"
   "ocean 10 perspective"
   "pool 0.3 perspective"
-  "sph_dam_break 0.3 perspective"
-  "sph_dam_break 0.15 particles"
+  "sph_dam_break 0.15 perspective,particles"
+  "sph_wedge 0.25 perspective"
   "sph_wedge 0.4 particles"
-  "dam_break 10 perspective,plan,dye"
-  "channel 20 perspective,plan,speed,dye"
-  "flood 12 perspective,plan"
+  "dam_break 6 perspective"
+  "dam_break 10 plan,dye"
+  "channel 20 perspective,plan,speed,dye,foam"
+  "flood 12 perspective,plan,foam"
 )
 for shot in "${shots[@]}"; do
   read -r scene t views <<<"$shot"

@@ -4,11 +4,12 @@ in vec3 v_pos;
 out vec4 o_color;
 uniform vec3 u_sun_dir;
 uniform vec3 u_eye;
-uniform int u_solid;  // 1: an obstacle (concrete grey), 2: the water's sides
+uniform int u_solid;  // 1: an obstacle (concrete grey), 2: the water's sides, 3: a tank's wall
 void main() {
   vec3 n = normalize(cross(dFdx(v_pos), dFdy(v_pos)));
   if (dot(n, u_eye - v_pos) < 0.0) n = -n;
   float lambert = max(dot(n, normalize(u_sun_dir)), 0.0);
-  vec3 base = u_solid == 2 ? vec3(0.10, 0.38, 0.48) : u_solid != 0 ? vec3(0.62, 0.60, 0.57) : v_pos.z > 0.0 ? vec3(0.85, 0.82, 0.78) : vec3(0.55, 0.12, 0.10);
-  o_color = vec4(base * (0.35 + 0.65 * lambert), 1.0);
+  vec3 base = u_solid == 3 ? vec3(0.86, 0.88, 0.90) : u_solid == 2 ? vec3(0.10, 0.38, 0.48) : u_solid != 0 ? vec3(0.62, 0.60, 0.57) : v_pos.z > 0.0 ? vec3(0.85, 0.82, 0.78) : vec3(0.55, 0.12, 0.10);
+  float ambient = u_solid == 3 ? 0.7 : 0.35;  // a tank's walls: pale, a backdrop
+  o_color = vec4(base * (ambient + (1.0 - ambient) * lambert), 1.0);
 }

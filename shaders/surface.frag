@@ -18,8 +18,12 @@ uniform sampler2D u_dye;    // R32F: dye in [0, 1] at the grid points (u_use_dye
 uniform int u_use_dye;
 uniform sampler2D u_bed;    // R32F: the bed's height at the grid points (u_use_bed; m, drawn frame)
 uniform int u_use_bed;
-uniform float u_dry_depth;  // water thinner than this over a bed is not drawn (m)
+uniform float u_dry_depth;  // water thinner than this over a bed (or u_hide_dry) is not drawn (m)
+uniform int u_hide_dry;     // leave out thin water over the flat floor too (the SPH look)
 uniform vec3 u_dye_colour;
+uniform sampler2D u_foam;   // R32F: foam in [0, 1] at the grid points (u_use_foam)
+uniform int u_use_foam;
+uniform vec3 u_foam_colour;
 // (u_eye, u_ortho, u_view_dir, u_index, u_water_colour, u_sky*, u_sun_dir, u_deep: ground_common.glsl)
 uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
 uniform vec2 u_grid_size;   // cols, rows
@@ -34,6 +38,18 @@ uniform vec3 u_sun_colour;
 uniform float u_sun_cos;        // cos of the glint disc's angular radius
 uniform float u_sun_intensity;  // the sun's radiance relative to the sky
 
+// Value noise in [0, 1] at p (grid points): an integer hash per lattice corner, smooth blend.
+float hash(ivec2 c) {
+  uint h = uint(c.x) * 0x8da6b343u ^ uint(c.y) * 0xd8163841u;
+  h = (h ^ (h >> 13)) * 0x5bd1e995u;
+  return float((h ^ (h >> 15)) & 0xffffu) / 65535.0;
+}
+float value_noise(vec2 p) {
+  ivec2 c = ivec2(floor(p));
+  vec2 t = fract(p);
+  t = t * t * (3.0 - 2.0 * t);
+  return mix(mix(hash(c), hash(c + ivec2(1, 0)), t.x), mix(hash(c + ivec2(0, 1)), hash(c + ivec2(1, 1)), t.x), t.y);
+}
 
 void main() {
   vec2 tc = ((v_pos.xy - u_grid_origin) / u_dx + 0.5) / u_grid_size;
@@ -46,6 +62,8 @@ void main() {
   if (u_use_bed != 0) {
     floor_z = texture(u_bed, tc).r;
     if (v_pos.z - floor_z < u_dry_depth) discard;
+  } else if (u_hide_dry != 0 && v_pos.z - floor_z < u_dry_depth) {
+    discard;
   }
   vec2 G;
   if (u_exact != 0 || u_use_bed != 0) {
@@ -87,6 +105,13 @@ void main() {
     float Fs = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - nv, 5.0);
     float c = dot(r, sun), edge = 1.0 - u_sun_cos;  // soft edge: half the disc's radius wide
     col += Fs * u_sun_intensity * smoothstep(u_sun_cos - 0.5 * edge, u_sun_cos + 0.5 * edge, c) * u_sun_colour;
+  }
+  if (u_use_foam != 0) {
+    vec2 gp = (v_pos.xy - u_grid_origin) / u_dx;
+    float q = 0.6 * value_noise(gp / 4.0) + 0.4 * value_noise(gp / 2.0 + 57.0);
+    float a = clamp(texture(u_foam, tc).r * (0.25 + 1.5 * q), 0.0, 1.0);
+    float lit = u_ambient + u_sun_light * clamp(max(dot(n, sun), 0.0) / max(sun.z, 0.1), 0.0, 1.0);
+    col = mix(col, u_foam_colour * lit, a);
   }
   o_color = vec4(col, 1.0);
 }

@@ -219,6 +219,37 @@ TEST(Cli, TheViewersCommandLineIsCheckedToo) {
 }
 #endif
 
+// An SPH scene's OBJ mesh is found beside the scene file wherever the program runs: the shipped
+// sph_wedge.json named by path from another folder runs; a copy of the scene without its mesh
+// beside it is a scene error naming the JSON path, exit 2 (not a mesh from the working folder).
+// The viewer's built-in copy (by name, from a folder without meshes/) reads the mesh compiled in.
+TEST(Cli, AMeshObstacleIsReadBesideItsSceneFromAnyFolder) {
+  const fs::path d = work_dir("mesh");
+  const fs::path shipped = fs::absolute(fs::path(huygens::test::scenes_dir()) / "sph_wedge.json");
+  ASSERT_TRUE(fs::exists(shipped)) << shipped;
+  const Result ok = run(d, "run '" + shipped.string() + "' --steps 1");
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  fs::create_directories(d / "copy");
+  fs::copy_file(shipped, d / "copy" / "sph_wedge.json");
+  fs::create_directories(d / "meshes");  // a mesh in the working folder must not be taken
+  fs::copy_file(shipped.parent_path() / "meshes" / "wedge.obj", d / "meshes" / "wedge.obj");
+  const Result missing = run(d, "run copy/sph_wedge.json --steps 1");
+  EXPECT_EQ(missing.code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("$.sph.obstacles[0].file"), std::string::npos) << missing.output;
+  EXPECT_NE(missing.output.find("copy/meshes/wedge.obj"), std::string::npos) << missing.output;
+#ifdef HUYGENS_VIZ
+  fs::remove_all(d / "meshes");
+  const std::string out = (d / "viz.txt").string();
+  const int status =
+      std::system(("cd '" + d.string() + "' && '" + std::string(HUYGENS_VIZ) +
+                   "' sph_wedge --headless --frames 1 --size 64x64 --screenshot w.png > '" + out + "' 2>&1")
+                      .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0) << slurp(out);
+  EXPECT_TRUE(fs::exists(d / "w.png")) << slurp(out);
+#endif
+}
+
 // OpenMP threads spin briefly (GOMP_SPINCOUNT 3000) then sleep, unless the user sets
 // OMP_WAIT_POLICY or GOMP_SPINCOUNT (program.cpp): libgomp prints what it took with OMP_DISPLAY_ENV.
 TEST(Cli, OpenMpWaitsSpinBrieflyUnlessTheUserChooses) {

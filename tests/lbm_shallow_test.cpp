@@ -339,8 +339,9 @@ TEST(LbmWetDry, KeepsVolumeAndDepthsNonNegativeWhileWettingAndDrying) {
   EXPECT_EQ(r.stopped, "");
   EXPECT_GT(r.dry_end, 0u);
   EXPECT_GE(r.min_depth_m, 0.0);
-  // each cell's populations sum to its double-precision mass balance (measured 4e-11)
-  EXPECT_LT(std::abs(r.volume_drift), 1e-9);
+  // each cell's populations sum to its double-precision mass balance, what floats cannot hold
+  // carried to its next step (measured -1.6e-12; 9.9e-11 without the carry)
+  EXPECT_LT(std::abs(r.volume_drift), 1e-11);
 }
 
 TEST(LbmWetDry, RitterDryBedDamBreakConvergesToTheExactProfile) {

@@ -257,7 +257,7 @@ TEST(RenderInfo, LbmAndSphScenesAsTheirFilesSay) {
   EXPECT_TRUE(p.toggles.empty());
 }
 
-// The "render" block's viewer keys (docs/viz.md "Looks"): look, view, camera, sun and
+// The "render" block's viewer keys (docs/viz.md "Looks"): look, view, camera, sun, foam and
 // caustics_mode are read with their ranges; an unknown key, in the block or in its objects, is
 // refused with its JSON path (the SI-suffix convention of docs/design.md 6).
 TEST(RenderRequest, ViewerKeysAndUnknownKeysRefused) {
@@ -267,7 +267,7 @@ TEST(RenderRequest, ViewerKeysAndUnknownKeysRefused) {
   };
   const RenderRequest r = parse(R"({"render": {"look": "shallow", "view": "plan", "caustics_mode": "mip_paper",
       "camera": {"target_m": [1, 2, 0], "distance_m": 12, "yaw_deg": -90, "pitch_deg": 55, "follow_ship": false},
-      "sun": {"elevation_deg": 40, "azimuth_deg": 180}}})");
+      "sun": {"elevation_deg": 40, "azimuth_deg": 180}, "foam": false}})");
   ASSERT_TRUE(r.look.has_value());
   EXPECT_EQ(*r.look, LookRequest::shallow);
   EXPECT_TRUE(r.plan_view.value_or(false));
@@ -280,8 +280,10 @@ TEST(RenderRequest, ViewerKeysAndUnknownKeysRefused) {
   EXPECT_FALSE(r.camera.follow_ship.value_or(true));
   EXPECT_EQ(r.sun_elevation_deg.value_or(0.0), 40.0);
   EXPECT_EQ(r.sun_azimuth_deg.value_or(0.0), 180.0);
+  EXPECT_FALSE(r.foam.value_or(true));
   const RenderRequest none = parse(R"({"solver": "huygens"})");
-  EXPECT_FALSE(none.look.has_value() || none.plan_view.has_value() || none.camera.distance_m.has_value());
+  EXPECT_FALSE(none.look.has_value() || none.plan_view.has_value() || none.camera.distance_m.has_value() ||
+               none.foam.has_value());
   auto refused = [&](const std::string& text, const std::string& path) {
     try {
       parse(text);
@@ -297,4 +299,5 @@ TEST(RenderRequest, ViewerKeysAndUnknownKeysRefused) {
   refused(R"({"render": {"camera": {"pitch_deg": 120}}})", "$.render.camera.pitch_deg");
   refused(R"({"render": {"sun": {"elevation_deg": 40, "zenith_deg": 3}}})", "$.render.sun");
   refused(R"({"render": {"caustics_mode": "photons"}})", "$.render.caustics_mode");
+  refused(R"({"render": {"foam": "white"}})", "$.render.foam");
 }

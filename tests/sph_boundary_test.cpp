@@ -10,6 +10,7 @@
 #include <string>
 
 #include "huygens/sph/boundary.hpp"
+#include "huygens/sph/kernels.hpp"
 #include "huygens/sph/system.hpp"
 
 using namespace huygens;
@@ -95,7 +96,7 @@ TEST(SphBoundary, ObstacleShellsHoldTheShellVolume) {
   };
   for (const auto& c : cases) {
     SphBoundarySample s;
-    sph_sample_obstacle(*c.o, dx, K, s);
+    sph_sample_obstacle(*c.o, {1.f, 1.f, 1.f}, dx, K, s);
     ASSERT_GT(s.size(), 0u);
     EXPECT_NEAR(volume(s, dx), c.want, 0.06 * c.want) << int(c.o->type);
     for (std::size_t i = 0; i < s.size(); ++i) EXPECT_TRUE(c.o->blocks(s.x[i], s.y[i], s.z[i], 0.f)) << i;
@@ -135,6 +136,74 @@ TEST(SphBoundary, WallPressureIsTheHydrostaticExtrapolation) {
     }
   }
   EXPECT_EQ(floor, 36);
+}
+
+// A lone particle above the floor has p = 0 (its density is 0.4-0.6 rho0): the floor holds it by the
+// hydrostatic term of the wall pressure, rho g (z_f - z_b), with rho the density of the particle's
+// pressure (rho0), not its summation density (the floor then carried 0.4 of its weight and it sank
+// to the first layer of floor particles, half a spacing below the floor face). Pushed up below a
+// resting height near dx/2, pulled down above it.
+TEST(SphBoundary, FloorHoldsALoneParticleAboveTheFace) {
+  SphParams p;
+  p.spacing_m = 0.01f;
+  p.container_m = {0.1f, 0.1f, 0.1f};
+  p.fluid.push_back({{0.05f, 0.05f, 0.f}, {0.06f, 0.06f, 0.01f}});
+  SphSystem s(p);
+  const float dx = p.spacing_m;
+  auto az = [&](float z) {
+    const float X[1] = {0.055f}, Y[1] = {0.055f}, Z[1] = {z};
+    s.set_particles(X, Y, Z);
+    float ax[1], ay[1], a[1], rho[1];
+    s.grid_accelerations(ax, ay, a, rho);
+    EXPECT_LT(rho[0], 0.7f * p.rest_density_kgpm3);  // p = 0: only the wall pressure holds it
+    return a[0];
+  };
+  for (float z : {0.1f, 0.2f, 0.3f}) EXPECT_GT(az(z * dx), 0.f) << z;
+  for (float z : {0.6f, 0.8f}) EXPECT_LT(az(z * dx), 0.f) << z;
+}
+
+// A wedge standing on the floor against a side wall (the 58-degree face of scenes/meshes/wedge.obj):
+// its faces on the floor and the wall are buried there (not sampled: no point has the floor face's
+// normal), and the layers of the 58-degree face run down to the floor. In front of the foot the
+// solid (floor and wedge) fills more of a fluid particle's support than in front of the face
+// higher up; the boundary particles' kernel sum there, dx/2 from the face, is at least 0.9 of the
+// one higher up (0.18 and 0.22 against 0.195 at dx and dx/2 along the face from the foot; before,
+// with the face's layers stopping at the bisector of the mesh's edge at the foot: 0.14 and 0.17).
+TEST(SphBoundary, MeshOnTheFloorIsSampledDownToTheFloor) {
+  const float dx = 0.01f, h = 2.f * dx;
+  SphMesh m = sph_parse_obj(
+      "v 0 0 0\nv 0.1 0 0\nv 0.05 0 0.08\nv 0 0.1 0\nv 0.1 0.1 0\nv 0.05 0.1 0.08\n"
+      "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 1 3 6 4\nf 2 5 6 3\n",
+      "wedge.obj");
+  for (auto& v : m.vertices) v[0] += 0.25f;
+  SphObstacle o;
+  o.type = SphObstacle::Type::mesh;
+  o.min_m = {0.25f, 0.f, 0.f};
+  o.max_m = {0.35f, 0.1f, 0.08f};
+  o.mesh = std::make_shared<const SphMesh>(std::move(m));
+  const std::array<float, 3> box{0.6f, 0.2f, 0.3f};
+  SphBoundarySample s;
+  sph_sample_container(box, dx, 2, s);
+  const std::size_t walls = s.size();
+  sph_sample_obstacle(o, box, dx, 2, s);
+  for (std::size_t i = walls; i < s.size(); ++i) {
+    EXPECT_GT(s.nz[i], -0.99f) << i;
+    EXPECT_GT(s.ny[i], -0.99f) << i;
+  }
+  const SphKernels k(h);
+  // sum_b V_b W at distance d from the face, s along it from the foot, in the middle of the wedge (y)
+  auto kernel_sum = [&](float along, float d) {
+    const float c = 0.53f, sn = 0.848f;  // the face rises at 58 degrees; its outward normal (-sn, 0, c)
+    const float px = 0.25f + along * c - d * sn, py = 0.05f, pz = along * sn + d * c;
+    double sum = 0;
+    for (std::size_t b = 0; b < s.size(); ++b) {
+      const float rx = px - s.x[b], ry = py - s.y[b], rz = pz - s.z[b];
+      sum += double(s.w[b]) * dx * dx * dx * k.poly6(rx * rx + ry * ry + rz * rz);
+    }
+    return sum;
+  };
+  const double high = kernel_sum(4.f * dx, 0.5f * dx);
+  for (float along : {0.5f, 1.f}) EXPECT_GE(kernel_sum(along * dx, 0.5f * dx), 0.9 * high) << along;
 }
 
 TEST(SphBoundary, ObjReadsVerticesAndFacesAndTriangulates) {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -104,6 +105,14 @@ TEST(SphScene, TheOldViscosityKeyIsRefusedNamingTheNewOne) {
   EXPECT_NE(std::string(e.what()).find("\"viscosity_m2s\""), std::string::npos) << e.what();
 }
 
+TEST(SphScene, TheMethodKeyChoosesThePressureSolver) {
+  EXPECT_EQ(parse_sph_scene(parse_scene_text(with(""))).params.method, SphMethod::wcsph);
+  EXPECT_EQ(parse_sph_scene(parse_scene_text(with(R"(, "method": "dfsph")"))).params.method, SphMethod::dfsph);
+  const SceneError e = error_of(with(R"(, "method": "pcisph")"));
+  EXPECT_EQ(e.path(), "$.sph.method");
+  EXPECT_NE(std::string(e.what()).find("dfsph"), std::string::npos) << e.what();
+}
+
 TEST(SphScene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(path_of(with(R"(, "bogus": 1)")), "$.sph.bogus");
   EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1], )" + kOkFluid + "}}"),
@@ -161,6 +170,54 @@ TEST(SphScene, MeshObstacleFromAnObjFile) {
   EXPECT_EQ(e.path(), "$.sph.obstacles[0].file");
   EXPECT_NE(std::string(e.what()).find("bad.obj:4: face vertex 9 outside the 3 vertices so far"), std::string::npos)
       << e.what();
+}
+
+// The OBJ path is relative to the scene file's folder, not to the working directory: a scene
+// loaded by a relative path still finds its mesh after the working directory changed (the
+// folder is made absolute when the scene is loaded); a built-in scene (text without a file, as
+// the viewer carries the shipped scenes) reads its mesh only from its embedded files, and a
+// mesh that is not there is a scene error naming the JSON path. The solver's RenderInfo carries
+// the mesh's triangles as placed (the viewer draws them).
+TEST(SphScene, MeshPathIsRelativeToTheSceneNotTheWorkingDirectory) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::path(::testing::TempDir()) / "sph_mesh_cwd";
+  fs::remove_all(root);
+  fs::create_directories(root / "scene" / "meshes");
+  fs::create_directories(root / "elsewhere");
+  const std::string tet = "v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  std::ofstream(root / "scene" / "meshes" / "tet.obj") << tet;
+  const std::string text =
+      with(R"(, "obstacles": [ {"type": "mesh", "file": "meshes/tet.obj", "position_m": [0.03, 0.03, 0.0]} ])");
+  std::ofstream(root / "scene" / "mesh.json") << text;
+  const fs::path cwd = fs::current_path();
+  fs::current_path(root / "elsewhere");
+  const Scene loaded = load_scene("../scene/mesh.json");
+  fs::current_path(root);  // the working directory moves on before the solver is made
+  std::unique_ptr<Solver> solver;
+  EXPECT_NO_THROW(solver = make_solver(loaded)) << "the mesh beside the scene, found from another folder";
+  // built in: the embedded files, never the working directory (which holds meshes/tet.obj here)
+  fs::current_path(root / "scene");
+  Scene builtin = parse_scene_text(text, "mesh.json");
+  builtin.embedded = [](std::string_view) { return std::string_view(); };
+  std::string path = "<no error>", what;
+  try {
+    make_solver(builtin);
+  } catch (const SceneError& e) {
+    path = e.path(), what = e.what();
+  }
+  fs::current_path(cwd);
+  EXPECT_EQ(path, "$.sph.obstacles[0].file");
+  EXPECT_NE(what.find("meshes/tet.obj"), std::string::npos) << what;
+  builtin.embedded = [&](std::string_view f) { return f == "meshes/tet.obj" ? std::string_view(tet) : ""; };
+  ASSERT_NO_THROW(solver = make_solver(builtin));
+  const RenderInfo info = solver->render_info();
+  ASSERT_EQ(info.obstacles.size(), 1u);
+  const RenderObstacle& o = info.obstacles[0];
+  EXPECT_EQ(o.kind, RenderObstacle::Kind::mesh);
+  ASSERT_EQ(o.triangles_m.size(), 4u * 9u) << "the four faces, three corners each";
+  EXPECT_FLOAT_EQ(o.triangles_m[0], 0.03f) << "vertex 1 of face 1 moved by position_m";
+  EXPECT_FLOAT_EQ(o.triangles_m[3 + 1], 0.07f) << "vertex 3 (0, 0.04, 0) of face 1, y";
+  EXPECT_FLOAT_EQ(static_cast<float>(o.max_m[2]), 0.04f);
 }
 
 TEST(SphScene, ShippedScenesBuildAndRun) {

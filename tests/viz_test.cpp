@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "camera.hpp"
 #include "caustics_stage.hpp"
 #include "dye.hpp"
+#include "foam.hpp"
 #include "gl.hpp"
 #include "headless.hpp"
 #include "huygens/pipeline/runner.hpp"
@@ -355,7 +357,7 @@ TEST_F(VizRender, HeadlessRenderIsDeterministic) {
 }
 
 // Golden images of the shipped scenes at 256 x 256. Generated once (see tests/golden/README.md):
-//   huygens-viz scenes/NAME.json --headless --time 1 --frames 3 --screenshot tests/golden/NAME.png
+//   huygens-viz scenes/NAME.json --headless --time 1 --frames 3 --size 256x256 --screenshot tests/golden/NAME.png
 // Tolerance: max-abs difference <= 24/255 on any channel, and at most 0.5 % of the pixels
 // differing by more than 4/255 (room for a different LLVM/Mesa rounding, not for a changed
 // picture). On failure actual/expected/diff PNGs are written next to the test's temp dir.
@@ -363,11 +365,16 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
   const char* golden_env = std::getenv("HUYGENS_GOLDEN_DIR");  // set by CTest (tests/CMakeLists.txt)
   const std::filesystem::path golden_dir = golden_env && *golden_env ? golden_env : "tests/golden";
   int compared = 0;
-  // every shipped scene; the SPH scenes at t = 0.1 s (their adaptive step makes 1 s cost a
-  // minute of CPU), the others at t = 1 s
-  const std::pair<const char*, double> shots[] = {{"default", 1.0},       {"ring", 1.0},      {"ocean", 1.0},
-                                                  {"kelvin", 1.0},        {"pond", 1.0},      {"pool", 0.1},
-                                                  {"sph_dam_break", 0.1}, {"dam_break", 1.0}, {"channel", 1.0}};
+  // every shipped scene (checked below: a scene without a golden fails); the SPH scenes at
+  // t = 0.1 s (their adaptive step makes 1 s cost a minute of CPU), the others at t = 1 s
+  const std::pair<const char*, double> shots[] = {
+      {"default", 1.0},       {"ring", 1.0},      {"ocean", 1.0},   {"kelvin", 1.0}, {"pond", 1.0},     {"pool", 0.1},
+      {"sph_dam_break", 0.1}, {"dam_break", 1.0}, {"channel", 1.0}, {"flood", 1.0},  {"sph_wedge", 0.1}};
+  for (const auto& e : std::filesystem::directory_iterator(huygens::test::scenes_dir()))
+    if (e.path().extension() == ".json")
+      EXPECT_TRUE(std::any_of(std::begin(shots), std::end(shots),
+                              [&](const auto& shot) { return e.path().stem() == shot.first; }))
+          << e.path() << " is shipped without a golden image";
   for (const auto& [name, t] : shots) {
     const std::filesystem::path scene =
         std::filesystem::path(huygens::test::scenes_dir()) / (std::string(name) + ".json");
@@ -375,7 +382,7 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
     if (!std::filesystem::exists(scene)) continue;  // scenes arrive with their solvers
     ASSERT_TRUE(std::filesystem::exists(golden))
         << "missing golden " << golden << "; generate it with\n  huygens-viz " << scene << " --headless --time " << t
-        << " --frames 3 --screenshot " << golden;
+        << " --frames 3 --size 256x256 --screenshot " << golden;
     HeadlessOptions o;
     o.time = t;
     o.frames = 3;
@@ -445,6 +452,60 @@ TEST(VizWindow, XvfbRunsSixtyFramesAndTakesAScreenshot) {
   const double var = sum2 / n - (sum / n) * (sum / n);
   std::printf("window screenshot: mean %.1f, variance %.1f (levels^2)\n", sum / n, var);
   EXPECT_GT(var, 25.0) << "the screenshot looks blank";
+}
+
+// Foam over the water (RenderSettings::foam, surface.frag): black opaque water, ambient light
+// only, seen straight down; f = 1 on a 1.25 m square in the middle. There the pixel is the foam
+// colour times a = clamp(0.25 + 1.5 q), q the value noise: at least 0.25 K, K where a saturates,
+// rough (some pixels saturated, not all); outside it and with the foam off, the black water.
+TEST_F(VizRender, FoamIsAWhiteRoughOverlayWhereTheFieldIsOne) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  std::vector<float> foam(kN * kN, 0.0f);
+  for (std::size_t i = 44; i < 84; ++i)
+    for (std::size_t j = 44; j < 84; ++j) foam[i * kN + j] = 1.0f;
+  r.set_foam(foam);
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = 3.6;
+  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
+  cam.distance = 10.0;
+  cam.pitch = 1.5707963267948966;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::uniform;
+  s.ground_uniform = glm::vec3(0.0f);
+  s.absorption = true;
+  s.absorb_rgb = glm::vec3(1e4f);  // opaque water of the water colour
+  s.water_colour = glm::vec3(0.0f);
+  const int W = 256, H = 256;
+  const gl::Image8 img = render(r, cam, s, W, H);
+  const double K = s.foam_colour.r, tol = 1.5 / 255.0;
+  int saturated = 0, n = 0;
+  double sum = 0, sum2 = 0;
+  for (int y = H / 2 - 20; y < H / 2 + 20; ++y)
+    for (int x = W / 2 - 20; x < W / 2 + 20; ++x) {
+      const double v = channel(img, x, y, 0);
+      EXPECT_GE(v, 0.25 * K - tol) << x << ", " << y;
+      EXPECT_LE(v, K + tol) << x << ", " << y;
+      EXPECT_NEAR(channel(img, x, y, 2), v * s.foam_colour.b / K, tol) << "white, " << x << ", " << y;
+      saturated += v >= K - tol;
+      sum += v, sum2 += v * v, ++n;
+    }
+  const double sd = std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n)));
+  std::printf("foam: mean %.3f, sd %.3f, %.0f %% of the pixels at the foam colour\n", sum / n, sd,
+              100.0 * saturated / n);
+  EXPECT_GT(saturated, n / 5) << "opaque where the noise is high";
+  EXPECT_LT(saturated, n * 9 / 10) << "rough: thinner where the noise is low";
+  EXPECT_GT(sd, 0.05) << "rough";
+  for (int y : {2, H - 12})
+    for (int x : {2, W - 12})
+      for (int dy = 0; dy < 10; ++dy)
+        for (int dx = 0; dx < 10; ++dx) EXPECT_LE(channel(img, x + dx, y + dy, 0), tol) << "no foam there";
+  s.foam = false;
+  const gl::Image8 off = render(r, cam, s, W, H);
+  EXPECT_LE(channel(off, W / 2, H / 2, 0), tol) << "foam off";
+  if (::testing::Test::HasFailure()) write_debug("foam.png", img);
 }
 
 // Issue 5, defect 2 (short dark lines on the ground): the whole chain, caustics pass (MIP
@@ -656,6 +717,60 @@ TEST_F(VizRender, ShipHullAtItsPositionAndHeading) {
   }
 }
 
+// A mesh obstacle (RenderObstacle::Kind::mesh, an SPH scene's OBJ) is drawn as its triangles,
+// not as its bounding box: seen from straight above, a tetrahedron standing out of shallow water
+// covers its triangular footprint and leaves the corner of its bounding box outside the
+// triangle as it was; its faces are lit (two faces turned differently differ in shade).
+TEST_F(VizRender, MeshObstacleIsDrawnAsItsTrianglesLit) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  // 10 cm of water: a solid under the surface is not seen through it (the refraction shows the floor)
+  r.set_heights(std::vector<float>(kN * kN, static_cast<float>(0.1 - kDepth)));
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = 4.0;
+  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
+  cam.distance = 10.0;
+  cam.pitch = 1.5707963267948966;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::uniform;
+  s.sun_dir = glm::vec3(0.3f, 0.5f, 0.8f);
+  const int W = 128, H = 128;
+  const double m_per_px = cam.ortho_height / H;
+  auto pixel = [&](const gl::Image8& img, double x, double y, int c) {
+    const int j = static_cast<int>(std::floor((x - cam.target.x) / m_per_px + 0.5 * W));
+    const int i = static_cast<int>(std::floor(0.5 * H - (y - cam.target.y) / m_per_px));
+    return channel(img, j, i, c);
+  };
+  auto differ = [&](const gl::Image8& a, const gl::Image8& b, double x, double y) {
+    double d = 0;
+    for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(pixel(a, x, y, c) - pixel(b, x, y, c)));
+    return d;
+  };
+  const gl::Image8 none = render(r, cam, s, W, H);
+  // base triangle (cx - 1, cy - 1), (cx + 1, cy - 1), (cx, cy + 1) on the floor, apex above the water
+  const float cx = static_cast<float>(cam.target.x), cy = static_cast<float>(cam.target.y), fz = -kDepth;
+  const std::array<float, 3> A{cx - 1, cy - 1, fz}, B{cx + 1, cy - 1, fz}, C{cx, cy + 1, fz}, D{cx, cy - 0.4f, 1.0f};
+  RenderObstacle tet;
+  tet.kind = RenderObstacle::Kind::mesh;
+  tet.min_m = {cx - 1.0, cy - 1.0, fz};
+  tet.max_m = {cx + 1.0, cy + 1.0, 1.0};
+  for (const auto& t : {std::array{A, C, B}, std::array{A, B, D}, std::array{B, C, D}, std::array{C, A, D}})
+    for (const auto& v : t) tet.triangles_m.insert(tet.triangles_m.end(), v.begin(), v.end());
+  r.set_obstacles(std::span(&tet, 1));
+  const gl::Image8 img = render(r, cam, s, W, H);
+  EXPECT_GT(differ(img, none, cx, cy - 0.7), 0.05) << "the face toward -y";
+  EXPECT_GT(differ(img, none, cx + 0.3, cy + 0.2), 0.05) << "the face toward +x, +y";
+  EXPECT_LT(differ(img, none, cx - 0.85, cy + 0.85), 1e-6) << "the bounding box's corner, outside the triangle";
+  EXPECT_LT(differ(img, none, cx + 1.3, cy), 1e-6) << "beyond the footprint";
+  auto luminance = [&](double x, double y) {
+    return (pixel(img, x, y, 0) + pixel(img, x, y, 1) + pixel(img, x, y, 2)) / 3;
+  };
+  EXPECT_GT(std::abs(luminance(cx, cy - 0.7) - luminance(cx + 0.3, cy + 0.2)), 0.02)
+      << "two faces turned differently are shaded differently";
+  if (::testing::Test::HasFailure()) write_debug("mesh_obstacle.png", img);
+}
+
 // ---------------------------------------------------------------------------------
 // Caustics energy on real solver fields (docs/viz.md "Caustics"): the mean floor light the
 // caustics stage gives (as the renderer samples it: texture value x scale(), after its blur),
@@ -818,6 +933,15 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   std::printf("plan view: %d grid points, worst colour difference %.4f (1/255 = %.4f)\n", checked, worst, 1 / 255.0);
   EXPECT_LE(worst, 0.5 / 255.0 + 1e-6);
   if (worst > 0.5 / 255.0 + 1e-6) write_debug("plan_view.png", img);
+  // NaN (dry land over terrain) is drawn sand, the rest as before
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN / 4; ++j) v[i * kN + j] = std::numeric_limits<float>::quiet_NaN();
+  r.render_plan(v, "depth", 1000.0, "mm", false, "test", target);
+  const gl::Image8 dry = target.read();
+  EXPECT_GE(r.plan.hi, max_abs) << "the finite values still set the range";
+  const int xd = static_cast<int>(r.plan.x0 + 0.1 * r.plan.width),
+            yd = static_cast<int>(r.plan.y0 + 0.5 * r.plan.height);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(channel(dry, xd, yd, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6);
 }
 
 // The particle view (plot.hpp, render_particles): particles seen from the side (-y) as discs
@@ -855,6 +979,107 @@ TEST_F(VizRender, ParticleViewDrawsSpeedsNearestFirstAndObstacles) {
   expect_colour(1.5, 0.5, glm::vec3(0.55f), "the obstacle covers the particle behind it");
   expect_colour(0.6, 0.2, glm::vec3(236, 240, 244) / 255.0f, "the tank where no particle is");
   if (::testing::Test::HasFailure()) write_debug("particle_view.png", img);
+  // a mesh obstacle: its triangles, lit, not its bounding box (a face toward the viewer, -y)
+  RenderObstacle tri;
+  tri.kind = RenderObstacle::Kind::mesh;
+  tri.min_m = {0.9, 0.05, 0.0};
+  tri.max_m = {1.3, 0.05, 0.3};
+  tri.triangles_m = {0.9f, 0.05f, 0.0f, 1.3f, 0.05f, 0.0f, 1.1f, 0.05f, 0.3f};
+  render_particles(parts, box, 0.05, std::span(&tri, 1), "test", 0.0, target);
+  const gl::Image8 mesh_img = target.read();
+  const double lit = 0.35 + 0.65 / std::sqrt(0.3 * 0.3 + 1.0 + 0.8 * 0.8);  // n = -y, light (-0.3, -1, 0.8)
+  for (int ch = 0; ch < 3; ++ch) {
+    const double c = glm::vec3(0.62f, 0.60f, 0.57f)[ch] * lit;
+    EXPECT_NEAR(channel(mesh_img, static_cast<int>(p.x0 + 1.1 / box[0] * p.width),
+                        static_cast<int>(p.y0 + p.height - 0.1 / box[2] * p.height), ch),
+                c, 1.0 / 255.0 + 1e-6)
+        << "inside the triangle, lit, channel " << ch;
+    EXPECT_NEAR(channel(mesh_img, static_cast<int>(p.x0 + 0.95 / box[0] * p.width),
+                        static_cast<int>(p.y0 + p.height - 0.25 / box[2] * p.height), ch),
+                glm::vec3(236, 240, 244)[ch] / 255.0, 1e-6)
+        << "the bounding box's corner outside the triangle, channel " << ch;
+  }
+  if (::testing::Test::HasFailure()) write_debug("particle_view_mesh.png", mesh_img);
+}
+
+// Foam (foam.hpp), on a strip 160 points long (dx = 0.25 m, flat bed at 0): a moving bore
+// (Rankine-Hugoniot: 1 m of still water ahead, 1.5 m behind, bore speed S = sqrt(g h1 (h1 + h0) /
+// (2 h0)) = 4.29 m/s, h u = S (h - h0), a tanh front 0.5 m wide) seeds foam at its front, where
+// eta_t / c = S |dh/dx| / c peaks near 0.6, and nowhere in the still water ahead or in the
+// subcritical flow behind it (Froude 0.37); still water seeds none. Then the foam is carried
+// by a uniform flow of one point per step exactly like the dye's step carries it (a shift) and
+// halves every half-life; a steady fast sheet (Froude 10) holds it at f* = r / (lambda + r).
+TEST(VizFoam, BoreSeedsStillWaterDoesNotAdvectedLikeTheDyeHalvesInTheHalfLife) {
+  GridPlacement g;
+  g.rows = 4, g.cols = 160, g.dx = 0.25;
+  const std::size_t R = g.rows, C = g.cols, n = R * C;
+  const double h0 = 1.0, h1 = 1.5, grav = 9.81, S = std::sqrt(grav * h1 * (h1 + h0) / (2.0 * h0));
+  std::vector<float> height(n), u(2 * n, 0.0f);
+  FoamField foam(g, {});
+  // still water: no seed, no foam
+  std::fill(height.begin(), height.end(), static_cast<float>(h0));
+  foam.step(height, u, 0.1);
+  EXPECT_EQ(*std::max_element(foam.seed().begin(), foam.seed().end()), 0.0f) << "still water";
+  EXPECT_EQ(*std::max_element(foam.values().begin(), foam.values().end()), 0.0f) << "still water";
+  // the bore, its front at x = 20 m (point 80) moving along +x
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j) {
+      const double x = g.x(j), h = h0 + (h1 - h0) * 0.5 * (1.0 - std::tanh((x - 20.0) / 0.5));
+      height[i * C + j] = static_cast<float>(h);
+      u[2 * (i * C + j)] = static_cast<float>(S * (h - h0) / h);
+    }
+  foam.step(height, u, 0.05);
+  const std::span<const float> row1 = foam.seed().subspan(C, C);
+  const auto top = std::max_element(row1.begin(), row1.end());
+  EXPECT_GT(*top, 0.5f) << "at the front";
+  EXPECT_NEAR(g.x(static_cast<std::size_t>(top - row1.begin())), 20.0, 0.5) << "the seed's peak at the front";
+  for (std::size_t j = 0; j < C; ++j) {
+    if (std::abs(g.x(j) - 20.0) > 2.5) {
+      EXPECT_EQ(row1[j], 0.0f) << "away from the front, point " << j;
+    }
+  }
+  EXPECT_GT(foam.values()[C + 80], 0.2f) << "foam at the front after 0.05 s of seeding";
+  // carried: one point per step along +x in still water at rest depth (no seed): the dye's step
+  // shifts the pattern, the foam fades by 2^(-dt / half-life) per step
+  const std::vector<float> start(foam.values().begin(), foam.values().end());
+  std::fill(height.begin(), height.end(), static_cast<float>(h0));
+  const double dt = 0.25, half = foam.params().half_life_s;
+  for (std::size_t k = 0; k < 2 * n; k += 2) u[k] = static_cast<float>(g.dx / dt), u[k + 1] = 0.0f;
+  std::vector<float> dyed = start, next(n);
+  const int steps = static_cast<int>(std::lround(half / dt));  // exactly one half-life
+  ASSERT_DOUBLE_EQ(steps * dt, half);
+  for (int k = 0; k < steps; ++k) {
+    foam.step(height, u, dt);
+    advect_semi_lagrangian(g, u, dt, dyed, next);
+    dyed.swap(next);
+  }
+  EXPECT_EQ(*std::max_element(foam.seed().begin(), foam.seed().end()), 0.0f) << "Froude 0.32, no seed";
+  for (std::size_t k = 0; k < n; ++k) EXPECT_NEAR(foam.values()[k], 0.5f * dyed[k], 1e-6f) << "point " << k;
+  for (std::size_t j = static_cast<std::size_t>(steps); j < C; ++j)
+    EXPECT_NEAR(foam.values()[C + j], 0.5f * start[C + j - steps], 1e-6f) << "shifted by " << steps << ", point " << j;
+  // a steady sheet at Froude 10 (over froude_full): f* = r / (lambda + r) everywhere
+  ASSERT_LT(foam.params().froude_full, 10.0);
+  for (std::size_t k = 0; k < 2 * n; k += 2) u[k] = static_cast<float>(10.0 * std::sqrt(grav * h0));
+  for (int k = 0; k < 100; ++k) foam.step(height, u, 0.1);
+  const double lambda = std::log(2.0) / half, r = 1.0 / foam.params().seed_time_s;
+  for (std::size_t k = 0; k < n; ++k) EXPECT_NEAR(foam.values()[k], r / (lambda + r), 1e-5) << "point " << k;
+}
+
+// Foam behind an obstacle (foam.hpp's shear seed): a shear layer u = U tanh(y / delta) (U =
+// 0.3 m/s, delta = 2 cm, 0.1 m deep: |omega| sqrt(h / g) = 1.5 at y = 0, Froude 0.3) seeds along
+// its middle and not in the uniform flow on either side.
+TEST(VizFoam, ShearLayerSeeds) {
+  GridPlacement g;
+  g.rows = 40, g.cols = 10, g.dx = 0.01;
+  const std::size_t R = g.rows, C = g.cols;
+  std::vector<float> height(R * C, 0.1f), u(2 * R * C, 0.0f);
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j) u[2 * (i * C + j)] = static_cast<float>(0.3 * std::tanh((g.y(i) - 0.2) / 0.02));
+  FoamField foam(g, {});
+  foam.step(height, u, 0.01);
+  EXPECT_EQ(foam.seed()[20 * C + 5], 1.0f) << "in the shear layer";
+  EXPECT_EQ(foam.seed()[3 * C + 5], 0.0f) << "in the uniform flow";
+  EXPECT_EQ(foam.seed()[37 * C + 5], 0.0f) << "in the uniform flow";
 }
 
 // Dye (dye.hpp): a uniform flow of exactly one grid point per step along x moves the bands

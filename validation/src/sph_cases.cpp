@@ -84,9 +84,11 @@ std::vector<ValidationRow> sph_kernel_rows(float support_factor) {
   rows.push_back(
       check(c, "viscosity Laplacian second moment, V = m/rho0" + at + " (1)", lap2 / s6, 1, rel(lap2 / s6, 1), 0.01));
   rows.push_back(check(c, "spiky gradient antisymmetry |grad W(r) + grad W(-r)| (1/m^4)", anti, 0, anti, 1e-7));
-  rows.push_back(check(c, "spiky value lattice sum" + at + " (unused: cusp at 0) (1)", ssp, 1, rel(ssp, 1), 0.01));
-  rows.push_back(check(c, "viscosity value lattice sum without r = 0" + at + " (unused: singular) (1)", svi, 1,
-                       rel(svi, 1), 0.01));
+  // reported, not judged: the solver uses spiky and viscosity only through their gradient and
+  // Laplacian, so their value sums at h = 2 dx are no target (the convergence rows below are)
+  rows.push_back(report_only(c, "spiky value lattice sum" + at + " (unused: cusp at 0) (1)", ssp, 1, rel(ssp, 1)));
+  rows.push_back(report_only(c, "viscosity value lattice sum without r = 0" + at + " (unused: singular) (1)", svi, 1,
+                             rel(svi, 1)));
   double t6, tsp, tvi, tm, tl, ta;
   lattice(8.f, t6, tsp, tvi, tm, tl, ta);
   rows.push_back(check(c, "spiky value lattice sum at h = 8 dx (convergence) (1)", tsp, 1, rel(tsp, 1), 0.01));
@@ -96,10 +98,13 @@ std::vector<ValidationRow> sph_kernel_rows(float support_factor) {
   return rows;
 }
 
-std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double relax_s, double hold_s) {
-  const std::string c = "sph_hydrostatic";
+std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double relax_s, double hold_s,
+                                                SphMethod method) {
+  const bool df = method == SphMethod::dfsph;
+  const std::string c = df ? "sph_hydrostatic_dfsph" : "sph_hydrostatic";
   const float dx = 0.005f;
   SphParams p;
+  p.method = method;
   p.spacing_m = dx;
   p.container_m = {nx * dx, nx * dx, 2.f * nz * dx};
   p.fluid.push_back({{0, 0, 0}, {nx * dx, nx * dx, nz * dx}});
@@ -146,9 +151,14 @@ std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s,
       check(c, "bottom pressure from the p(z) fit (Pa) vs weight/area", a, expected, rel(a, expected), 0.02));
   rows.push_back(check(c, "pressure gradient -dp/dz (Pa/m) vs rho0 g", -b, p.rest_density_kgpm3 * kG,
                        rel(-b, p.rest_density_kgpm3 * kG), 0.02));
+  if (df) {
+    const double rgh = p.rest_density_kgpm3 * kG * H;
+    rows.push_back(check(c, "bottom pressure from the p(z) fit (Pa) vs rho0 g H", a, rgh, rel(a, rgh), 0.02));
+  }
   rows.push_back(check(c, "max compression max(rho/rho0 - 1) (1)", comp, 0, comp, 0.01));
+  // DFSPH solves for the density: 0.1 % (WCSPH: 1 %, the Mach number of its sound speed)
   rows.push_back(check(c, "mean |rho/rho0 - 1| below the surface layer (1)", mean_err / std::max<std::size_t>(ni, 1), 0,
-                       mean_err / std::max<std::size_t>(ni, 1), 0.01));
+                       mean_err / std::max<std::size_t>(ni, 1), df ? 0.001 : 0.01));
   const double ref = std::sqrt(kG * H);
   rows.push_back(check(c, "max speed over " + num(hold_s, 3) + " s / sqrt(g H) (1)", vmax / ref, 0, vmax / ref, 0.01));
   return rows;
@@ -175,9 +185,10 @@ std::size_t count_outside(const SphSystem& s, const std::array<float, 3>& L, flo
 }
 
 // dam break: column width a, height 2a, `na` particles across, 4 layers thick between free-slip walls
-DamRun run_dam(int na, double T_end, double t_end, float container_len) {
+DamRun run_dam(int na, double T_end, double t_end, float container_len, SphMethod method = SphMethod::wcsph) {
   const float a = 0.05715f, dx = a / na;
   SphParams p;
+  p.method = method;
   p.spacing_m = dx;
   p.container_m = {container_len * a, 4 * dx, 4 * a};
   p.fluid.push_back({{0, 0, 0}, {a, 4 * dx, 2 * a}});
@@ -234,10 +245,11 @@ SphHeightfield default_heightfield(const SphSystem& s, const SphParams& p, float
 
 }  // namespace
 
-std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::vector<MartinMoycePoint>& measured) {
-  const std::string c = "sph_dam_break";
+std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::vector<MartinMoycePoint>& measured,
+                                              SphMethod method) {
+  const std::string c = method == SphMethod::dfsph ? "sph_dam_break_dfsph" : "sph_dam_break";
   if (measured.empty()) return {check(c, "no measured points given", 0, 1, 1, 0)};
-  const DamRun run = run_dam(na, T_end + 0.05, 0.0, 8.f);
+  const DamRun run = run_dam(na, T_end + 0.05, 0.0, 8.f, method);
   std::vector<ValidationRow> rows;
   for (const auto& pt : measured) {
     if (pt.T > T_end || pt.T > 5.0) continue;
@@ -432,6 +444,11 @@ std::vector<ValidationCase> sph_validation_cases() {
        [] { return sph_hydrostatic_rows(6, 16, 1.0, 5.0, 10.0); }},
       {"sph_dam_break", "sph", "surge front vs Martin & Moyce (1952), both series, 16 particles across a, T <= 5",
        [] { return sph_dam_break_rows(16, 5.0, martin_moyce_1952()); }},
+      {"sph_hydrostatic_dfsph", "sph",
+       "DFSPH: the column of sph_hydrostatic (1 s damped, 5 s free, 10 s): bottom pressure 2 %, density error 0.1 %",
+       [] { return sph_hydrostatic_rows(6, 16, 1.0, 5.0, 10.0, SphMethod::dfsph); }},
+      {"sph_dam_break_dfsph", "sph", "DFSPH: the surge front of sph_dam_break (Martin & Moyce 1952, 16 across, T <= 5)",
+       [] { return sph_dam_break_rows(16, 5.0, martin_moyce_1952(), SphMethod::dfsph); }},
       {"sph_no_leakage", "sph",
        "dam break: no particle leaves the box, finite, max speed < 1.5 sqrt(2 g H); 10 s at 8 across in a 4a box, "
        "and the shipped scene's set-up (16 across, 8a box) over its wall impact (1 s; stress:sph runs it 10 s)",

@@ -18,10 +18,10 @@ void DyeField::reset() {
   }
 }
 
-void DyeField::advect(std::span<const float> velocity, double dt) {
-  const std::size_t R = grid_.rows, C = grid_.cols;
-  if (velocity.size() != 2 * R * C || !(dt > 0.0) || R < 2 || C < 2) return;
-  const double s = dt / grid_.dx;  // grid points per (m/s) over the step
+void advect_semi_lagrangian(const GridPlacement& grid, std::span<const float> velocity, double dt,
+                            std::span<const float> in, std::span<float> out) {
+  const std::size_t R = grid.rows, C = grid.cols;
+  const double s = dt / grid.dx;  // grid points per (m/s) over the step
   for (std::size_t i = 0; i < R; ++i)
     for (std::size_t j = 0; j < C; ++j) {
       const std::size_t k = i * C + j;
@@ -32,10 +32,16 @@ void DyeField::advect(std::span<const float> velocity, double dt) {
                         i0 = std::min(static_cast<std::size_t>(y), R - 2);
       const float fx = static_cast<float>(x - static_cast<double>(j0)),
                   fy = static_cast<float>(y - static_cast<double>(i0));
-      const float* r0 = &c_[i0 * C + j0];
+      const float* r0 = &in[i0 * C + j0];
       const float* r1 = r0 + C;
-      next_[k] = (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
+      out[k] = (1 - fy) * ((1 - fx) * r0[0] + fx * r0[1]) + fy * ((1 - fx) * r1[0] + fx * r1[1]);
     }
+}
+
+void DyeField::advect(std::span<const float> velocity, double dt) {
+  const std::size_t R = grid_.rows, C = grid_.cols;
+  if (velocity.size() != 2 * R * C || !(dt > 0.0) || R < 2 || C < 2) return;
+  advect_semi_lagrangian(grid_, velocity, dt, c_, next_);
   c_.swap(next_);
 }
 

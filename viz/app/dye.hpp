@@ -14,6 +14,13 @@
 
 namespace huygens {
 
+/// The semi-Lagrangian step of a scalar carried by `velocity` (rows x cols x 2, (u, v) per
+/// point, m/s) over `dt` seconds: out(x) = in(x - u(x) dt), bilinear, the backtrace clamped to
+/// the region (an edge point whose backtrace leaves it keeps its value). `in` and `out` are
+/// rows x cols and distinct; nothing is allocated. Shared by the dye and the foam (foam.hpp).
+void advect_semi_lagrangian(const GridPlacement& grid, std::span<const float> velocity, double dt,
+                            std::span<const float> in, std::span<float> out);
+
 class DyeField {
  public:
   /// `bands` alternating bands across y (unit: bands).

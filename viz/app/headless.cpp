@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "dye.hpp"
+#include "foam.hpp"
 #include "huygens/pipeline/runner.hpp"
 
 namespace huygens {
@@ -12,9 +13,7 @@ namespace huygens {
 HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   const SceneView view = scene_view(scene.info);
   WaterRenderer renderer(view.grid, view.ground_z, opt.subsample);
-  renderer.set_height_offset(view.height_offset);
-  renderer.set_bed(view.bed);
-  renderer.set_obstacles(view.obstacles);
+  place_scene(renderer, view);
   const GridPlacement& g = view.grid;
   const double aspect = static_cast<double>(opt.width) / opt.height;
   const std::string name = scene.name;
@@ -31,13 +30,17 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   std::vector<float> field(g.rows * g.cols), velocity(2 * g.rows * g.cols);
   std::vector<ShipPose> ships;
   HeadlessResult res;
-  // the dye needs the flow's history: every frame from t = 0, the last `frames` drawn
-  // (the plan's dye view, and the perspective picture of a flow, whose water the dye tints)
+  // the dye and the foam need the flow's history: every frame from t = 0, the last `frames`
+  // drawn (the plan's dye and foam views, and the perspective picture of a flow, whose water
+  // the dye tints and the foam covers)
   const bool dye_view = opt.plan ? opt.plan_quantity == PlanQuantity::dye : opt.settings.dye && opt.flow;
+  const bool foam_view = opt.plan ? opt.plan_quantity == PlanQuantity::foam : opt.settings.foam && opt.flow;
   DyeField dye(g);
-  const int skipped = dye_view ? static_cast<int>(std::floor(opt.time / view.frame_dt + 1e-9)) : 0;
-  const double t_first = dye_view ? opt.time - skipped * view.frame_dt : opt.time;
-  double dye_time = 0.0;
+  FoamField foam(g, scene.info.bed_m);
+  const bool history = dye_view || foam_view;
+  const int skipped = history ? static_cast<int>(std::floor(opt.time / view.frame_dt + 1e-9)) : 0;
+  const double t_first = history ? opt.time - skipped * view.frame_dt : opt.time;
+  double flow_time = 0.0;
   bool has_velocity = false;
   for (int k = 0; k < skipped + opt.frames; ++k) {
     const double t = t_first + k * view.frame_dt;
@@ -49,9 +52,11 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     }
     const FramePair frames = runner.frames();
     has_velocity = frames.velocity(velocity);
-    if (dye_view && has_velocity) {
-      dye.advect(velocity, frames.newest->info.time_s - dye_time);
-      dye_time = frames.newest->info.time_s;
+    if (history && has_velocity && frames.newest->info.time_s > flow_time) {
+      const double dt = frames.newest->info.time_s - flow_time;
+      if (dye_view) dye.advect(velocity, dt);
+      if (foam_view) foam.step(frames.newest->eta.span(), velocity, dt);
+      flow_time = frames.newest->info.time_s;
     }
     if (k < skipped) continue;                    // the dye's history: not drawn
     frames.sample(runner.display_time(), field);  // the newest frame (the clock never runs ahead of it)
@@ -59,6 +64,7 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     frame_ships(view, frames, runner.display_time(), ships);  // where the solver has them
     renderer.set_ships(ships);
     if (dye_view && has_velocity) renderer.set_dye(dye.values());
+    if (foam_view && has_velocity) renderer.set_foam(foam.values());
     if (!opt.custom_camera && !ships.empty() && view.follow_ship) {
       if (!camera_placed) cam = start_camera(view, aspect, &ships[0]);
       follow_ship(view, ships[0], cam);
@@ -69,6 +75,7 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
       render_plan_view(
           renderer, view,
           PlanData{field, has_velocity ? std::span<const float>(velocity) : std::span<const float>{}, dye.values(),
+                   foam.values(),
                    frames.newest->has_particles ? frames.newest->particles.span() : std::span<const float>{}},
           opt.plan_quantity, frames.newest->info.time_s, name, target);
     else

@@ -7,8 +7,8 @@
 // Frame k (k = 0 .. frames-1) shows display time T + k frame_dt (RenderInfo::frame_dt_s); the
 // runner publishes every step at or before it, and the frame drawn is the newest (the last full
 // step at or before the display time: no interpolation, deterministic, exact at step times).
-// The image is the last frame. The dye view advects its dye through every frame from t = 0
-// (frame_dt apart), drawing only the last `frames` of them.
+// The image is the last frame. A flow's dye and foam are advected through every frame from
+// t = 0 (frame_dt apart), drawing only the last `frames` of them.
 #include <string>
 
 #include "camera.hpp"
@@ -36,7 +36,7 @@ struct HeadlessOptions {
   bool plan = false;
   PlanQuantity plan_quantity = PlanQuantity::level;
   /// The scene's frames carry a velocity (solver_has_velocity): the perspective picture shows
-  /// the dye it carries from t = 0 (RenderSettings::dye).
+  /// the dye and the foam it carries from t = 0 (RenderSettings::dye, foam).
   bool flow = false;
 };
 

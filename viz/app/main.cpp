@@ -13,8 +13,12 @@
 #include <exception>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app.hpp"
+#include "dye.hpp"
+#include "foam.hpp"
 #include "gl.hpp"
 #include "huygens/common/atomic_file.hpp"
 #include "huygens/common/memory.hpp"
@@ -44,10 +48,12 @@ void usage(std::FILE* f) {
                "  --schlick             Schlick Fresnel (the default; --paper-fresnel: clamp(1 - 2.5 n.v))\n"
                "  --paper-fresnel       the paper's Fresnel f = clamp(1 - 2.5 n.v) and glint\n"
                "  --no-caustics         do not light the ground with caustics\n"
+               "  --no-foam             LBM: do not draw the foam the flow carries (default: drawn)\n"
                "  --caustics-mode M     conserving (default: explicit area, float), mip_paper (the paper's\n"
                "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8\n"
                "  --view V              perspective (default) or plan (colour map, colour bar, axes in metres);\n"
-               "                        LBM: speed or dye (the flow's speed, dye it carries); SPH: particles\n"
+               "                        LBM: speed, dye or foam (the flow's speed, the dye and foam it\n"
+               "                        carries); SPH: particles\n"
                "                        (seen from the side, coloured by speed)\n"
                "  --benchmark           print per-pass render times at 1280x720 and 640x360 (headless)\n"
                "  --auto-frames N       window: after N frames press S, then quit (smoke test)\n"
@@ -55,9 +61,9 @@ void usage(std::FILE* f) {
                "Exit codes: 0 ok; 1 a write or the GL context failed; 2 bad scene or usage; 3 non-finite\n"
                "  value; 4 not enough memory for the scene.\n"
                "Keys (window): space pause, R reset, F1 hide panel, S screenshot, E exact/linearised,\n"
-               "  F Fresnel model, P plan view (again: speed, dye or particles), Esc quit. Mouse: left click\n"
-               "  drops a stone, left drag on a ship moves it, right drag orbits, middle drag (or shift+right)\n"
-               "  pans, wheel zooms.\n",
+               "  F Fresnel model, P plan view (again: speed, dye, foam or particles), Esc quit.\n"
+               "Mouse: left click drops a stone, left drag on a ship moves it, right drag orbits, middle\n"
+               "  drag (or shift+right) pans, wheel zooms.\n",
                builtin_scene_names());
 }
 
@@ -68,7 +74,7 @@ struct CliOptions {
   int frames = 1, w = 1280, h = 720, subsample = 4, auto_frames = 0;
   /// Display time of the first headless frame (unit: s).
   double time = 0.0;
-  bool exact = false, schlick = false, paper_fresnel = false, no_caustics = false;
+  bool exact = false, schlick = false, paper_fresnel = false, no_caustics = false, no_foam = false;
   /// "" = the scene's; else perspective / plan.
   std::string view;
   /// "" = the scene's; else a CausticsMode name.
@@ -109,10 +115,13 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
                               : o.benchmark) = true;
     } else if (a == "--paper-fresnel") {
       o.paper_fresnel = true;
+    } else if (a == "--no-foam") {
+      o.no_foam = true;
     } else if (a == "--view") {
       o.view = nonempty_arg(a, next());
-      if (o.view != "perspective" && o.view != "plan" && o.view != "speed" && o.view != "dye" && o.view != "particles")
-        throw UsageError("--view takes perspective, plan, speed, dye or particles");
+      if (o.view != "perspective" && o.view != "plan" && o.view != "speed" && o.view != "dye" && o.view != "foam" &&
+          o.view != "particles")
+        throw UsageError("--view takes perspective, plan, speed, dye, foam or particles");
     } else if (a == "--caustics-mode") {
       o.caustics_mode = nonempty_arg(a, next());
       if (o.caustics_mode != "conserving" && o.caustics_mode != "mip_paper" && o.caustics_mode != "mip_float" &&
@@ -199,6 +208,33 @@ BenchmarkRows benchmark_row(WaterRenderer& renderer, const OrbitCamera& cam, con
            fmt("%.2f", median(cca) / std::max(ctotal - median(cca), 1e-9))}};
 }
 
+// A flow's dye and foam (LBM; dye.hpp, foam.hpp): their CPU step per displayed frame (median of
+// 10, unit: ms) with the solver's velocity now, and both handed to the renderer so the surface
+// pass draws them as in the app. {0, 0} when the solver has no velocity on the visible grid.
+std::pair<double, double> flow_step_times(Solver& solver, const ViewerSolver& vs, const SceneView& view,
+                                          WaterRenderer& renderer, DyeField& dye, FoamField& foam) {
+  const std::vector<OutputField> outs = solver.outputs();
+  const std::size_t n = view.grid.rows * view.grid.cols;
+  std::span<const float> u;
+  for (const OutputField& f : outs)
+    if (f.name == "u" && f.data.size() == 2 * n) u = f.data;
+  if (u.empty()) return {0.0, 0.0};
+  const std::span<const float> eta = solver.height();
+  using clock = std::chrono::steady_clock;
+  std::vector<double> d_ms, f_ms;
+  for (int i = 0; i < 10; ++i) {
+    auto t0 = clock::now();
+    dye.advect(u, vs.info.frame_dt_s);
+    d_ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - t0).count());
+    t0 = clock::now();
+    foam.step(eta, u, vs.info.frame_dt_s);
+    f_ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - t0).count());
+  }
+  renderer.set_dye(dye.values());
+  renderer.set_foam(foam.values());
+  return {median(d_ms), median(f_ms)};
+}
+
 // Per-pass render times (median of repeated frames, glFinish around each pass) and the
 // simulation's share of a frame: one full step per display_per_step frames.
 int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample) {
@@ -220,9 +256,7 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
       "%d displayed frames per step\n\n",
       view.grid.rows, view.grid.cols, subsample, step_ms, vs.info.display_per_step);
   WaterRenderer renderer(view.grid, view.ground_z, subsample);
-  renderer.set_height_offset(view.height_offset);
-  renderer.set_bed(view.bed);
-  renderer.set_obstacles(view.obstacles);
+  place_scene(renderer, view);
   std::array<ShipState, kMaxFrameShips> states{};
   std::vector<ShipPose> ships;
   for (std::size_t i = 0; i < solver.ship_poses(states) && i < view.hulls.size(); ++i)
@@ -231,6 +265,9 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   const GridPlacement& g = view.grid;
   OrbitCamera cam = setup.camera;
   if (view.follow_ship && !ships.empty()) follow_ship(view, ships[0], cam);
+  DyeField dye(view.grid);
+  FoamField foam(view.grid, vs.info.bed_m);
+  const auto [dye_ms, foam_ms] = flow_step_times(solver, vs, view, renderer, dye, foam);
   Table t({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship+solids", "tone map",
            "render total", "caustics / rest", "sim/frame", "sim share"});
   Table tc({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship+solids", "tone map",
@@ -257,6 +294,11 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   }
   std::printf("camera move: linearised refraction coefficients recomputed in %.2f ms (median of 5, CPU)\n",
               median(lin_ms));
+  if (dye_ms > 0.0 || foam_ms > 0.0)
+    std::printf(
+        "flow (once per new frame, CPU, median of 10): dye step %.2f ms, foam step %.2f ms; drawn in the surface "
+        "pass above: dye %s, foam %s\n",
+        dye_ms, foam_ms, settings.dye ? "on" : "off", settings.foam ? "on" : "off");
   std::printf(
       "times in ms per displayed frame (median of 10 after 2 warm-up frames, glFinish after each pass);\n"
       "sim share = simulation time per displayed frame / (simulation + render) when both run on one core.\n");
@@ -300,6 +342,7 @@ int run(CliOptions o) {
   if (o.schlick) settings.fresnel = FresnelModel::schlick;
   if (o.paper_fresnel) settings.fresnel = FresnelModel::paper, settings.paper_glint = true;
   if (o.no_caustics) settings.caustics = false;
+  if (o.no_foam) settings.foam = false;
   if (!o.caustics_mode.empty())
     settings.caustics_mode = o.caustics_mode == "mip_paper"     ? CausticsMode::mip_paper
                              : o.caustics_mode == "mip_float"   ? CausticsMode::mip_float
@@ -308,9 +351,11 @@ int run(CliOptions o) {
   const bool plan = o.view.empty() ? vs.info.request.plan_view.value_or(false) : o.view != "perspective";
   const PlanQuantity quantity = o.view == "speed"       ? PlanQuantity::speed
                                 : o.view == "dye"       ? PlanQuantity::dye
+                                : o.view == "foam"      ? PlanQuantity::foam
                                 : o.view == "particles" ? PlanQuantity::particles
                                                         : PlanQuantity::level;
-  if ((quantity == PlanQuantity::speed || quantity == PlanQuantity::dye) && !solver_has_velocity(*vs.solver))
+  if ((quantity == PlanQuantity::speed || quantity == PlanQuantity::dye || quantity == PlanQuantity::foam) &&
+      !solver_has_velocity(*vs.solver))
     throw UsageError("--view " + o.view + " needs a flow's velocity: the LBM scenes (dam_break, channel, flood)");
   if (quantity == PlanQuantity::particles && !vs.info.particle_box_m)
     throw UsageError("--view particles needs a particle solver: the SPH scenes (pool, sph_dam_break)");

@@ -179,8 +179,14 @@ struct SideImage {
   double ppm;  // pixels per metre
   std::vector<std::uint8_t> rgba;
   std::vector<float> depth;
+  std::vector<std::uint8_t> covered;  // pixels a mesh obstacle covers, whatever is in front
   SideImage(int w_, int h_, double ppm_)
-      : w(w_), h(h_), ppm(ppm_), rgba(4 * std::size_t(w_) * h_, 255), depth(std::size_t(w_) * h_, 1e30f) {
+      : w(w_),
+        h(h_),
+        ppm(ppm_),
+        rgba(4 * std::size_t(w_) * h_, 255),
+        depth(std::size_t(w_) * h_, 1e30f),
+        covered(std::size_t(w_) * h_, 0) {
     for (std::size_t k = 0; k < depth.size(); ++k)  // a pale blue-grey tank
       rgba[4 * k] = 236, rgba[4 * k + 1] = 240, rgba[4 * k + 2] = 244;
   }
@@ -195,6 +201,42 @@ struct SideImage {
   void box(double x0, double z0, double x1, double z1, float y, glm::vec3 c) {
     for (int j = int(std::floor(z0 * ppm)); j < int(std::ceil(z1 * ppm)); ++j)
       for (int i = int(std::floor(x0 * ppm)); i < int(std::ceil(x1 * ppm)); ++i) put(i, j, y, c);
+  }
+  // a triangle of corners (x, y, z) (m) projected on x-z, its depth y interpolated across it,
+  // lit by a light from the viewer's side and above: c (0.35 + 0.65 max(n.l, 0)), n the face
+  // normal turned to the viewer (-y)
+  void triangle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, glm::vec3 colour) {
+    glm::dvec3 n = glm::cross(b - a, c - a);
+    if (glm::length(n) == 0.0) return;
+    n = glm::normalize(n);
+    if (n.y > 0.0) n = -n;
+    const double lambert = std::max(0.0, glm::dot(n, glm::normalize(glm::dvec3(-0.3, -1.0, 0.8))));
+    const glm::vec3 lit = colour * static_cast<float>(0.35 + 0.65 * lambert);
+    const glm::dvec2 pa(a.x * ppm, a.z * ppm), pb(b.x * ppm, b.z * ppm), pc(c.x * ppm, c.z * ppm);
+    const double det = (pb.x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (pb.y - pa.y);
+    if (std::abs(det) < 1e-9) return;  // seen edge-on
+    const int i0 = int(std::floor(std::min({pa.x, pb.x, pc.x}))), i1 = int(std::ceil(std::max({pa.x, pb.x, pc.x})));
+    const int j0 = int(std::floor(std::min({pa.y, pb.y, pc.y}))), j1 = int(std::ceil(std::max({pa.y, pb.y, pc.y})));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const double x = i + 0.5, z = j + 0.5;
+        const double wb = ((x - pa.x) * (pc.y - pa.y) - (pc.x - pa.x) * (z - pa.y)) / det;
+        const double wc = ((pb.x - pa.x) * (z - pa.y) - (x - pa.x) * (pb.y - pa.y)) / det;
+        if (wb < 0.0 || wc < 0.0 || wb + wc > 1.0) continue;
+        put(i, j, static_cast<float>(a.y + wb * (b.y - a.y) + wc * (c.y - a.y)), lit);
+        if (i >= 0 && j >= 0 && i < w && j < h) covered[std::size_t(j) * w + i] = 1;
+      }
+  }
+  // the outline of the meshes' projection (covered pixels next to uncovered ones), drawn over
+  // everything: where water stands in front of a mesh, its place still reads
+  void outline(glm::vec3 c) {
+    auto cov = [&](int i, int j) { return i >= 0 && j >= 0 && i < w && j < h && covered[std::size_t(j) * w + i]; };
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i)
+        if (cov(i, j) && !(cov(i - 1, j) && cov(i + 1, j) && cov(i, j - 1) && cov(i, j + 1))) {
+          depth[std::size_t(j) * w + i] = 1e30f;
+          put(i, j, -1e30f, c);
+        }
   }
   // a disc of radius r (px) centred at (x, z) (m)
   void disc(double x, double z, double r, float y, glm::vec3 c) {
@@ -226,6 +268,13 @@ WaterRenderer::PlanPlot render_particles(std::span<const float> particles, const
   const int w = std::max(1, int(std::lround(rect.width))), h = std::max(1, int(std::lround(rect.height)));
   SideImage img(w, h, w / box_m[0]);
   for (const RenderObstacle& o : obstacles) {
+    if (o.kind == RenderObstacle::Kind::mesh) {
+      const std::vector<float>& t = o.triangles_m;
+      for (std::size_t k = 0; k + 9 <= t.size(); k += 9)
+        img.triangle({t[k], t[k + 1], t[k + 2]}, {t[k + 3], t[k + 4], t[k + 5]}, {t[k + 6], t[k + 7], t[k + 8]},
+                     glm::vec3(0.62f, 0.60f, 0.57f));
+      continue;
+    }
     const bool cyl = o.kind == RenderObstacle::Kind::cylinder;
     const double x0 = cyl ? o.centre_m[0] - o.radius_m : o.min_m[0], x1 = cyl ? o.centre_m[0] + o.radius_m : o.max_m[0];
     const double z0 = std::max(0.0, cyl ? o.z0_m : o.min_m[2]), z1 = std::min(box_m[2], cyl ? o.z1_m : o.max_m[2]);
@@ -239,6 +288,7 @@ WaterRenderer::PlanPlot render_particles(std::span<const float> particles, const
     const double shade = 1.0 - 0.45 * std::clamp(q[1] / box_m[1], 0.0, 1.0);  // farther = darker
     img.disc(q[0], q[2], r_px, q[1], plan_colour(t, false) * static_cast<float>(shade));
   }
+  img.outline(glm::vec3(0.2f));
   draw_plot(rect, spec, img.rgba, w, h, target);
   return rect;
 }

@@ -16,6 +16,8 @@ namespace huygens {
 
 /// The plot's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
 glm::vec3 plan_colour(double t, bool diverging);
+/// The plan view's colour of a NaN value (dry land over terrain): a sand tone outside both maps.
+inline const glm::vec3 kPlanDryLand(0.80f, 0.72f, 0.55f);
 
 /// A "nice" step (1, 2 or 5 times a power of ten) giving about `n` intervals over `range`.
 double nice_step(double range, int n);
@@ -48,8 +50,10 @@ void draw_plot(const WaterRenderer::PlanPlot& rect, const PlotSpec& spec, const 
 
 /// A particle solver's particles (x, y, z, speed per particle: Solver::particles()) seen from the
 /// side (-y), as discs of `radius_m` coloured by speed, nearer particles over farther ones and
-/// shaded darker with distance, the obstacles as grey silhouettes at their depth, inside the
-/// container box (0, 0, 0)-(box_m) drawn as the plot's frame. Returns the plot's rectangle.
+/// shaded darker with distance, the obstacles as grey silhouettes at their depth (a mesh as its
+/// triangles, lit, and the outline of its projection drawn over the particles in front of it),
+/// inside the container box (0, 0, 0)-(box_m) drawn as the plot's frame. Returns the plot's
+/// rectangle.
 WaterRenderer::PlanPlot render_particles(std::span<const float> particles, const std::array<double, 3>& box_m,
                                          double radius_m, std::span<const RenderObstacle> obstacles,
                                          const std::string& title, double reserve_right, const RenderTarget& target);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <ctime>
 #include <glm/gtc/type_ptr.hpp>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -232,7 +233,7 @@ WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int sub
   flat_light_tex_.upload(&one, GL_RED, GL_UNSIGNED_BYTE);
 
   build_surface_mesh();
-  // ground: one large floor quad, 5 visible extents wide, centred on the visible region
+  // ground: one large floor quad, 5 times the region's longer side, centred on the visible region
   // (vertices 0-5); then the floor under the region and a deck at the rest level around it,
   // 2 extents wide (vertices 6-35, RenderSettings::pool_deck)
   const double w = grid_.cols * grid_.dx, h = grid_.rows * grid_.dx;
@@ -246,7 +247,11 @@ WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int sub
   auto quad = [&](float x0, float y0, float x1, float y1, float z) {
     quads.insert(quads.end(), {x0, y0, z, x1, y0, z, x1, y1, z, x0, y0, z, x1, y1, z, x0, y1, z});
   };
-  quad(gx0, gy0, gx1, gy1, gz);
+  // the large floor (seen without a deck: a quasi-2D slab from the side) reaches 2.5 times the
+  // region's longer side from its middle both ways, so a slab's floor is not a narrow strip
+  const double far = 2.5 * std::max(w, h), mx = grid_.x0 + 0.5 * w, my = grid_.y0 + 0.5 * h;
+  quad(static_cast<float>(mx - far), static_cast<float>(my - far), static_cast<float>(mx + far),
+       static_cast<float>(my + far), gz);
   quad(ax, ay, bx, by, gz);
   // deck: south, north, west, east, reaching 1.5 cells under the water's outline so that no
   // gap opens between its edge and a wave trough there
@@ -300,6 +305,12 @@ void WaterRenderer::set_heights(std::span<const float> eta) {
   if (!fill_from_.empty())
     for (std::size_t k = 0; k < eta_.size(); ++k)
       if (fill_from_[k] != k) eta_[k] = eta_[fill_from_[k]];
+  // over a mesh obstacle the surface is not below the solid's top (a dry column there, which an
+  // SPH solver reports as height 0, lies just inside the solid and is hidden by it)
+  if (!mesh_top_.empty()) {
+    const float inset = static_cast<float>(0.25 * grid_.dx);
+    for (std::size_t k = 0; k < eta_.size(); ++k) eta_[k] = std::max(eta_[k], mesh_top_[k] - inset);
+  }
   subsample_heights(eta_, grid_.rows, grid_.cols, static_cast<std::size_t>(subsample_), layout_, mesh_h_);
   height_differences(eta_, grid_.rows, grid_.cols, diffs_);
   heights_dirty_ = true;
@@ -314,6 +325,16 @@ void WaterRenderer::set_dye(std::span<const float> dye) {
     dye_tex_.set_filter(GL_LINEAR, GL_LINEAR);
   }
   dye_tex_.upload(dye.data(), GL_RED, GL_FLOAT);
+}
+
+void WaterRenderer::set_foam(std::span<const float> foam) {
+  has_foam_ = foam.size() == grid_.rows * grid_.cols;
+  if (!has_foam_) return;
+  if (foam_tex_.width() != static_cast<int>(grid_.cols)) {
+    foam_tex_ = gl::Texture(static_cast<int>(grid_.cols), static_cast<int>(grid_.rows), GL_R32F);
+    foam_tex_.set_filter(GL_LINEAR, GL_LINEAR);
+  }
+  foam_tex_.upload(foam.data(), GL_RED, GL_FLOAT);
 }
 
 void WaterRenderer::set_bed(std::span<const float> bed) {
@@ -397,10 +418,51 @@ void WaterRenderer::build_ground_texture(const RenderSettings& s) {
   ground_tex_.set_wrap(GL_REPEAT);
 }
 
+// A mesh obstacle (RenderObstacle::Kind::mesh): its triangles among the solids, and per grid
+// point the highest z of the mesh above it (mesh_top_; the water surface is kept at least that
+// high, set_heights) and the outline of its footprint (mesh_outline_, grey in the plan view).
+void WaterRenderer::add_mesh_solids(std::span<const RenderObstacle> obstacles) {
+  const std::size_t R = grid_.rows, C = grid_.cols;
+  for (const RenderObstacle& o : obstacles) {
+    if (o.kind != RenderObstacle::Kind::mesh) continue;
+    if (mesh_top_.empty()) mesh_top_.assign(R * C, -std::numeric_limits<float>::infinity());
+    const std::vector<float>& t = o.triangles_m;
+    for (std::size_t k = 0; k + 9 <= t.size(); k += 9) {
+      for (int c = 0; c < 3; ++c)
+        solids_.insert(solids_.end(), {t[k + 3 * c], t[k + 3 * c + 1], t[k + 3 * c + 2] - offset_});
+      // the triangle's plane over the grid points its xy projection covers (barycentric weights)
+      const glm::dvec3 a(t[k], t[k + 1], t[k + 2]), b(t[k + 3], t[k + 4], t[k + 5]), c(t[k + 6], t[k + 7], t[k + 8]);
+      const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+      if (std::abs(det) < 1e-12) continue;  // a vertical face covers no area seen from above
+      for (std::size_t i = 0; i < R; ++i)
+        for (std::size_t j = 0; j < C; ++j) {
+          const double x = grid_.x(j), y = grid_.y(i);
+          const double wb = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
+          const double wc = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
+          if (wb < 0.0 || wc < 0.0 || wb + wc > 1.0) continue;
+          const double z = a.z + wb * (b.z - a.z) + wc * (c.z - a.z) - offset_;
+          mesh_top_[i * C + j] = std::max(mesh_top_[i * C + j], static_cast<float>(z));
+        }
+    }
+  }
+  if (mesh_top_.empty()) return;
+  mesh_outline_.assign(R * C, 0);
+  auto in = [&](std::size_t i, std::size_t j) { return std::isfinite(mesh_top_[i * C + j]); };
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j)
+      mesh_outline_[i * C + j] = in(i, j) && (i == 0 || j == 0 || i + 1 == R || j + 1 == C || !in(i - 1, j) ||
+                                              !in(i + 1, j) || !in(i, j - 1) || !in(i, j + 1));
+}
+
 void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
   solids_.clear();
   fill_from_.clear();
-  if (obstacles.empty()) return;
+  mesh_top_.clear();
+  mesh_outline_.clear();
+  add_mesh_solids(obstacles);
+  if (std::none_of(obstacles.begin(), obstacles.end(),
+                   [](const RenderObstacle& o) { return o.kind != RenderObstacle::Kind::mesh; }))
+    return;
   // solids: from the floor (or the obstacle's bottom) to its top, or for a 2D solver's
   // obstacle (infinite z) to a quarter of the depth above the water at rest; over terrain
   // (set_bed first), where water runs deeper than the rest level, at least 3 % of the region's
@@ -418,6 +480,7 @@ void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
   };
   const double gx1 = grid_.x0 + (grid_.cols - 1) * grid_.dx, gy1 = grid_.y0 + (grid_.rows - 1) * grid_.dx;
   for (const RenderObstacle& o : obstacles) {
+    if (o.kind == RenderObstacle::Kind::mesh) continue;  // add_mesh_solids
     const double z0 = std::max(zr(o.z0_m, floor_z), floor_z), z1 = zr(o.z1_m, rise);
     if (o.kind == RenderObstacle::Kind::box) {
       // clipped to the visible region (a wall along the domain's edge stays inside it)
@@ -451,6 +514,7 @@ void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
     for (std::size_t j = 0; j < C; ++j) {
       const double x = grid_.x(j), y = grid_.y(i);
       for (const RenderObstacle& o : obstacles) {
+        if (o.kind == RenderObstacle::Kind::mesh) continue;  // the surface runs over it (mesh_top_)
         const bool in = o.kind == RenderObstacle::Kind::box
                             ? x >= o.min_m[0] && x <= o.max_m[0] && y >= o.min_m[1] && y <= o.max_m[1]
                             : std::hypot(x - o.centre_m[0], y - o.centre_m[1]) <= o.radius_m + 0.5 * grid_.dx;
@@ -513,6 +577,36 @@ void WaterRenderer::draw_water_sides(const OrbitCamera& camera, const RenderSett
   const glm::vec3 eye(camera.eye());
   glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
   glUniform1i(ship_prog_.loc("u_solid"), 2);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(tri.size() / 3));
+  glUniform1i(ship_prog_.loc("u_solid"), 0);
+}
+
+void WaterRenderer::set_tank(const std::array<double, 3>& box_m) { tank_ = box_m; }
+
+// The tank's side walls (set_tank) the eye is inside of, from the floor to the lid.
+void WaterRenderer::draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
+  if (tank_[0] <= 0.0) return;
+  const glm::dvec3 eye = camera.eye();
+  const float X = static_cast<float>(tank_[0]), Y = static_cast<float>(tank_[1]);
+  const float z0 = static_cast<float>(ground_z_), z1 = static_cast<float>(tank_[2]) - offset_;
+  std::vector<float> tri;
+  auto wall = [&](float ax, float ay, float bx, float by) {
+    const float p[4][3] = {{ax, ay, z0}, {bx, by, z0}, {bx, by, z1}, {ax, ay, z1}};
+    for (int k : {0, 1, 2, 0, 2, 3}) tri.insert(tri.end(), p[k], p[k] + 3);
+  };
+  if (eye.y > 0.0) wall(0, 0, X, 0);
+  if (eye.y < Y) wall(0, Y, X, Y);
+  if (eye.x > 0.0) wall(0, 0, 0, Y);
+  if (eye.x < X) wall(X, 0, X, Y);
+  glBindVertexArray(ship_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
+  ship_prog_.use();
+  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
+  const glm::vec3 e(eye);
+  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(e));
+  glUniform1i(ship_prog_.loc("u_solid"), 3);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(tri.size() / 3));
   glUniform1i(ship_prog_.loc("u_solid"), 0);
 }
@@ -598,10 +692,16 @@ void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings
   glUniform1i(p.loc("u_dye"), 4);
   glUniform3fv(p.loc("u_dye_colour"), 1, glm::value_ptr(s.dye_colour));
   if (dye) dye_tex_.bind(4);
+  const bool foam = s.foam && has_foam_;
+  glUniform1i(p.loc("u_use_foam"), foam ? 1 : 0);
+  glUniform1i(p.loc("u_foam"), 6);
+  glUniform3fv(p.loc("u_foam_colour"), 1, glm::value_ptr(s.foam_colour));
+  if (foam) foam_tex_.bind(6);
   coef_tex_.bind(3);
   glUniform1i(p.loc("u_use_bed"), has_bed_ ? 1 : 0);
   glUniform1i(p.loc("u_bed"), 5);
   glUniform1f(p.loc("u_dry_depth"), kDryDepth);
+  glUniform1i(p.loc("u_hide_dry"), s.hide_dry ? 1 : 0);
   if (has_bed_) bed_tex_.bind(5);
   glUniform1i(p.loc("u_diffs"), 2);
   glUniform1i(p.loc("u_coef"), 3);
@@ -704,6 +804,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
 
   if (s.draw_ship && !ships_.empty()) draw_ships(camera, s, mvp);
   draw_solids(camera, s, mvp);
+  draw_tank(camera, s, mvp);
   lap(times.ship, times.cpu.ship);
   // ground seen directly, drawn last so the depth test skips what the water and ships cover;
   // deep water has no floor (the background is the clear colour)
@@ -736,10 +837,11 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
                                 const RenderTarget& target) {
   const std::size_t R = grid_.rows, C = grid_.cols;
   // the colour range: symmetric about 0 (heights) or from the minimum (depths), rounded out to
-  // the colour bar's ticks; obstacles (fill_from_) are grey
+  // the colour bar's ticks; obstacles (fill_from_) are grey, NaN values (dry land) sand
   double lo = 1e300, hi = -1e300;
   for (std::size_t k = 0; k < R * C; ++k) {
-    if (!fill_from_.empty() && fill_from_[k] != k) continue;
+    if ((!fill_from_.empty() && fill_from_[k] != k) || !std::isfinite(values[k])) continue;
+    if (!mesh_outline_.empty() && mesh_outline_[k]) continue;
     lo = std::min(lo, unit_scale * values[k]);
     hi = std::max(hi, unit_scale * values[k]);
   }
@@ -750,9 +852,11 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   plot_range(lo, hi, diverging, spec);
   std::vector<std::uint8_t> px(R * C * 4);
   for (std::size_t k = 0; k < R * C; ++k) {
-    const bool solid = !fill_from_.empty() && fill_from_[k] != k;
-    const glm::vec3 c =
-        solid ? glm::vec3(0.55f) : plan_colour((unit_scale * values[k] - spec.lo) / (spec.hi - spec.lo), diverging);
+    const bool solid = (!fill_from_.empty() && fill_from_[k] != k) || (!mesh_outline_.empty() && mesh_outline_[k]);
+    const bool dry = !std::isfinite(values[k]);
+    const glm::vec3 c = solid ? glm::vec3(0.55f)
+                        : dry ? kPlanDryLand
+                              : plan_colour((unit_scale * values[k] - spec.lo) / (spec.hi - spec.lo), diverging);
     for (int ch = 0; ch < 3; ++ch) px[4 * k + ch] = static_cast<std::uint8_t>(std::lround(255.0f * c[ch]));
     px[4 * k + 3] = 255;
   }

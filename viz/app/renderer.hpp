@@ -99,6 +99,9 @@ struct RenderSettings {
   /// 8-bit modes: blur in float instead of the paper's accumulation-buffer emulation (float
   /// targets always blur in float).
   bool blur_float = false;
+  /// Leave out water thinner than WaterRenderer::kDryDepth over the flat floor too (the SPH
+  /// look: a column the particles have left is dry, not a film of water on the floor).
+  bool hide_dry = false;
   bool draw_water = true;
   bool draw_ship = true;
   /// Obstacles (RenderInfo::obstacles) as solid blocks above the water.
@@ -106,6 +109,12 @@ struct RenderSettings {
   /// Tint the water with the dye the flow carries (set_dye; LBM scenes, paper 002).
   bool dye = true;
   glm::vec3 dye_colour{0.75f, 0.12f, 0.45f};
+  /// Foam the flow carries (set_foam; LBM scenes, paper 002 sec. 3.2, foam.hpp) as a white,
+  /// rough overlay on the water: C' = mix(C, foam_colour (ambient + sun_light n.l / l_z), a)
+  /// (lit like the flat ground where the water is flat), a = clamp(f (0.25 + 1.5 q)), q a fixed
+  /// value noise over the grid points (surface.frag).
+  bool foam = true;
+  glm::vec3 foam_colour{0.95f, 0.96f, 0.97f};
   GroundPattern ground = GroundPattern::tiles;
   /// Checker/tile squares across the visible region (unit: 1).
   int ground_squares = 8;
@@ -187,6 +196,8 @@ class WaterRenderer {
   void set_ships(std::span<const ShipPose> ships) { ships_.assign(ships.begin(), ships.end()); }
   /// Dye per grid point (rows x cols, in [0, 1]; dye.hpp) that tints the water; empty = none.
   void set_dye(std::span<const float> dye);
+  /// Foam per grid point (rows x cols, in [0, 1]; foam.hpp) drawn over the water; empty = none.
+  void set_foam(std::span<const float> foam);
   /// The bed under the water (rows x cols, m, the heights' frame before the offset; RenderInfo::
   /// bed_m) for shallow water over terrain: drawn as lit terrain, the water refracted down to it
   /// and left out where it is thinner than kDryDepth (dry land shows). Empty = a flat floor.
@@ -195,8 +206,15 @@ class WaterRenderer {
   /// Water thinner than this is not drawn over a bed (unit: m).
   static constexpr float kDryDepth = 0.002f;
   /// Obstacles: drawn as solids, and the heights inside them (a solver leaves them dry or
-  /// empty) replaced by the nearest water point's, so the surface closes around them.
+  /// empty) replaced by the nearest water point's, so the surface closes around them. A mesh
+  /// obstacle is drawn as its triangles (lit like the other solids); the water may run over it,
+  /// so its heights are only kept from dropping below the mesh's top (a dry column then lies
+  /// inside the solid), and the plan view shows its footprint's outline.
   void set_obstacles(std::span<const RenderObstacle> obstacles);
+  /// A particle solver's container, the box (0, 0, 0)-(box_m) (m, before the height offset): its
+  /// four side walls from the floor to the lid, pale, each left out while the eye is outside
+  /// it (the tank seen through its near walls: a backdrop for a slab seen from the side).
+  void set_tank(const std::array<double, 3>& box_m);
   /// Draws `values` (rows x cols, the visible field) as a colour map seen from straight above,
   /// with a colour bar, axes in metres and a title (plan view, docs/viz.md); `diverging` uses
   /// a blue-white-red map symmetric about 0, else a sequential one from the minimum.
@@ -221,6 +239,8 @@ class WaterRenderer {
   void update_linearisation(const OrbitCamera& camera, float index);
   void build_ground_texture(const RenderSettings& s);
   void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  void add_mesh_solids(std::span<const RenderObstacle> obstacles);
+  void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void tone_map(const RenderSettings& s, const RenderTarget& target);
@@ -234,8 +254,8 @@ class WaterRenderer {
   std::vector<ShipPose> ships_;
 
   gl::Program surface_prog_, ground_prog_, ship_prog_;
-  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_, bed_tex_;
-  bool has_dye_ = false, has_bed_ = false;
+  gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_, foam_tex_, bed_tex_;
+  bool has_dye_ = false, has_foam_ = false, has_bed_ = false;
   GLuint terrain_vao_ = 0, terrain_vbo_ = 0;
   GLuint surface_vao_ = 0, surface_static_vbo_ = 0, surface_h_vbo_ = 0, surface_lin_vbo_ = 0, surface_ibo_ = 0;
   GLsizei surface_index_count_ = 0;
@@ -243,8 +263,11 @@ class WaterRenderer {
   GLuint ship_vao_ = 0, ship_vbo_ = 0;
   GLsizei ship_vertex_count_ = 0;
   GLsizei ground_vertex_count_ = 0;
-  std::vector<float> solids_;             // obstacle triangles (x, y, z)
-  std::vector<std::uint32_t> fill_from_;  // per grid point: the point whose height it shows
+  std::vector<float> solids_;               // obstacle triangles (x, y, z)
+  std::array<double, 3> tank_{};            // set_tank's box (m); 0 = none
+  std::vector<std::uint32_t> fill_from_;    // per grid point: the point whose height it shows
+  std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
+  std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
   gl::Program tone_prog_;
   GLuint empty_vao_ = 0;
   bool heights_dirty_ = true;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 #include <optional>
 
@@ -65,12 +66,20 @@ SceneView scene_view(const RenderInfo& info) {
     v.look = wind ? Look::ocean : Look::pool;
   }
   const double W = v.grid.cols * v.grid.dx, H = v.grid.rows * v.grid.dx;
-  v.slab = std::max(W, H) > 8.0 * std::min(W, H);
+  // a particle solver's narrow tank (sph_wedge, 3:1) is a slab too: its dam break reads from the side
+  v.slab = std::max(W, H) > (v.look == Look::sph && v.particle_box ? 2.5 : 8.0) * std::min(W, H);
   v.plan_view = rq.plan_view.value_or(false);
   v.plan_depth = info.rest_level_m != 0.0;
   v.follow_ship = !v.hulls.empty() && rq.camera.follow_ship.value_or(true);
   v.camera_request = rq.camera;
   return v;
+}
+
+void place_scene(WaterRenderer& renderer, const SceneView& view) {
+  renderer.set_height_offset(view.height_offset);
+  renderer.set_bed(view.bed);
+  renderer.set_obstacles(view.obstacles);
+  if (view.slab && view.particle_box) renderer.set_tank(*view.particle_box);
 }
 
 namespace {
@@ -94,6 +103,16 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
   const double across = c.yaw == 0.0 ? H : W, along = c.yaw == 0.0 ? W : H;
   c.distance = 1.15 * std::max(along * std::sin(c.pitch) / (2.0 * t), across / (2.0 * t * aspect));
   if (slab) c.distance = 1.15 * across / (2.0 * t * aspect);
+  if (slab && view.particle_box) {
+    // a particle solver's slab: its container's side, floor to lid, looked at across the slab
+    // from 10 degrees up (20 for a tank over a fifth as wide as long, so its surface shows too),
+    // so the water column, its fall and the surge fill the picture
+    const double floor = view.ground_z, lid = (*view.particle_box)[2] - view.height_offset;
+    c.pitch = (across > 5.0 * along ? 10.0 : 20.0) * kDeg;
+    c.target.z = 0.5 * (floor + lid);
+    // the near side (half the thin side nearer than the target) framed, floor to lid and end to end
+    c.distance = 1.1 * std::max(across / (2.0 * t * aspect), (lid - floor) / (2.0 * t)) + 0.5 * along;
+  }
   if (view.follow_ship && ship) {
     // the ship and its wake from the side: a Kelvin wake (half-angle 19.5 deg) over about
     // 8 hull lengths behind the ship; at sea from lower down, toward the sun's glitter
@@ -150,7 +169,14 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
     case Look::pool:
     case Look::shallow:
     case Look::sph:
-      s.pool_deck = !view.slab;  // a slab is seen from the side: its profile, not a pool
+      s.pool_deck = !view.slab;             // a slab is seen from the side: its profile, not a pool
+      s.hide_dry = view.look == Look::sph;  // where the particles left, the floor is dry
+      if (view.slab) {
+        // seen from the side: a plain floor (tiles 8 across the slab's thin side are stripes)
+        // and no caustics (the floor under a slab is seen edge-on)
+        s.ground = GroundPattern::uniform;
+        s.caustics = false;
+      }
       if (!view.bed.empty()) {
         // water over terrain: shaded by its depth (absorption), dry land shows; no dye tint
         // (--view dye shows it) and no caustics (their mesh assumes a flat floor)
@@ -172,6 +198,7 @@ void frame_ships(const SceneView& view, const FramePair& frames, double t, std::
 
 void apply_render_request(const RenderRequest& request, RenderSettings& s) {
   if (request.caustics) s.caustics = *request.caustics;
+  if (request.foam) s.foam = *request.foam;
   if (request.blur) {
     s.blur = *request.blur != BlurMode::none;
     s.blur_float = *request.blur == BlurMode::float_target;
@@ -230,18 +257,28 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
     renderer.render_plan(dye, "dye", 1.0, "1", false, title, target);
     return;
   }
+  if (quantity == PlanQuantity::foam && data.foam.size() == field.size()) {
+    renderer.render_plan(data.foam, "foam", 1.0, "1", false, title, target);
+    return;
+  }
   // a height about rest (m); LBM/SPH: the depth above the bed (the height itself on a flat bed,
   // the surface minus the bed over terrain)
   v.assign(field.begin(), field.end());
   double range = 0.0;
   if (!view.plan_depth)
     for (float& x : v) x -= static_cast<float>(view.height_offset);
-  else if (view.bed.size() == v.size())
-    for (std::size_t k = 0; k < v.size(); ++k) v[k] = std::max(0.0f, v[k] - view.bed[k]);
-  for (float x : v) range = std::max(range, static_cast<double>(std::abs(x)));
+  else if (view.bed.size() == v.size())  // dry land (thinner than the perspective's kDryDepth): NaN, drawn as land
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const float d = v[k] - view.bed[k];
+      v[k] = d < WaterRenderer::kDryDepth ? std::numeric_limits<float>::quiet_NaN() : d;
+    }
+  for (float x : v)
+    if (std::isfinite(x)) range = std::max(range, static_cast<double>(std::abs(x)));
   const double scale = range < 0.02 ? 1000.0 : range < 2.0 ? 100.0 : 1.0;
   const std::string unit = scale == 1000.0 ? "mm" : scale == 100.0 ? "cm" : "m";
-  renderer.render_plan(v, view.plan_depth ? "depth" : "height", scale, unit, !view.plan_depth, title, target);
+  std::string label = title;
+  if (view.plan_depth && view.bed.size() == v.size()) label += "   sand: dry land";
+  renderer.render_plan(v, view.plan_depth ? "depth" : "height", scale, unit, !view.plan_depth, label, target);
 }
 
 bool solver_has_velocity(Solver& solver) {
@@ -266,6 +303,11 @@ ViewerSolver open_viewer_solver(const std::string& arg, const RunOptions& option
     v.name = arg;
   } else {
     v.scene = parse_scene_text(std::string(embedded::builtin_scenes(builtin)), builtin);
+    // the files it names (OBJ meshes) are compiled in too, by their path relative to the scenes
+    // folder (viz/app/CMakeLists.txt): nothing is read from the working directory
+    v.scene.embedded = [](std::string_view relative) {
+      return embedded::builtin_scenes(std::filesystem::path(relative).lexically_normal().generic_string());
+    };
     v.name = "built-in " + builtin;
   }
   v.options = options;

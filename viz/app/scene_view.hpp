@@ -42,7 +42,9 @@ struct SceneView {
   /// a floor with an adaptive step is SPH, with a fixed step shallow water (LBM); an elevation
   /// field with a wind sea is the open ocean, without one a pool).
   Look look = Look::pool;
-  /// A quasi-2D slab (one side over 8x the other): seen from low along its short side, no deck.
+  /// A quasi-2D slab (one side over 8x the other; a particle solver's tank over 2.5x): seen from
+  /// low along its short side (a particle solver's: its container floor to lid), no deck, a
+  /// plain floor, no caustics.
   bool slab = false;
   /// Start in the plan view ("view": "plan").
   bool plan_view = false;
@@ -58,6 +60,10 @@ struct SceneView {
 };
 
 SceneView scene_view(const RenderInfo& info);
+
+/// Gives the renderer what the view places in the scene: the rest level, the bed, the obstacles
+/// and, for a particle solver's slab, its container's walls (WaterRenderer::set_tank).
+void place_scene(WaterRenderer& renderer, const SceneView& view);
 
 /// The ships of a frame pair at display time t (FramePair::ship), each with its hull.
 void frame_ships(const SceneView& view, const FramePair& frames, double t, std::vector<ShipPose>& out);
@@ -89,7 +95,8 @@ struct ViewerSolver {
 
 /// Loads `arg` through load_scene and makes its solver; an empty `arg` is the built-in
 /// default.json, and an `arg` that names no file but a built-in scene ("ocean" or "ocean.json")
-/// is that scene (both compiled into the program, parsed by parse_scene_text).
+/// is that scene (both compiled into the program, parsed by parse_scene_text; the files a built-in
+/// scene names, its OBJ meshes, are compiled in too: Scene::embedded).
 /// Throws SceneError for a bad scene or a file that does not exist.
 ViewerSolver open_viewer_solver(const std::string& arg, const RunOptions& options);
 
@@ -103,9 +110,9 @@ struct ViewSetup {
 ViewSetup view_setup(const ViewerSolver& vs, double aspect);
 
 /// What the plan view shows: the level (the height about rest, or the depth for LBM/SPH), the
-/// flow's speed |u| or the dye it carries (both need the frames' velocity: LBM scenes), or the
-/// particles seen from the side coloured by speed (particle solvers: SPH scenes).
-enum class PlanQuantity { level, speed, dye, particles };
+/// flow's speed |u|, the dye or the foam it carries (these need the frames' velocity: LBM
+/// scenes), or the particles seen from the side coloured by speed (particle solvers: SPH scenes).
+enum class PlanQuantity { level, speed, dye, foam, particles };
 
 /// The frame's data a plan view may show (empty spans: not there).
 struct PlanData {
@@ -115,19 +122,21 @@ struct PlanData {
   std::span<const float> velocity;
   /// The dye (rows x cols, in [0, 1]; dye.hpp).
   std::span<const float> dye;
+  /// The foam (rows x cols, in [0, 1]; foam.hpp).
+  std::span<const float> foam;
   /// x, y, z, speed per particle (Frame::particles).
   std::span<const float> particles;
 };
 
 /// Plan view at time `t_s` (WaterRenderer::render_plan): the level of data.field (the height
-/// about rest with a diverging map, or the depth, sequential), the speed of data.velocity, the dye,
+/// about rest with a diverging map, or the depth, sequential), the speed of data.velocity, the dye, the foam,
 /// in mm, cm or m (mm/s, cm/s, m/s) by its range; or the particle view (render_particles); titled
 /// with the scene's name and the time.
 void render_plan_view(WaterRenderer& renderer, const SceneView& view, const PlanData& data, PlanQuantity quantity,
                       double t_s, const std::string& name, const RenderTarget& target);
 
 /// True when the solver's outputs include a velocity on the visible grid (an LBM's "u"): its
-/// frames carry it (Frame::velocity) for the speed and dye views.
+/// frames carry it (Frame::velocity) for the speed, dye and foam views.
 bool solver_has_velocity(Solver& solver);
 
 /// Base names of the built-in scenes, space separated.

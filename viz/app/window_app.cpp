@@ -19,6 +19,7 @@
 
 #include "app.hpp"
 #include "dye.hpp"
+#include "foam.hpp"
 #include "gl.hpp"
 #include "huygens/pipeline/command.hpp"
 #include "huygens/pipeline/runner.hpp"
@@ -49,13 +50,15 @@ struct App {
   bool quit = false;
   double time_scale = 1.0;
   /// Plan view (P): the colour-mapped field with colour bar and axes instead of the picture;
-  /// P steps through the level, and for a flow (LBM) its speed and dye, back to the picture.
+  /// P steps through the level, and for a flow (LBM) its speed, dye and foam, back to the picture.
   bool plan = false;
   PlanQuantity plan_quantity = PlanQuantity::level;
-  /// The newest frame's velocity (LBM) and the dye it carries since the start (dye.hpp).
+  /// The newest frame's velocity (LBM) and the dye and foam it carries since the start (dye.hpp,
+  /// foam.hpp).
   bool has_velocity = false;
   std::vector<float> velocity;
   std::unique_ptr<DyeField> dye;
+  std::unique_ptr<FoamField> foam;
   double dye_time = 0.0;
   /// The camera follows the first ship until the user orbits, pans or zooms.
   bool follow = false;
@@ -188,8 +191,10 @@ void on_key(App& a, int key) {
     case GLFW_KEY_P:
       if (!a.plan) {
         a.plan = true, a.plan_quantity = PlanQuantity::level;
-      } else if (a.has_velocity && a.plan_quantity != PlanQuantity::dye) {
-        a.plan_quantity = a.plan_quantity == PlanQuantity::level ? PlanQuantity::speed : PlanQuantity::dye;
+      } else if (a.has_velocity && a.plan_quantity != PlanQuantity::foam) {
+        a.plan_quantity = a.plan_quantity == PlanQuantity::level   ? PlanQuantity::speed
+                          : a.plan_quantity == PlanQuantity::speed ? PlanQuantity::dye
+                                                                   : PlanQuantity::foam;
       } else if (a.view.particle_box && a.plan_quantity == PlanQuantity::level) {
         a.plan_quantity = PlanQuantity::particles;  // SPH: level, then the particles from the side
       } else {
@@ -322,7 +327,7 @@ void panel_features(App& a) {
   if (a.plan && a.has_velocity) {
     int q = static_cast<int>(a.plan_quantity);
     ImGui::SameLine();
-    ImGui::Combo("shows", &q, "depth\0speed\0dye\0");
+    ImGui::Combo("shows", &q, "depth\0speed\0dye\0foam\0");
     a.plan_quantity = static_cast<PlanQuantity>(q);
   } else if (a.plan && a.view.particle_box) {
     int q = a.plan_quantity == PlanQuantity::particles ? 1 : 0;
@@ -350,6 +355,8 @@ void panel_features(App& a) {
   a.settings.fresnel = static_cast<FresnelModel>(fres);
   if (a.has_velocity) {
     ImGui::Checkbox("dye (flow)", &a.settings.dye);
+    ImGui::SameLine();
+    ImGui::Checkbox("foam", &a.settings.foam);
     ImGui::SameLine();
   }
   ImGui::Checkbox("water", &a.settings.draw_water);
@@ -441,7 +448,7 @@ void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   if (!a.last_screenshot.empty()) ImGui::Text("last screenshot: %s", a.last_screenshot.c_str());
   ImGui::TextWrapped(
       "left click: stone; left drag on a ship: move it; right drag: orbit; shift+right or "
-      "middle drag: pan; wheel: zoom; P: plan view (again: speed, dye or particles); F1: hide this panel");
+      "middle drag: pan; wheel: zoom; P: plan view (again: speed, dye, foam or particles); F1: hide this panel");
   ImGui::PopItemWidth();
   ImGui::End();
 }
@@ -474,9 +481,7 @@ GLFWwindow* open_window(const WindowOptions& opt, const std::string& scene_name)
 // The renderer for the scene's view at mesh subsampling `subsample`, showing the current field.
 std::unique_ptr<WaterRenderer> make_renderer(const App& a, int subsample) {
   auto r = std::make_unique<WaterRenderer>(a.view.grid, a.view.ground_z, subsample);
-  r->set_height_offset(a.view.height_offset);
-  r->set_bed(a.view.bed);
-  r->set_obstacles(a.view.obstacles);
+  place_scene(*r, a.view);
   r->times.enabled = true;
   r->set_heights(a.field);
   return r;
@@ -495,13 +500,18 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
   // the hulls at the same display time as the heights, where the solver has them (a dragged ship
   // is where the simulation has steered it, not where the cursor is)
   if (fp) frame_ships(a.view, fp, t, a.ships_drawn);
-  // the flow: its velocity and the dye it carries (advected once per new frame; a reset, which
-  // starts the time again, starts the dye again)
+  // the flow: its velocity and the dye and foam it carries (advected once per new frame; a
+  // reset, which starts the time again, starts them again)
   if (fp && (a.has_velocity = fp.velocity(a.velocity))) {
     const double tn = fp.newest->info.time_s;
-    if (tn < a.dye_time) a.dye->reset(), a.dye_time = 0.0;
-    if (tn > a.dye_time) a.dye->advect(a.velocity, tn - a.dye_time), a.dye_time = tn;
+    if (tn < a.dye_time) a.dye->reset(), a.foam->reset(), a.dye_time = 0.0;
+    if (tn > a.dye_time) {
+      a.dye->advect(a.velocity, tn - a.dye_time);
+      a.foam->step(fp.newest->eta.span(), a.velocity, tn - a.dye_time);
+      a.dye_time = tn;
+    }
     renderer.set_dye(a.dye->values());
+    renderer.set_foam(a.foam->values());
   }
   renderer.set_ships(a.ships_drawn);
   int fw, fh;
@@ -514,7 +524,7 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
       render_plan_view(
           renderer, a.view,
           PlanData{a.field, a.has_velocity ? std::span<const float>(a.velocity) : std::span<const float>{},
-                   a.dye->values(),
+                   a.dye->values(), a.foam->values(),
                    fp && fp.newest->has_particles ? fp.newest->particles.span() : std::span<const float>{}},
           a.plan_quantity, fp ? fp.newest->info.time_s : 0.0, a.scene_name, target);
     else
@@ -618,6 +628,7 @@ int run_window(ViewerSolver scene, const WindowOptions& opt) {
     a.plan_quantity = opt.plan_quantity;
     a.velocity.assign(2 * a.view.grid.rows * a.view.grid.cols, 0.0f);
     a.dye = std::make_unique<DyeField>(a.view.grid);
+    a.foam = std::make_unique<FoamField>(a.view.grid, scene.info.bed_m);
     RunnerParams rp;
     rp.realtime = true;
     rp.start_paused = opt.paused;

@@ -11,8 +11,10 @@
 namespace huygens {
 
 namespace {
+// a number, or "-" (a number that is absent), is right-aligned
 bool looks_numeric(const std::string& s) {
   if (s.empty()) return false;
+  if (s == "-") return true;
   char* end = nullptr;
   std::strtod(s.c_str(), &end);
   return end && *end == '\0';

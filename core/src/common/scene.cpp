@@ -273,7 +273,26 @@ Scene load_scene(const std::string& file) {
   std::stringstream ss;
   ss << f.rdbuf();
   if (f.bad()) throw SceneError("$", "read error in scene file " + file);
-  return parse_scene_text(ss.str(), file);
+  Scene s = parse_scene_text(ss.str(), file);
+  s.dir = std::filesystem::absolute(std::filesystem::path(file), ec).parent_path().string();
+  return s;
+}
+
+std::string read_scene_file(const Scene& scene, const std::string& relative) {
+  if (scene.embedded) {
+    const std::string_view bytes = scene.embedded(relative);
+    if (bytes.empty())
+      throw std::runtime_error(relative + ": not a file of the built-in scene " + scene.file +
+                               " (its files are compiled into the program)");
+    return std::string(bytes);
+  }
+  const std::filesystem::path path = std::filesystem::path(scene.dir) / relative;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot be read");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (in.bad()) throw std::runtime_error(path.string() + ": read error");
+  return bytes.str();
 }
 
 }  // namespace huygens

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "huygens/common/finite.hpp"
+#include "huygens/huygens/cutoff.hpp"
 
 namespace huygens {
 
@@ -129,21 +130,7 @@ void HuygensPropagator::build_tables() {
       }
     }
   }
-  // paper 004's quadratic cutoff h(p)
-  const int m = p_.margin;
-  for (int q = 0; q < n; ++q) {
-    double h = 1.0;
-    if (p_.absorber == Absorber::paper_quadratic) {
-      if (q < m)
-        h = 1.0 - std::pow(static_cast<double>(q) / m - 1.0, 2);
-      else if (q >= n - m)
-        h = 1.0 - std::pow(static_cast<double>(n - 1 - q) / m - 1.0, 2);
-    }
-    if (p_.cutoff_time_s > 0) h = std::pow(h, p_.dt_s / p_.cutoff_time_s);
-    // stored twice, interleaved like the complex field (re, im)
-    cut_[2 * static_cast<std::size_t>(q)] = static_cast<float>(h);
-    cut_[2 * static_cast<std::size_t>(q) + 1] = static_cast<float>(h);
-  }
+  fill_cutoff_window(p_, cut_.data());  // paper 004's quadratic cutoff h(p)
 }
 
 std::uint64_t HuygensPropagator::reserve_sources() {
@@ -340,23 +327,7 @@ void HuygensPropagator::cutoff() {
   if (st_cutoff_ < 0) return;
   {
     StageTimer timer(stats_[st_cutoff_]);
-    const int n = p_.n, m = p_.margin;
-    const float* h = cut_.data();
-    float* z = reinterpret_cast<float*>(z_.data());
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-    for (int r = 0; r < n; ++r) {
-      float* row = z + 2 * static_cast<std::size_t>(r) * n;
-      const float hr = h[2 * r];
-      if (r < m || r >= n - m) {
-#pragma omp simd
-        for (int c = 0; c < 2 * n; ++c) row[c] *= hr * h[c];
-      } else {
-#pragma omp simd
-        for (int c = 0; c < 2 * m; ++c) row[c] *= h[c];
-#pragma omp simd
-        for (int c = 2 * (n - m); c < 2 * n; ++c) row[c] *= h[c];
-      }
-    }
+    apply_cutoff_rows(reinterpret_cast<float*>(z_.data()), cut_.data(), p_.n, p_.margin, 0, p_.n);
   }
   if (inject_due_for_test(st_cutoff_)) z_[mid_index()] = std::numeric_limits<float>::quiet_NaN();
   if (check_now_) check_stage(st_cutoff_, z_.span());

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "huygens/common/finite.hpp"
+#include "huygens/huygens/cutoff.hpp"
 #include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens {
@@ -141,21 +142,7 @@ void HuygensSlabSolver::build_tables() {
     }
 }
 
-void HuygensSlabSolver::build_cutoff() {
-  const HuygensParams& p = scene_.params;
-  const int n = p.n, m = p.margin;
-  for (int i = 0; i < n; ++i) {
-    double h = 1.0;  // paper 004's quadratic cutoff h(i)
-    if (p.absorber == Absorber::paper_quadratic) {
-      if (i < m)
-        h = 1.0 - std::pow(static_cast<double>(i) / m - 1.0, 2);
-      else if (i >= n - m)
-        h = 1.0 - std::pow(static_cast<double>(n - 1 - i) / m - 1.0, 2);
-    }
-    if (p.cutoff_time_s > 0) h = std::pow(h, p.dt_s / p.cutoff_time_s);
-    cut_[2 * static_cast<std::size_t>(i)] = cut_[2 * static_cast<std::size_t>(i) + 1] = static_cast<float>(h);
-  }
-}
+void HuygensSlabSolver::build_cutoff() { fill_cutoff_window(scene_.params, cut_.data()); }
 
 void HuygensSlabSolver::reserve_sources() {
   // -omega/k factor and omega on the local rows of the spectrum (|k| is symmetric in kx, ky)
@@ -328,24 +315,7 @@ void HuygensSlabSolver::cutoff() {
   if (st_cutoff_ < 0) return;
   {
     StageTimer timer(stats_[st_cutoff_]);
-    const int n = g_.n, m = scene_.params.margin;
-    const float* h = cut_.data();
-    float* z = reinterpret_cast<float*>(z_.data());
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-    for (std::ptrdiff_t lr = 0; lr < g_.rows; ++lr) {
-      const int r = static_cast<int>(g_.row0 + lr);
-      float* row = z + 2 * static_cast<std::size_t>(lr) * n;
-      const float hr = h[2 * r];
-      if (r < m || r >= n - m) {
-#pragma omp simd
-        for (int c = 0; c < 2 * n; ++c) row[c] *= hr * h[c];
-      } else {
-#pragma omp simd
-        for (int c = 0; c < 2 * m; ++c) row[c] *= h[c];
-#pragma omp simd
-        for (int c = 2 * (n - m); c < 2 * n; ++c) row[c] *= h[c];
-      }
-    }
+    apply_cutoff_rows(reinterpret_cast<float*>(z_.data()), cut_.data(), g_.n, scene_.params.margin, g_.row0, g_.rows);
   }
   if (check_now_) check(st_cutoff_, std::span<const cfloat>(z_.data(), static_cast<std::size_t>(g_.rows) * g_.n));
 }

@@ -191,6 +191,12 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
   return lat;
 }
 
+bool lbm_starts_dry(const LbmParams& p, const LbmFields& in) {
+  for (std::size_t i = 0; i < in.depth_m.size(); ++i)
+    if ((in.solid.empty() || !in.solid[i]) && in.depth_m[i] < p.min_depth_m) return true;
+  return false;
+}
+
 LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in, LbmDecomposition d) : p_(p), lat_(lbm_check(p, in)) {
   set_slab(d);  // this rank's rows and halo (all rows with one rank)
   const int nx = p.cols;
@@ -204,6 +210,7 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in, LbmDecomposition
   z_ = AlignedBuffer<float>(plane_);
   theta_ = AlignedBuffer<float>(plane_);
   solid_.assign(plane_, 1);
+  if (lbm_starts_dry(p, in)) carry_ = AlignedBuffer<float>(plane_);  // zeroed (see the header)
 
   omega_ = static_cast<float>(1.0 / lat_.tau);
   g_ = static_cast<float>(lat_.g_lat_pm);
@@ -215,7 +222,8 @@ LbmShallow::LbmShallow(const LbmParams& p, const LbmFields& in, LbmDecomposition
   init_lattice(in);
   build_rules(in);
 
-  const std::uint64_t bytes = (fa_.size() + fb_.size() + ha_.size() + hb_.size() + z_.size()) * sizeof(float);
+  const std::uint64_t bytes =
+      (fa_.size() + fb_.size() + ha_.size() + hb_.size() + z_.size() + carry_.size()) * sizeof(float);
   st_fill_ = stats_.add("boundary_fill", rules_.size() * sizeof(Rule));
   st_kernel_ = stats_.add("stream_collide", bytes);
   if (ranks_ > 1) {
@@ -958,9 +966,10 @@ namespace {
 
 // Makes the nine floats sum to `mass` (double) as closely as floats allow: the rounding left by
 // the collision goes into the rest population, what that rounds off into the opposite pairs of
-// links in equal halves (no momentum: still water stays still), so each step leaves a residual of
-// the order of a float ulp of a cell's populations instead of its depth (docs/lbm.md).
-void keep_mass(double mass, float* op) {
+// links in equal halves (no momentum: still water stays still). Returns what the floats could not
+// take, mass - sum op (under half a float ulp of the cell's smallest population touched), which
+// the caller carries to the cell's next step (compensated storage, Kahan 1965; docs/lbm.md).
+double keep_mass(double mass, float* op) {
   double sum = 0.0;
   for (int a = 0; a < 9; ++a) sum += op[a];
   double r = mass - sum;
@@ -974,6 +983,7 @@ void keep_mass(double mass, float* op) {
     op[a] = na;
     op[b] = nb;
   }
+  return r;
 }
 
 // The post-collision state of a cell the HLL update reached: the shifted equilibrium of depth h
@@ -1007,7 +1017,7 @@ Cell9 equilibrium_cell(float h, float jx, float jy, const Collision& k, const fl
 // With one: the finite-volume update h += sum M_a, J += sum e_a Pi_a over its faces (an LBM face
 // exchanges M = v - p2, Pi = v + p2, what streaming moves), then the equilibrium of (h, J) is
 // collided. Dry cells to rest. Returns the new depth.
-float LbmShallow::wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* dst) const {
+float LbmShallow::wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* dst, float* carry) const {
   const std::ptrdiff_t P = view.P;
   const float* theta = theta_.data();
   const float* src = view.src;
@@ -1021,7 +1031,9 @@ float LbmShallow::wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* 
   float fp[9] = {src[c]};
   bool fed = false;  // water arrived over an HLL face
   float hs = src[c] + shp[0], jx = 0.0f, jy = 0.0f;
-  double mass = src[c];  // the stored (shifted) populations' new sum, exact to double rounding
+  // the stored (shifted) populations' new sum, exact to double rounding, plus what the cell's
+  // floats could not hold last step (the carry plane, when there is one)
+  double mass = double(src[c]) + (carry != nullptr ? double(carry[c]) : 0.0);
   for (int a = 1; a < 9; ++a) {
     const float own = src[a * P + c];
     mass += own;
@@ -1062,7 +1074,8 @@ float LbmShallow::wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* 
               -ks.f7,
               -ks.f8};
   float op[9] = {o.f0, o.f1, o.f2, o.f3, o.f4, o.f5, o.f6, o.f7, o.f8};
-  keep_mass(mass, op);
+  const double left = keep_mass(mass, op);
+  if (carry != nullptr) carry[c] = static_cast<float>(left);
   for (int a = 0; a < 9; ++a) dst[a * P + c] = op[a];
   return any ? static_cast<float>(mass + href_) : h;
 }
@@ -1076,6 +1089,7 @@ void LbmShallow::stream_collide_wet_dry(int& dry, int& bad) {
   const WetDryView view = wet_dry_view(theta_.data());
   float* dst = fb_.data();
   float* hnew = hb_.data();
+  float* carry = carry_.size() != 0 ? carry_.data() : nullptr;
   const float hmin = hmin_;
   const Span* spans = spans_.data();
   const int nspans = static_cast<int>(spans_.size());
@@ -1083,7 +1097,7 @@ void LbmShallow::stream_collide_wet_dry(int& dry, int& bad) {
 #pragma omp parallel for schedule(static) reduction(+ : ndry, nbad) if (ncells_ >= 16384)
   for (int s = 0; s < nspans; ++s)
     for (std::ptrdiff_t c = spans[s].begin; c < spans[s].end; ++c) {
-      const float h = wet_dry_cell(view, c, dst);
+      const float h = wet_dry_cell(view, c, dst, carry);
       ndry += h < hmin ? 1 : 0;
       nbad += h >= 0.0f ? 0 : 1;
       hnew[c] = h;

@@ -40,7 +40,7 @@ class LbmSolver final : public Solver {
     bed_.resize(n);
     sim_.bed(bed_);
   }
-  MemoryEstimate memory() const override { return lbm_memory(sim_.params(), ranks_); }
+  MemoryEstimate memory() const override { return lbm_memory(sim_.params(), ranks_, sim_.has_mass_carry()); }
 
   void step() override { sim_.step(); }
   double time() const override { return sim_.time_s(); }
@@ -409,7 +409,7 @@ void check_scene(const LbmScene& s, const ParseNotes& notes) {
 
 }  // namespace
 
-MemoryEstimate lbm_memory(const LbmParams& p, int ranks) {
+MemoryEstimate lbm_memory(const LbmParams& p, int ranks, bool carry) {
   const std::uint64_t cells = static_cast<std::uint64_t>(p.rows) * p.cols;
   // the largest rank's rows (row_slab: the first ranks hold one row more) and its lattice rows:
   // one rank has a ghost row each side, several ranks two halo rows each side and an image row
@@ -420,6 +420,7 @@ MemoryEstimate lbm_memory(const LbmParams& p, int ranks) {
   // two sets of 9 populations, depth now and next, bed, the wet/dry outflow limiter (floats), the
   // solid flags (bytes)
   m.add("lattice", lattice * (18 * 4 + 4 * 4 + 1));
+  if (carry) m.add("mass carry", lattice * 4);  // a scene that starts dry: the wet/dry pass's carry
   // the scene's fields (bed, depth, ux, uy, solid): every rank parses the whole scene
   m.add("scene fields", cells * (4 * 4 + 1));
   m.add("output fields", rows * p.cols * 5 * 4);  // this rank's rows of h, eta, u, v, bed
@@ -448,6 +449,7 @@ LbmScene parse_lbm_scene(const Scene& scene) {
   parse_bed(lb, scene, p, s.fields);
   const DamFlow dam = parse_initial(lb, p, s.fields);
   parse_obstacles(lb, p, s.fields, s.obstacles);
+  if (lbm_starts_dry(p, s.fields)) require_memory(lbm_memory(p, comm::size(), true));  // plus the carry plane
   parse_boundaries(lb, p);
   ParseNotes notes;
   notes.dt_given = parse_time(lb, s.fields, dam.signal_speed_mps, p);

@@ -12,7 +12,7 @@ RenderRequest parse_render_request(const JsonIn& root) {
   RenderRequest r;
   const std::optional<JsonIn> block = root.optional_object("render");
   if (!block) return r;
-  block->allow_only({"caustics", "blur", "caustics_mode", "look", "view", "camera", "sun"});
+  block->allow_only({"caustics", "blur", "caustics_mode", "look", "view", "camera", "sun", "foam"});
   if (block->has("caustics")) r.caustics = block->boolean("caustics", true);
   if (block->has("blur")) {
     const std::string b = block->string("blur", "accumulation", {"accumulation", "float", "none"});
@@ -33,6 +33,7 @@ RenderRequest parse_render_request(const JsonIn& root) {
              : l == "sph"     ? LookRequest::sph
                               : LookRequest::pool;
   }
+  if (block->has("foam")) r.foam = block->boolean("foam", true);
   if (block->has("view")) r.plan_view = block->string("view", "perspective", {"perspective", "plan"}) == "plan";
   if (const std::optional<JsonIn> cam = block->optional_object("camera")) {
     cam->allow_only({"target_m", "distance_m", "yaw_deg", "pitch_deg", "follow_ship"});

@@ -288,15 +288,33 @@ void sample_sphere(const SphObstacle& o, float dx, int layers, SphBoundarySample
   }
 }
 
-// Every triangle split into n^2 similar sub-triangles (n = ceil(longest edge / dx)), one point per
-// sub-triangle centroid, offset inward by (k + 1/2) dx along the outward face normal. A point is
-// kept only if it lies inside the mesh and no other face is nearer than its own depth: at convex
-// edges and corners the layers of the faces meeting there would overlap; each keeps its own part.
-void sample_mesh(const SphMesh& m, float dx, int layers, SphBoundarySample& out) {
+// A face all of whose vertices lie on or beyond one wall plane of the container [0, L]^3 (within
+// eps) is buried in that wall: the fluid never meets it, and the wall's own layers stand behind it.
+bool buried_in_wall(const V3& a, const V3& b, const V3& c, const V3& L, float eps) {
+  for (int ax = 0; ax < 3; ++ax) {
+    if (a[ax] <= eps && b[ax] <= eps && c[ax] <= eps) return true;
+    if (a[ax] >= L[ax] - eps && b[ax] >= L[ax] - eps && c[ax] >= L[ax] - eps) return true;
+  }
+  return false;
+}
+
+// Every exposed triangle (not buried in a container wall) split into n^2 similar sub-triangles
+// (n = ceil(longest edge / dx)), one point per sub-triangle centroid, offset inward by (k + 1/2) dx
+// along the outward face normal. A point is kept only if it lies inside the mesh and inside the
+// container (outside it the wall's layers are the solid) and no other exposed face is nearer than
+// its own depth: at convex edges and corners the layers of the faces meeting there would overlap;
+// each keeps its own part. Where the mesh stands on a wall (a wedge on the floor), its face there
+// is buried: the layers of the faces rising from the wall run down to the wall, as the solid (the
+// union of mesh and wall) does, instead of stopping at the bisector of the mesh's edge there.
+void sample_mesh(const SphMesh& m, const V3& container, float dx, int layers, SphBoundarySample& out) {
   double vol = 0;
   for (const auto& t : m.triangles) vol += dot(m.vertices[t[0]], cross(m.vertices[t[1]], m.vertices[t[2]]));
   const float orient = vol >= 0 ? 1.f : -1.f;
-  for (const auto& t : m.triangles) {
+  SphMesh exposed{m.vertices, {}};
+  for (const auto& t : m.triangles)
+    if (!buried_in_wall(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], container, 1e-3f * dx))
+      exposed.triangles.push_back(t);
+  for (const auto& t : exposed.triangles) {
     const V3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
     const V3 ab = sub(b, a), ac = sub(c, a), nn = cross(ab, ac);
     const float len = std::sqrt(dot(nn, nn));
@@ -314,7 +332,9 @@ void sample_mesh(const SphMesh& m, float dx, int layers, SphBoundarySample& out)
             const float u = (i + f) / n, v = (j + f) / n, d = (k + 0.5f) * dx;
             const V3 p{a[0] + u * ab[0] + v * ac[0] - d * nrm[0], a[1] + u * ab[1] + v * ac[1] - d * nrm[1],
                        a[2] + u * ab[2] + v * ac[2] - d * nrm[2]};
-            if (mesh_dist2(m, p) >= d * d * (1.f - 1e-3f) && mesh_inside(m, p))
+            const bool in_box = p[0] > 0.f && p[1] > 0.f && p[2] > 0.f && p[0] < container[0] && p[1] < container[1] &&
+                                p[2] < container[2];
+            if (in_box && mesh_dist2(exposed, p) >= d * d * (1.f - 1e-3f) && mesh_inside(m, p))
               out.add(p[0], p[1], p[2], w, nrm[0], nrm[1], nrm[2]);
           }
   }
@@ -326,7 +346,8 @@ void sph_sample_container(const std::array<float, 3>& container_m, float dx, int
   sample_box_lattice({0.f, 0.f, 0.f}, container_m, dx, layers, true, out);
 }
 
-void sph_sample_obstacle(const SphObstacle& o, float dx, int layers, SphBoundarySample& out) {
+void sph_sample_obstacle(const SphObstacle& o, const std::array<float, 3>& container_m, float dx, int layers,
+                         SphBoundarySample& out) {
   switch (o.type) {
     case SphObstacle::Type::box:
       sample_box_lattice(o.min_m, o.max_m, dx, layers, false, out);
@@ -338,7 +359,7 @@ void sph_sample_obstacle(const SphObstacle& o, float dx, int layers, SphBoundary
       sample_sphere(o, dx, layers, out);
       return;
     case SphObstacle::Type::mesh:
-      sample_mesh(*o.mesh, dx, layers, out);
+      sample_mesh(*o.mesh, container_m, dx, layers, out);
       return;
   }
 }

@@ -78,7 +78,8 @@ void SphSystem::compute_density(bool fresh_moment) {
   }
 }
 
-// p_b = max(0, (sum p_f W + g . sum rho_f (x_b - x_f) W) / sum W) (Adami et al. 2012 eq. 27, wall at
+// p_b = max(0, (sum p_f W + g . sum rho_f (x_b - x_f) W) / sum W), rho_f = max(rho_f, rho0) (the
+// density of p_f by the clamped equation of state; sph_wall_range) (Adami et al. 2012 eq. 27, wall at
 // rest), l_b = sum l_f W / sum W (the fluid's gradient correction, as the pair term uses l_j), rho_b
 // = rho0 (1 + p_b / B)^(1/gamma) (eq. 28), P_b = l_b p_b / rho_b^2; 0 without fluid in the support.
 void SphSystem::set_boundary_pressure(std::size_t b, const float s[6]) {
@@ -97,7 +98,7 @@ void SphSystem::compute_boundary_pressure() {
   const std::size_t nb = nb_;
   // fluid arrays read: positions, p in PP, rho in IR, l in LR
   const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, p_arr_.data(), rho_.data(), corr_.data()};
-  const float h2 = k_.h2;
+  const float h2 = k_.h2, rho0 = p_.rest_density_kgpm3;
 #pragma omp parallel if (nb > kSphParallelMin && n_ > kSphParallelMin)
   {
     const float* src[6] = {v.X, v.Y, v.Z, v.PP, v.IR, v.LR};
@@ -109,7 +110,7 @@ void SphSystem::compute_boundary_pressure() {
       const float xb = bx_[b], yb = by_[b], zb = bz_[b];
       float s[6] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
       cur.visit(grid_.ix(xb), grid_.iy(yb), grid_.iz(zb), [&](bool g, bool, std::uint32_t lo, std::uint32_t hi) {
-        sph_wall_range(g ? sv : v, lo, hi, xb, yb, zb, h2, s);
+        sph_wall_range(g ? sv : v, lo, hi, xb, yb, zb, h2, s, rho0);
       });
       set_boundary_pressure(b, s);
     }
@@ -217,7 +218,7 @@ void SphSystem::brute_force_accelerations(std::span<float> ax, std::span<float> 
   const SphView pv{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, Pr, R, Lc};
   for (std::size_t b = 0; b < nb; ++b) {
     float s[6] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
-    sph_wall_range(pv, 0, un, bx_[b], by_[b], bz_[b], h2, s);
+    sph_wall_range(pv, 0, un, bx_[b], by_[b], bz_[b], h2, s, p_.rest_density_kgpm3);
     set_boundary_pressure(b, s);
   }
   const float cp = mass_ * k_.spiky_k, cv = nu_ * p_.rest_density_kgpm3 * mass_ * k_.spiky_k;

@@ -27,12 +27,20 @@ std::array<float, N> vecf(const JsonIn& in, const std::string& key, double lo, d
   return out;
 }
 
-// The viewer draws boxes and vertical cylinders: a sphere as the cylinder around it, a mesh as its
-// bounding box.
+// The viewer draws boxes, vertical cylinders and meshes: a sphere as the cylinder around it, a mesh
+// as its triangles (with its bounding box).
 RenderObstacle render_obstacle(const SphObstacle& o) {
   RenderObstacle ro;
   using T = SphObstacle::Type;
-  ro.kind = o.type == T::box || o.type == T::mesh ? RenderObstacle::Kind::box : RenderObstacle::Kind::cylinder;
+  ro.kind = o.type == T::box    ? RenderObstacle::Kind::box
+            : o.type == T::mesh ? RenderObstacle::Kind::mesh
+                                : RenderObstacle::Kind::cylinder;
+  if (o.type == T::mesh && o.mesh) {
+    ro.triangles_m.reserve(9 * o.mesh->triangles.size());
+    for (const auto& t : o.mesh->triangles)
+      for (int c : t)
+        ro.triangles_m.insert(ro.triangles_m.end(), o.mesh->vertices[c].begin(), o.mesh->vertices[c].end());
+  }
   for (int a = 0; a < 3; ++a) ro.min_m[a] = o.min_m[a], ro.max_m[a] = o.max_m[a];
   ro.centre_m = {o.centre_m[0], o.centre_m[1]};
   ro.radius_m = o.radius_m;
@@ -100,7 +108,10 @@ class SphSolver final : public Solver {
             {"impact_beta", p.impact_beta},
             {"viscosity_total_m2s", sys_.viscosity()},
             {"container_m", p.container_m},
-            {"pressure_model", "weakly compressible, Tait equation of state"},
+            {"method", p.method == SphMethod::dfsph ? "dfsph" : "wcsph"},
+            {"pressure_model", p.method == SphMethod::dfsph
+                                   ? "divergence-free SPH (Bender and Koschier 2015), Akinci boundary"
+                                   : "weakly compressible, Tait equation of state"},
             {"tait_gamma", p.tait_gamma},
             {"grid", {{"rows", hf_.rows}, {"cols", hf_.cols}, {"dx", hf_.cell_m}}},
             {"dx", hf_.cell_m},
@@ -245,18 +256,20 @@ void check_sound_speed(const JsonIn& s, const SphParams& p) {
                                   " m/s the Mach number exceeds 0.3 and density errors exceed 10 %; refused");
 }
 
-// "mesh": a closed OBJ triangle mesh (path relative to the scene file), scaled then moved by position_m.
-void parse_mesh(const JsonIn& o, const std::string& scene_file, SphObstacle& ob) {
+// "mesh": a closed OBJ triangle mesh (path relative to the scene file: read_scene_file), scaled then
+// moved by position_m.
+void parse_mesh(const JsonIn& o, const Scene& scene, SphObstacle& ob) {
   o.allow_only({"type", "file", "position_m", "scale"});
   ob.type = SphObstacle::Type::mesh;
   const std::string file = o.string("file", "");
   if (file.empty()) o.fail("file", "the OBJ file of the mesh is required");
   const std::array<float, 3> pos = o.has("position_m") ? vecf<3>(o, "position_m", -1e4, 1e4) : std::array<float, 3>{};
   const float scale = static_cast<float>(o.number("scale", 1.0, 1e-6, 1e6));
-  const std::filesystem::path path = std::filesystem::path(scene_file).parent_path() / file;
   SphMesh m;
   try {
-    m = sph_read_obj(path.string());
+    const std::string shown =
+        scene.embedded ? file : (std::filesystem::path(scene.dir) / std::filesystem::path(file)).string();
+    m = sph_parse_obj(read_scene_file(scene, file), shown);
   } catch (const std::runtime_error& e) {
     o.fail("file", e.what());
   }
@@ -271,7 +284,7 @@ void parse_mesh(const JsonIn& o, const std::string& scene_file, SphObstacle& ob)
   ob.mesh = std::make_shared<const SphMesh>(std::move(m));
 }
 
-SphObstacle parse_obstacle(const JsonIn& o, const std::string& scene_file) {
+SphObstacle parse_obstacle(const JsonIn& o, const Scene& scene) {
   SphObstacle ob;
   const std::string type = o.string("type", "", {"box", "cylinder", "sphere", "mesh"});
   if (type == "box") {
@@ -291,7 +304,7 @@ SphObstacle parse_obstacle(const JsonIn& o, const std::string& scene_file) {
     return ob;
   }
   if (type == "mesh") {
-    parse_mesh(o, scene_file, ob);
+    parse_mesh(o, scene, ob);
     return ob;
   }
   o.allow_only({"type", "centre_m", "radius_m", "z0_m", "z1_m"});
@@ -378,17 +391,19 @@ SphScene parse_sph_scene(const Scene& scene) {
   root.allow_only({"solver", "sph", "description"});
   const JsonIn s = root.object("sph");
   s.reject_renamed({{"viscosity_m2ps", "viscosity_m2s"}});
-  s.allow_only({"spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
+  s.allow_only({"method", "spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
                 "impact_alpha", "impact_beta", "wall_alpha", "sound_speed_mps", "gravity_mps2", "container_m", "fluid",
                 "obstacles", "boundary", "time", "surface"});
   // walls and obstacles are boundary particles (the mirror images and the position clamp are gone)
   s.string("boundary", "particles", {"particles"});
   SphScene out;
   SphParams& p = out.params;
+  // the pressure solver: an unknown name is a SceneError at $.sph.method listing both
+  p.method = s.string("method", "wcsph", {"wcsph", "dfsph"}) == "dfsph" ? SphMethod::dfsph : SphMethod::wcsph;
   parse_fluid_params(s, p);
   parse_fluid_blocks(s, p);
   check_sound_speed(s, p);
-  for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o, scene.file));
+  for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o, scene));
   parse_time(s, p);
   const double nb = boundary_estimate(p);
   if (nb > 2e7)
@@ -414,7 +429,9 @@ MemoryEstimate sph_memory(const SphScene& scene) {
   m.size_key = "$.sph.spacing_m";
   // 22 float arrays per particle (system.hpp), the grid's cell and order per particle, a dump's
   // (n, 3) positions; the grid's two cell arrays; the heightfield's columns (height, normals)
-  m.add("particles", static_cast<std::uint64_t>(particles * (22 * 4 + 2 * 4 + 3 * 4)));
+  // (DFSPH: 10 more, dfsph.hpp)
+  const double arrays = p.method == SphMethod::dfsph ? 32 : 22;
+  m.add("particles", static_cast<std::uint64_t>(particles * (arrays * 4 + 2 * 4 + 3 * 4)));
   m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4));
   m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4));
   // 9 float arrays per boundary particle (system.hpp) and the 7 of its sample

@@ -18,6 +18,9 @@ void SphSystem::allocate(std::size_t n) {
   for (auto* b : {&x_,    &y_,     &z_,    &vx_,    &vy_, &vz_, &ax_, &ay_,  &az_,  &rho_, &P_,
                   &irho_, &lirho_, &corr_, &p_arr_, &tx_, &ty_, &tz_, &tvx_, &tvy_, &tvz_, &tcorr_})
     *b = AlignedBuffer<float>(n + 8);  // padded to whole vectors (masked lanes read the zero tail)
+  if (p_.method == SphMethod::dfsph)
+    for (auto* b : {&alpha_, &kappa_, &kappav_, &kick_, &gbx_, &gby_, &gbz_, &err_, &tkappa_, &tkappav_})
+      *b = AlignedBuffer<float>(n + 8);
   id_.assign(n, 0);
   tid_.assign(n, 0);
   grid_ = SphGrid(p_.container_m, h_, n);
@@ -107,7 +110,7 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   pbk_ = p_.impact_beta * h_ * h_ / rho0;
   const int layers = sph_boundary_layers(h_, dx);
   sph_sample_container(p_.container_m, dx, layers, bsample_);
-  for (const auto& o : p_.obstacles) sph_sample_obstacle(o, dx, layers, bsample_);
+  for (const auto& o : p_.obstacles) sph_sample_obstacle(o, p_.container_m, dx, layers, bsample_);
 
   dt_hist_.assign(std::max<std::size_t>(dt_history, 1), 0.0);
   sid_.neighbours = stats_.add("neighbour search");
@@ -176,12 +179,22 @@ void SphSystem::sort_particles() {
   std::swap(vz_, tvz_);
   std::swap(corr_, tcorr_);
   std::swap(id_, tid_);
+  if (p_.method != SphMethod::dfsph) return;
+    // the warm-start values of DFSPH travel with their particle
+#pragma omp parallel for schedule(static) if (n > kSphParallelLight)
+  for (std::size_t i = 0; i < n; ++i) {
+    tkappa_[i] = kappa_[ord[i]];
+    tkappav_[i] = kappav_[ord[i]];
+  }
+  std::swap(kappa_, tkappa_);
+  std::swap(kappav_, tkappav_);
 }
 
 // ---------------------------------------------------------------------------------------------
 // the step: sort, density, forces, time step and integration
 
 double SphSystem::step() {
+  if (p_.method == SphMethod::dfsph) return step_dfsph();
   {
     StageTimer t(stats_[sid_.neighbours]);
     sort_particles();
@@ -209,6 +222,11 @@ double SphSystem::step() {
   if (!all_finite(x()) || !all_finite(y()) || !all_finite(z()) || !all_finite(vx()) || !all_finite(vy()) ||
       !all_finite(vz()))
     throw NonFiniteError("integration", steps_);
+  record_dt(dt);
+  return dt;
+}
+
+void SphSystem::record_dt(double dt) {
   t_ += dt;
   ++steps_;
   // dt history (ring buffer, preallocated)
@@ -219,11 +237,16 @@ double SphSystem::step() {
   ++dts_.count;
   dt_hist_[dt_head_] = dt;
   dt_head_ = (dt_head_ + 1) % dt_hist_.size();
-  return dt;
 }
 
 void SphSystem::refresh() {
   sort_particles();
+  if (p_.method == SphMethod::dfsph) {
+    dfsph_factors();
+    dfsph_pressure();
+    dts_.limiter = "dt_max";
+    return;
+  }
   compute_density(true);
   compute_boundary_pressure();
   compute_forces();

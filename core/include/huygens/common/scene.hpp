@@ -4,12 +4,14 @@
 // and is reported by the programs with exit code 2.
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <initializer_list>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -88,6 +90,14 @@ struct Scene {
   std::string file;
   std::string solver;  ///< "huygens", "sph" or "lbm"
   std::shared_ptr<const nlohmann::json> doc;
+  /// The folder a file the scene names (an OBJ mesh) is relative to: the scene file's own
+  /// folder, made absolute by load_scene (so it does not depend on the working directory);
+  /// empty for scene text (parse_scene_text): the working directory.
+  std::string dir;
+  /// A built-in scene's files by their path relative to the scene ("meshes/wedge.obj"; an empty
+  /// view: not there). When set, read_scene_file reads only from here (the program carries
+  /// the shipped scenes and their meshes, nothing is read from a folder).
+  std::function<std::string_view(std::string_view)> embedded;
   JsonIn root() const;
 };
 
@@ -95,5 +105,10 @@ struct Scene {
 Scene load_scene(const std::string& file);
 /// Parses scene text (for tests); `name` stands for the file in messages.
 Scene parse_scene_text(const std::string& text, const std::string& name = "<scene>");
+
+/// The bytes of a file the scene names (`relative`: relative to the scene, Scene::dir, or
+/// absolute; a built-in scene's from Scene::embedded). Throws std::runtime_error naming the path
+/// it tried when the file cannot be read; a parser turns it into a SceneError at its JSON path.
+std::string read_scene_file(const Scene& scene, const std::string& relative);
 
 }  // namespace huygens

@@ -23,7 +23,9 @@
 // face's net flux by theta = min(1, h / outflow) of the cell it drains (every depth stays >= 0),
 // speeds are capped at the Riemann bound max(|u| + 2 sqrt(g h)) of the initial state, and each
 // cell's populations are made to sum to its mass balance accumulated in double (the face
-// exchanges are exact negatives of each other). A negative depth stops the run (LbmDryError).
+// exchanges are exact negatives of each other), what the floats cannot hold carried to the cell's
+// next step in a float plane (compensated storage, Kahan 1965; scenes that start with a dry cell).
+// A negative depth stops the run (LbmDryError).
 // Why each choice, and measurements: docs/lbm.md.
 #include <array>
 #include <cstdint>
@@ -151,6 +153,10 @@ std::array<double, 9> lbm_equilibrium(double g_lat, double h, double ux, double 
 /// consistent sides. Returns the lattice quantities.
 LbmLattice lbm_check(const LbmParams& p, const LbmFields& init);
 
+/// True when a fluid cell of the initial fields is dry (depth < min_depth_m): the solver then keeps
+/// a carry plane (one float per lattice cell) for the wet/dry pass's mass balance (docs/lbm.md).
+bool lbm_starts_dry(const LbmParams& p, const LbmFields& init);
+
 /// How a run is split over MPI ranks (comm.hpp, docs/scale.md): rank `rank` of `ranks` holds the
 /// rows row_slab(rows, ranks, rank) and keeps halo rows of its neighbours (one row of populations,
 /// two of depth; two of populations in a wet/dry step, for the MUSCL slopes) refreshed every step
@@ -207,6 +213,8 @@ class LbmShallow {
   int bytes_per_cell() const;
   /// Fluid cells with depth below min_depth_m after the last step (or initially), over all ranks.
   std::size_t dry_cells() const { return dry_; }
+  /// True when the run keeps the mass carry plane (the scene started with a dry cell).
+  bool has_mass_carry() const { return carry_.size() != 0; }
   /// Bytes this rank sent to its neighbours so far (halo rows; unit: byte).
   std::uint64_t bytes_sent() const { return xchg_.bytes_sent(); }
 
@@ -258,7 +266,7 @@ class LbmShallow {
   WetDryView wet_dry_view(const float* flags) const;
   void flag_supercritical();
   void outflow_limiter();
-  float wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* dst) const;
+  float wet_dry_cell(const WetDryView& view, std::ptrdiff_t c, float* dst, float* carry) const;
   void stream_collide_wet_dry(int& dry, int& bad);
   void unshift();
   void throw_bad_cell() const;
@@ -270,10 +278,13 @@ class LbmShallow {
   LbmParams p_;
   LbmLattice lat_;
   std::size_t stride_ = 0, plane_ = 0;
-  AlignedBuffer<float> fa_, fb_;     // 9 planes each: post-collision populations
-  AlignedBuffer<float> ha_, hb_;     // depth at the current and next step
-  AlignedBuffer<float> z_;           // bed
-  AlignedBuffer<float> theta_;       // outflow limiter of the wet/dry pass
+  AlignedBuffer<float> fa_, fb_;  // 9 planes each: post-collision populations
+  AlignedBuffer<float> ha_, hb_;  // depth at the current and next step
+  AlignedBuffer<float> z_;        // bed
+  AlignedBuffer<float> theta_;    // outflow limiter of the wet/dry pass
+  // what a cell's floats could not hold of its mass balance, added back at its next wet/dry step
+  // (m; allocated only when the scene starts with a dry cell)
+  AlignedBuffer<float> carry_;
   std::vector<std::uint8_t> solid_;  // per lattice cell: 1 = not fluid (ghost or obstacle)
   std::vector<Span> spans_;
   std::vector<Rule> rules_;

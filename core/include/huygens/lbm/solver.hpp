@@ -36,10 +36,12 @@ struct LbmScene {
 LbmScene parse_lbm_scene(const Scene& scene);
 /// The bytes the solver of a grid allocates on the largest of `ranks` MPI ranks (lattice, scene
 /// and output fields, halo buffers), before any is allocated; parse_lbm_scene() refuses a scene
-/// that needs more than available_memory() on a rank of this run.
-MemoryEstimate lbm_memory(const LbmParams& params, int ranks = 1);
+/// that needs more than available_memory() on a rank of this run. `carry`: the scene starts with a
+/// dry cell, so the solver also keeps its mass carry plane (lbm_starts_dry, 4 B per lattice cell).
+MemoryEstimate lbm_memory(const LbmParams& params, int ranks = 1, bool carry = false);
 /// The estimate of an "lbm" scene on `ranks` ranks from its grid block alone (huygens run --dry-run:
-/// nothing is allocated or refused). Throws SceneError for a bad grid block.
+/// nothing is allocated or refused; without the carry plane of a scene that starts dry, which needs
+/// the initial fields). Throws SceneError for a bad grid block.
 MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks);
 /// The Solver of a parsed scene.
 std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene);

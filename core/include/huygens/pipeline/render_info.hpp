@@ -29,12 +29,16 @@ struct RenderGrid {
   double x0_m = 0.0, y0_m = 0.0;
 };
 
-/// A solid obstacle in the water: an axis-aligned box or a vertical cylinder.
+/// A solid obstacle in the water: an axis-aligned box, a vertical cylinder or a closed triangle
+/// mesh (an SPH scene's OBJ obstacle, placed and scaled as the solver has it).
 struct RenderObstacle {
-  enum class Kind { box, cylinder };
+  enum class Kind { box, cylinder, mesh };
   Kind kind = Kind::box;
-  /// Box: the corners (x, y, z) (unit: m).
+  /// Box: the corners (x, y, z) (unit: m). Mesh: its bounding box.
   std::array<double, 3> min_m{}, max_m{};
+  /// Mesh: the triangles, three corners (x, y, z) each, 9 values per triangle (unit: m); the
+  /// corners in the OBJ file's order.
+  std::vector<float> triangles_m;
   /// Cylinder: axis position (x, y) (unit: m).
   std::array<double, 2> centre_m{};
   /// Cylinder radius (unit: m).
@@ -93,6 +97,8 @@ struct RenderRequest {
   /// "sun": {"elevation_deg", "azimuth_deg"}: the sun's elevation above the horizon and its
   /// azimuth from +x toward +y (unit: deg).
   std::optional<double> sun_elevation_deg, sun_azimuth_deg;
+  /// "foam": draw the foam a flow carries (LBM scenes; default on).
+  std::optional<bool> foam;
 };
 
 /// A feature the solver switches at run time on cmd::Toggle (a viewer shows a checkbox for it).

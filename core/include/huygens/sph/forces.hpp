@@ -154,9 +154,12 @@ template <bool kBoundary>
 /// The sums of a boundary particle at (xb, yb, zb) over fluid candidates for its extrapolated
 /// pressure (Adami et al. 2012 eq. 27): s[0] = sum W, s[1] = sum p W, s[2..4] = sum rho (x_b - x_f) W,
 /// s[5] = sum l W, with W = (h^2 - r^2)^3 (poly6 without its constant, which cancels). v: X, Y, Z
-/// of the fluid, PP = p (Pa), IR = rho (kg/m^3), LR = l (1).
+/// of the fluid, PP = p (Pa), IR = rho (kg/m^3), LR = l (1). The density in the hydrostatic sum is
+/// max(rho, rho_min): with rho_min = rho0 it is the density of the fluid's pressure by the clamped
+/// equation of state (rho0 at p = 0), not the summation density, which a kernel cut off at the free
+/// surface puts below rho0 (a lone particle on a floor: 0.38 rho0).
 [[gnu::noinline]] inline void sph_wall_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xb, float yb,
-                                             float zb, float h2, float s[6]) {
+                                             float zb, float h2, float s[6], float rho_min = 0.f) {
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
@@ -174,7 +177,7 @@ template <bool kBoundary>
     const bool in = (r2 < h2) & (j >= b) & (j < e);
     const float q = sph_keep(in, h2 - r2);
     const float w = sph_keep(in, q * q * q);
-    const float rw = sph_keep(in, R[j] * w);
+    const float rw = sph_keep(in, std::max(R[j], rho_min) * w);
     sw += w;
     sp += sph_keep(in, P[j] * w);
     sx += rw * dx;

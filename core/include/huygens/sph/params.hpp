@@ -18,7 +18,33 @@ struct SphFluidBlock {
   std::array<float, 3> max_m{0.1f, 0.1f, 0.1f};
 };
 
+/// The pressure solver (unit: choice). wcsph: weakly compressible, pressure from the Tait equation
+/// of state, explicit, time step bounded by the sound speed. dfsph: divergence-free SPH of Bender and
+/// Koschier 2015 (dfsph.hpp): a divergence-free and a constant-density solve per step, both with warm
+/// start, time step bounded by the particle speed.
+enum class SphMethod { wcsph, dfsph };
+
 struct SphParams {
+  /// Pressure solver (unit: choice; scene key "method": "wcsph" (default) or "dfsph").
+  SphMethod method = SphMethod::wcsph;
+  /// DFSPH: largest mean predicted compression of the constant-density solve, mean over the
+  /// particles of max(0, rho*_i - rho0) / rho0 (Bender and Koschier 2015 section 4.2; their 0.01 %) (unit: 1).
+  float dfsph_density_error = 1e-4f;
+  /// DFSPH: largest mean divergence error of the divergence-free solve, mean of max(0, dt Drho_i/Dt) / rho0
+  /// (section 4.1; 0.1 %) (unit: 1).
+  float dfsph_divergence_error = 1e-3f;
+  /// DFSPH: CFL number on the particle spacing, dt <= dfsph_cfl dx / v_max (section 4.3: 0.4) (unit: 1).
+  float dfsph_cfl = 0.4f;
+  /// DFSPH: relaxation omega of the Jacobi updates, kappa += omega (error) alpha / dt^2 (unit: 1).
+  float dfsph_relaxation = 0.5f;
+  /// DFSPH: boundary pressure term with the fluid particle's pressure mirrored, (p_i/rho_i^2 + p_b/rho_b^2)
+  /// with p_b = p_i, rho_b = rho_i (true), or Akinci et al. 2012 eq. 10's single p_i/rho_i^2 (false) (unit: on/off).
+  bool dfsph_mirror = false;
+  /// DFSPH: the share of the last step's kappa and kappa^v a solve starts from (warm start; 1 = all of
+  /// it; below 1 the Jacobi noise that the full warm start carries from step to step decays) (unit: 1).
+  float dfsph_warm_start = 0.8f;
+  /// DFSPH: most Jacobi iterations of either solve in one step (unit: 1).
+  int dfsph_max_iterations = 100;
   /// Initial particle spacing, the lattice constant of the fluid blocks (unit: m).
   float spacing_m = 0.01f;
   /// Support radius h as a multiple of the spacing (unit: 1). 2.0 keeps the poly6 lattice sum within 1 %.

@@ -11,7 +11,9 @@
 // (boundary.hpp) are neighbours at rest with the pressure extrapolated from the fluid (Adami, Hu and
 // Adams 2012 eq. 27-28), recomputed between the density and force passes. Units: SI (m, s, kg).
 // Kernels: kernels.hpp; walls and obstacles: boundary.hpp; pair sums: forces.hpp; neighbour grid:
-// grid.hpp; time step: integration.hpp. Why each choice, and the measurements: docs/sph.md.
+// grid.hpp; time step: integration.hpp. With SphParams::method = dfsph the pressure comes from the
+// divergence-free SPH solver instead (dfsph.hpp, Akinci-style boundary). Why each choice, and the
+// measurements: docs/sph.md.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -57,6 +59,11 @@ class SphSystem {
   std::vector<double> dt_history() const;
   const StageStats& stats() const { return stats_; }
   StageStats& stats() { return stats_; }
+  /// DFSPH: Jacobi iterations of the last step's divergence-free and constant-density solves, and
+  /// their totals over all steps (unit: 1; 0 with WCSPH).
+  int dfsph_divergence_iterations() const { return div_iter_; }
+  int dfsph_density_iterations() const { return dens_iter_; }
+  std::int64_t dfsph_total_iterations() const { return total_iter_; }
 
   // State, in the current (cell-sorted) order. Valid until the next step.
   std::span<const float> x() const { return {x_.data(), n_}; }
@@ -138,6 +145,25 @@ class SphSystem {
   }
   static constexpr float kCorrMin = 0.5f;
   void allocate(std::size_t n);
+  /// Adds dt to the time and the dt statistics.
+  void record_dt(double dt);
+
+  // DFSPH (dfsph.hpp, dfsph.cpp)
+  /// The DFSPH step: factors, divergence-free solve, advection, constant-density solve, positions.
+  double step_dfsph();
+  /// rho_i, alpha_i, l_i and the boundary gradient sum gb_i at the current positions.
+  void dfsph_factors();
+  /// v_i += dt m 45/(pi h^6) (sum_j (K_i + K_j) (h - r)^2 x_ij / r + K_i gb_i), K = kick_.
+  void dfsph_kick(float dt);
+  /// One Jacobi update of kappa (density: true) or kappa^v from the predicted density or the
+  /// divergence of the current velocities; K = the change / rho into kick_; returns the mean error.
+  double dfsph_update(float dt, bool density);
+  /// Warm start, then Jacobi iterations until the mean error is below the tolerance; returns them.
+  int dfsph_solve(float dt, bool density);
+  /// a = g + the viscous acceleration into ax_, ay_, az_; max |a| and |v|.
+  void dfsph_advection_forces();
+  /// p_i = rho_i (kappa_i + kappa^v_i) / l_i into p_arr_.
+  void dfsph_pressure();
 
   SphParams p_;
   SphKernels k_;
@@ -162,6 +188,13 @@ class SphSystem {
   AlignedBuffer<float> x_, y_, z_, vx_, vy_, vz_, ax_, ay_, az_, rho_, P_, irho_, lirho_, corr_, p_arr_;
   AlignedBuffer<float> tx_, ty_, tz_, tvx_, tvy_, tvz_, tcorr_;
   std::vector<std::uint32_t> id_, tid_;
+  // DFSPH per particle (sized by allocate() with method dfsph): alpha, kappa, kappa^v (warm start,
+  // sorted with the particle), K = change of kappa / rho of the last update, the boundary gradient
+  // sum gb, the error of the last update, the sort buffers of kappa and kappa^v
+  AlignedBuffer<float> alpha_, kappa_, kappav_, kick_, gbx_, gby_, gbz_, err_, tkappa_, tkappav_;
+  int div_iter_ = 0, dens_iter_ = 0;
+  std::int64_t total_iter_ = 0;
+  double dt_prev_ = 0;
   float vmax_ = 0, amax_ = 0;
   SphDtStats dts_;
   std::vector<double> dt_hist_;

@@ -60,6 +60,9 @@ struct LbmRitterResult {
   double front_m = 0;
   /// Exact front 2 sqrt(g h0) t (unit: m from the dam).
   double front_exact_m = 0;
+  /// Where the exact depth falls to the dry threshold min_depth_m, (2 sqrt(g h0) - 3 sqrt(g
+  /// min_depth_m)) t (unit: m from the dam): what the last wet cell's face is compared with.
+  double front_threshold_exact_m = 0;
   /// Where the depth falls to 0.01 h0, measured (interpolated) and exact (unit: m from the dam).
   double x01_m = 0, x01_exact_m = 0;
   /// Smallest depth over the run's end state (unit: m) and the relative volume change.

@@ -4,6 +4,7 @@
 // (sph_validation_cases() in validation.hpp), the tests run cheaper but meaningful ones.
 #include <vector>
 
+#include "huygens/sph/params.hpp"
 #include "huygens/validation/reference/martin_moyce.hpp"
 #include "huygens/validation/validation.hpp"
 
@@ -14,13 +15,16 @@ std::vector<ValidationRow> sph_kernel_rows(float support_factor = 2.0f);
 
 /// Hydrostatic column of nx x nx x nz particles: settle (velocity damping) for settle_s, relax freely
 /// for relax_s (the particles leave the cubic start lattice for a stable packing), then run free for
-/// hold_s and check bottom pressure, pressure gradient, density error and stillness.
-std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double relax_s, double hold_s);
+/// hold_s and check bottom pressure, pressure gradient, density error and stillness. DFSPH: case
+/// "sph_hydrostatic_dfsph", mean density error within 0.1 % (WCSPH 1 %), bottom pressure also vs rho0 g H.
+std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s, double relax_s, double hold_s,
+                                                SphMethod method = SphMethod::wcsph);
 
 /// Surge front of a dam break (column a x 2a, `na` particles across a) against the measured
 /// points (martin_moyce_1952(), both series) up to T_end = t sqrt(2 g / a): 8 % up to T = 3,
-/// 10 % up to T = 5.
-std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::vector<MartinMoycePoint>& measured);
+/// 10 % up to T = 5. DFSPH: case "sph_dam_break_dfsph", same points and tolerances.
+std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::vector<MartinMoycePoint>& measured,
+                                              SphMethod method = SphMethod::wcsph);
 
 /// No leakage over t_end seconds of a dam break at `na` particles across the column, in a box
 /// container_len a long: inside the container, finite, max speed (every step) < 1.5 sqrt(2 g H).

@@ -10,7 +10,8 @@
 
 namespace huygens {
 
-/// One checked quantity: pass means error <= tolerance.
+/// One checked quantity: pass means error <= tolerance. A reported row (judged = false) shows a
+/// quantity worth seeing that is not a target (no tolerance, neither pass nor fail).
 struct ValidationRow {
   std::string case_name;
   std::string quantity;  ///< what was measured, with its unit
@@ -19,6 +20,7 @@ struct ValidationRow {
   double error = 0;  ///< as the case defines it (relative or absolute, see quantity)
   double tolerance = 0;
   bool pass = false;
+  bool judged = true;  ///< false: reported only, counted neither as passed nor as failed
 };
 
 /// A named validation case: `run` computes its rows (seconds to minutes at full size).
@@ -32,6 +34,9 @@ struct ValidationCase {
 /// Helper: a row whose pass flag is error <= tolerance (false when error is not finite).
 ValidationRow check(std::string case_name, std::string quantity, double measured, double expected, double error,
                     double tolerance);
+
+/// Helper: a reported row, shown with its error but without tolerance or pass/fail.
+ValidationRow report_only(std::string case_name, std::string quantity, double measured, double expected, double error);
 
 /// The cases of each solver, in the order `huygens validate` runs them (defined in
 /// huygens_cases.cpp, sph_cases.cpp and lbm_cases.cpp).

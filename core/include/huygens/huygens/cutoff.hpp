@@ -1,0 +1,22 @@
+#pragma once
+// Paper 004's margin cutoff (section 3): after each propagation the field is multiplied by
+//   h(p) h(q),  h(i) = 1 - (d/M - 1)^2  for d = min(i, N-1-i) < M cells, else 1,
+// so waves reaching the M-cell margin fade instead of wrapping round the periodic grid. With a
+// time constant tau > 0 the factor is (h(p) h(q))^(dt/tau): one paper cutoff per tau seconds
+// whatever dt. Shared by the one-process propagator and the MPI slab solver (rows row0 ...).
+#include <cstddef>
+
+namespace huygens {
+
+struct HuygensParams;
+
+/// Fills h[0 .. 2N) with h(i) stored twice per cell, interleaved like a complex field (re, im);
+/// all ones without the paper's absorber.
+void fill_cutoff_window(const HuygensParams& p, float* h);
+
+/// Z(r, c) *= h(r) h(c) for the global rows r = row0 ... row0 + rows - 1 of an N-wide complex
+/// field z (interleaved re, im) that holds those rows from its start; h from fill_cutoff_window.
+/// Rows outside both margins touch only their 2 M margin cells.
+void apply_cutoff_rows(float* z, const float* h, int n, int margin, std::ptrdiff_t row0, std::ptrdiff_t rows);
+
+}  // namespace huygens

@@ -1,0 +1,175 @@
+#pragma once
+// Divergence-free SPH (DFSPH) of Bender and Koschier 2015 ("Divergence-free smoothed particle
+// hydrodynamics", SCA 2015; BK15 below), the pressure solver of `"method": "dfsph"` (SphParams).
+// One step of SphSystem with it (dfsph.cpp; BK15 Algorithm 1, started at the neighbour search):
+//   factors      rho_i = sum_j m_j W_ij (poly6, fluid and boundary neighbours)
+//                alpha_i = rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2)      (BK15 eq. 11)
+//   divergence   Drho_i/Dt = sum_j m_j (v_i - v_j) . grad W_ij                           (BK15 eq. 6)
+//                kappa^v_i += Drho_i/Dt alpha_i / dt                                     (BK15 eq. 17)
+//   velocities   v_i -= dt sum_j m_j (k_i / rho_i + k_j / rho_j) grad W_ij                 (BK15 eq. 16)
+//   advection    v*_i = v_i + dt (g + viscous acceleration)
+//   density      rho*_i = rho_i + dt Drho_i/Dt(v*), kappa_i += (rho*_i - rho0) alpha_i / dt^2 (BK15 eq. 12-13)
+//                then the same velocity update; x_i += dt v*_i
+// Each solve is a relaxed Jacobi iteration, kappa += omega (error) alpha / dt^2 (omega =
+// dfsph_relaxation, 0.5), repeated until the mean error is below its tolerance (BK15 Algorithm 2
+// and 3: at least 2 density and 1 divergence iterations). kappa, kappa^v are kept >= 0 (a projected
+// Jacobi step: an expanding particle is not pulled back, as the clamped free-surface density of BK15
+// section 4.2), and the error is that of the complementarity: |rho* - rho0| where kappa > 0, else
+// max(0, rho* - rho0). Warm start (BK15 section 4.3): kappa and kappa^v persist per particle
+// (sorted with it); each solve first applies dfsph_warm_start (0.8) times the last step's values,
+// then iterates on them.
+// Time step (BK15 section 4.3): dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max).
+// Kernels: poly6 values, spiky gradients grad W_ij = -45/(pi h^6) (h - r)^2 x_ij / r (kernels.hpp).
+// Boundary particles (boundary.hpp) after Akinci et al. 2012: a boundary particle b adds
+// m_b W_ib = rho0 V_b W_ib to the density (its sampled volume V_b = w_b m / rho0) and, at rest,
+// m_b v_i . grad W_ib to Drho_i/Dt; its pressure force uses the fluid particle's own pressure,
+// -m_b (k_i / rho_i) grad W_ib (Akinci et al. 2012 eq. 10), or twice that with dfsph_mirror
+// (p_b = p_i, rho_b = rho_i in the symmetric pair term); alpha_i's first sum is taken along the
+// same direction. The boundary does not move during the solves, so each particle's
+// gb_i = sum_b w_b (h - r)^2 x_ib / r is summed once per step (no boundary loop in the iterations).
+// Reported pressure p_i = rho_i (kappa_i + kappa^v_i) / l_i: the pair term
+// (k_i / rho_i + k_j / rho_j) equals (l_i p_i / rho_i^2 + l_j p_j / rho_j^2) of the WCSPH force with
+// the gradient correction l (system.hpp), so p is the field whose corrected gradient the solve applies.
+// Pair sums below over one index range [b, e) of cell-sorted (or gathered) arrays, in the style of
+// forces.hpp (whole 8-float vectors, masked lanes, branch-free), x_ij = x_i - x_j, r = |x_ij|:
+//   factor      sum (h^2 - r^2)^3, sum (h - r)^2 x_ij / r, sum (h - r)^4, sum (h - r)^2 r
+//   divergence  sum (h - r)^2 / r (v_i - v_j) . x_ij      (x -m 45/(pi h^6) = Drho/Dt)
+//   kick        sum (K_i + K_j) (h - r)^2 / r x_ij          (x dt m 45/(pi h^6) = dv, K = kappa / rho)
+//   viscous     sum (v_j - v_i) (h - r) / rho_j             (as forces.hpp)
+#include <algorithm>
+#include <cstdint>
+
+#include "huygens/sph/forces.hpp"
+
+namespace huygens {
+
+/// Factor sums of particle (xi, yi, zi) over fluid (kBoundary false) or boundary candidates (true,
+/// each weighted by W): acc[0] density sum, acc[1..3] gradient sum, acc[4] squared gradient sum (fluid
+/// only, the particle itself left out), acc[5] the spiky first moment (gradient correction).
+template <bool kBoundary>
+[[gnu::noinline]] void sph_dfsph_factor_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi,
+                                              float zi, float h, float h2, float rmin, float acc[6]) {
+  const float rmin2 = rmin * rmin;
+  const float* X = v.X;
+  const float* Y = v.Y;
+  const float* Z = v.Z;
+  const float* W = v.W;
+  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+  float s6 = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f;
+#pragma omp simd reduction(+ : s6, gx, gy, gz, sq, sm) aligned(X, Y, Z : 32)
+  for (std::uint32_t j = b0; j < e0; ++j) {
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const bool in = (r2 < h2) & (j >= b) & (j < e);
+    const float wj = kBoundary ? W[j] : 1.f;
+    const float q = sph_keep(in, h2 - r2);
+    s6 += sph_keep(in, q * q * q * wj);
+    const float ri = sph_rsqrt(std::max(r2, rmin2));
+    const float r = r2 * ri;
+    const float hr = sph_keep(in, h - r);
+    const float g = hr * hr * ri * wj;
+    gx += g * dx;
+    gy += g * dy;
+    gz += g * dz;
+    if constexpr (!kBoundary) sq += sph_keep(r2 > rmin2, hr * hr * hr * hr);
+    sm += hr * hr * r * wj;
+  }
+  acc[0] += s6;
+  acc[1] += gx;
+  acc[2] += gy;
+  acc[3] += gz;
+  acc[4] += sq;
+  acc[5] += sm;
+}
+
+/// Adds sum_j (h - r)^2 / r (v_i - v_j) . x_ij over fluid candidates to `sum`.
+[[gnu::noinline]] inline void sph_dfsph_divergence_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
+                                                         float yi, float zi, const float vi[3], float h, float h2,
+                                                         float rmin, float& sum) {
+  const float rmin2 = rmin * rmin;
+  const float* X = v.X;
+  const float* Y = v.Y;
+  const float* Z = v.Z;
+  const float* VX = v.VX;
+  const float* VY = v.VY;
+  const float* VZ = v.VZ;
+  const float vxi = vi[0], vyi = vi[1], vzi = vi[2];
+  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+  float s = 0.f;
+#pragma omp simd reduction(+ : s) aligned(X, Y, Z, VX, VY, VZ : 32)
+  for (std::uint32_t j = b0; j < e0; ++j) {
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float ri = sph_rsqrt(std::max(r2, rmin2));
+    const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r2 * ri);
+    const float vr = (vxi - VX[j]) * dx + (vyi - VY[j]) * dy + (vzi - VZ[j]) * dz;
+    s += hr * hr * ri * vr;
+  }
+  sum += s;
+}
+
+/// Adds sum_j (K_i + K_j) (h - r)^2 / r x_ij over fluid candidates (K in v.PP) to acc[0..2].
+[[gnu::noinline]] inline void sph_dfsph_kick_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
+                                                   float yi, float zi, float Ki, float h, float h2, float rmin,
+                                                   float acc[3]) {
+  const float rmin2 = rmin * rmin;
+  const float* X = v.X;
+  const float* Y = v.Y;
+  const float* Z = v.Z;
+  const float* K = v.PP;
+  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+  float ax = 0.f, ay = 0.f, az = 0.f;
+#pragma omp simd reduction(+ : ax, ay, az) aligned(X, Y, Z, K : 32)
+  for (std::uint32_t j = b0; j < e0; ++j) {
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float ri = sph_rsqrt(std::max(r2, rmin2));
+    const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r2 * ri);
+    const float f = (Ki + K[j]) * hr * hr * ri;
+    ax += f * dx;
+    ay += f * dy;
+    az += f * dz;
+  }
+  acc[0] += ax;
+  acc[1] += ay;
+  acc[2] += az;
+}
+
+/// Adds the viscous sum sum_j (v_j - v_i) (h - r) / rho_j (1/rho in v.IR) over fluid candidates to acc[0..2].
+[[gnu::noinline]] inline void sph_dfsph_viscous_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
+                                                      float yi, float zi, const float vi[3], float h, float h2,
+                                                      float acc[3]) {
+  const float* X = v.X;
+  const float* Y = v.Y;
+  const float* Z = v.Z;
+  const float* VX = v.VX;
+  const float* VY = v.VY;
+  const float* VZ = v.VZ;
+  const float* IR = v.IR;
+  const float vxi = vi[0], vyi = vi[1], vzi = vi[2];
+  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+  float ax = 0.f, ay = 0.f, az = 0.f;
+#pragma omp simd reduction(+ : ax, ay, az) aligned(X, Y, Z, VX, VY, VZ, IR : 32)
+  for (std::uint32_t j = b0; j < e0; ++j) {
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const float r = r2 * sph_rsqrt(r2 + 1e-30f);
+    const float f = sph_keep((r2 < h2) & (j >= b) & (j < e), (h - r) * IR[j]);
+    ax += f * (VX[j] - vxi);
+    ay += f * (VY[j] - vyi);
+    az += f * (VZ[j] - vzi);
+  }
+  acc[0] += ax;
+  acc[1] += ay;
+  acc[2] += az;
+}
+
+}  // namespace huygens

@@ -1,0 +1,242 @@
+// The DFSPH step of SphSystem (Bender and Koschier 2015): see huygens/sph/dfsph.hpp.
+#include "huygens/sph/dfsph.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "huygens/common/finite.hpp"
+#include "huygens/sph/system.hpp"
+
+namespace huygens {
+
+// rho_i = m 315/(64 pi h^9) sum_j w_j (h^2 - r^2)^3; G_i = sum_j m_j grad W_ij = -m 45/(pi h^6) (gf + gb);
+// alpha_i = rho_i / (|G_i|^2 + (m 45/(pi h^6))^2 sum_fluid (h - r)^4) (BK15 eq. 11); l_i from the moment.
+void SphSystem::dfsph_factors() {
+  const std::size_t n = n_;
+  const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+  const SphView bv{bx_.data(), by_.data(), bz_.data(), nullptr, nullptr,
+                   nullptr,    nullptr,    nullptr,    nullptr, bw_.data()};
+  const float h = h_, h2 = k_.h2, mk = mass_ * k_.poly6_k, rmin = 1e-6f * h_;
+  const float mg = mass_ * k_.spiky_k, mg2 = mg * mg;
+#pragma omp parallel if (n > kSphParallelMin)
+  {
+    const float* src[3] = {v.X, v.Y, v.Z};
+    const float* bsrc[4] = {bv.X, bv.Y, bv.Z, bv.W};
+    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 3, bsrc, nb_ > 0 ? 4 : 0);
+    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), nullptr, nullptr,
+                     nullptr,        nullptr,        nullptr,        nullptr};
+    const SphView sbv{cur.scratch(3), cur.scratch(4), cur.scratch(5), nullptr, nullptr,
+                      nullptr,        nullptr,        nullptr,        nullptr, cur.scratch(6)};
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
+      float f[6] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f}, fb[6] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
+      cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
+        if (bnd)
+          sph_dfsph_factor_range<true>(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, fb);
+        else
+          sph_dfsph_factor_range<false>(g ? sv : v, b, e, xi, yi, zi, h, h2, rmin, f);
+      });
+      const float rho = std::isfinite(xi + yi + zi) ? mk * (f[0] + fb[0]) : std::numeric_limits<float>::quiet_NaN();
+      // the velocity change per kappa_i is along gf + 2 gb (the mirrored boundary term counts twice)
+      const float gx = f[1] + fb[1], gy = f[2] + fb[2], gz = f[3] + fb[3];
+      const float mb = p_.dfsph_mirror ? 1.f : 0.f;
+      const float gx2 = gx + mb * fb[1], gy2 = gy + mb * fb[2], gz2 = gz + mb * fb[3];
+      const float den = mg2 * (std::max(gx * gx2 + gy * gy2 + gz * gz2, 0.f) + f[4]);
+      rho_[i] = rho;
+      irho_[i] = 1.f / rho;
+      alpha_[i] = den > 1e-6f * rho * rho ? rho / den : 0.f;
+      corr_[i] = gradient_correction(f[5] + fb[5]);
+      gbx_[i] = fb[1];
+      gby_[i] = fb[2];
+      gbz_[i] = fb[3];
+    }
+  }
+}
+
+// v_i += dt m 45/(pi h^6) (sum_j (K_i + K_j) (h - r)^2 x_ij / r + K_i gb_i)  (BK15 eq. 16, Akinci boundary)
+void SphSystem::dfsph_kick(float dt) {
+  const std::size_t n = n_;
+  const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, kick_.data(), nullptr, nullptr};
+  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, c = dt * mass_ * k_.spiky_k;
+#pragma omp parallel if (n > kSphParallelMin)
+  {
+    const float* src[4] = {v.X, v.Y, v.Z, v.PP};
+    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 4);
+    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), nullptr, nullptr,
+                     nullptr,        cur.scratch(3), nullptr,        nullptr};
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const float Ki = v.PP[i];
+      if (Ki == 0.f && alpha_[i] == 0.f) continue;  // no own change, and no neighbour to take one from
+      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
+      const float Kb = p_.dfsph_mirror ? 2.f * Ki : Ki;
+      float acc[3] = {Kb * gbx_[i], Kb * gby_[i], Kb * gbz_[i]};
+      cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool, std::uint32_t b, std::uint32_t e) {
+        sph_dfsph_kick_range(g ? sv : v, b, e, xi, yi, zi, Ki, h, h2, rmin, acc);
+      });
+      vx_[i] += c * acc[0];
+      vy_[i] += c * acc[1];
+      vz_[i] += c * acc[2];
+    }
+  }
+}
+
+// Drho_i/Dt = -m 45/(pi h^6) (sum_j (h - r)^2 / r v_ij . x_ij + v_i . gb_i)  (BK15 eq. 6, boundary at rest);
+// density: kappa_i += (rho_i + dt Drho_i/Dt - rho0) alpha_i / dt^2 (eq. 12-13), error max(0, rho* - rho0) / rho0;
+// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0; both kept >= 0.
+double SphSystem::dfsph_update(float dt, bool density) {
+  const std::size_t n = n_;
+  const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, nullptr, nullptr};
+  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, mg = mass_ * k_.spiky_k, rho0 = p_.rest_density_kgpm3;
+  float* kap = density ? kappa_.data() : kappav_.data();
+  const float w = p_.dfsph_relaxation / (dt * dt);
+#pragma omp parallel if (n > kSphParallelMin)
+  {
+    const float* src[6] = {v.X, v.Y, v.Z, v.VX, v.VY, v.VZ};
+    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 6);
+    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), cur.scratch(3), cur.scratch(4),
+                     cur.scratch(5), nullptr,        nullptr,        nullptr};
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
+      const float vi[3] = {v.VX[i], v.VY[i], v.VZ[i]};
+      float s = vi[0] * gbx_[i] + vi[1] * gby_[i] + vi[2] * gbz_[i];
+      if (alpha_[i] != 0.f)
+        cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool, std::uint32_t b, std::uint32_t e) {
+          sph_dfsph_divergence_range(g ? sv : v, b, e, xi, yi, zi, vi, h, h2, rmin, s);
+        });
+      const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
+      const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho;
+      const float inc = res * alpha_[i] * w;
+      const float k = std::max(kap[i] + inc, 0.f);
+      kick_[i] = (k - kap[i]) * irho_[i];
+      kap[i] = k;
+      // the residual of the complementarity p >= 0, rho* <= rho0, p (rho* - rho0) = 0: |res| where pushed
+      err_[i] = (k > 0.f ? std::fabs(res) : std::max(res, 0.f)) / rho0;
+    }
+  }
+  double sum = 0;  // serial: the same iteration count for any thread count
+  for (std::size_t i = 0; i < n; ++i) sum += err_[i];
+  return n ? sum / double(n) : 0.0;
+}
+
+// Warm start (BK15 section 4.3: the last step's kappa, scaled by dfsph_warm_start, applied first), then Jacobi
+// iterations until the mean error is at most the tolerance (at least 2 density / 1 divergence iterations, BK15 Alg.
+// 2-3).
+int SphSystem::dfsph_solve(float dt, bool density) {
+  float* kap = density ? kappa_.data() : kappav_.data();
+  const float wf = p_.dfsph_warm_start;
+  bool warm = false;
+  for (std::size_t i = 0; i < n_; ++i) {
+    kap[i] *= wf;
+    kick_[i] = kap[i] * irho_[i];
+    warm = warm || kap[i] != 0.f;
+  }
+  if (warm) dfsph_kick(dt);
+  const double eta = density ? p_.dfsph_density_error : p_.dfsph_divergence_error;
+  const int min_iter = density ? 2 : 1;
+  int it = 0;
+  double err = 0;
+  do {
+    err = dfsph_update(dt, density);
+    dfsph_kick(dt);
+    ++it;
+  } while ((err > eta || it < min_iter) && it < p_.dfsph_max_iterations);
+  return it;
+}
+
+// a_i = g + nu rho0 m 45/(pi h^6) / rho_i sum_j (v_j - v_i) (h - r) / rho_j (MCG03 eq. 14, as the WCSPH
+// viscous term; free-slip walls: no boundary term); also max |a| and max |v|.
+void SphSystem::dfsph_advection_forces() {
+  const std::size_t n = n_;
+  const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, irho_.data(), nullptr};
+  const float h = h_, h2 = k_.h2;
+  const float cv = nu_ * p_.rest_density_kgpm3 * mass_ * k_.spiky_k;
+  const float gx = g_[0], gy = g_[1], gz = g_[2];
+  float amax2 = 0.f, vmax2 = 0.f;
+#pragma omp parallel if (n > kSphParallelMin) reduction(max : amax2, vmax2)
+  {
+    const float* src[7] = {v.X, v.Y, v.Z, v.VX, v.VY, v.VZ, v.IR};
+    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 7);
+    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), cur.scratch(3), cur.scratch(4),
+                     cur.scratch(5), nullptr,        cur.scratch(6), nullptr};
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
+      const float vi[3] = {v.VX[i], v.VY[i], v.VZ[i]};
+      float acc[3] = {0.f, 0.f, 0.f};
+      cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool, std::uint32_t b, std::uint32_t e) {
+        sph_dfsph_viscous_range(g ? sv : v, b, e, xi, yi, zi, vi, h, h2, acc);
+      });
+      const float vis = cv * v.IR[i];
+      const float ax = gx + vis * acc[0], ay = gy + vis * acc[1], az = gz + vis * acc[2];
+      ax_[i] = ax;
+      ay_[i] = ay;
+      az_[i] = az;
+      amax2 = std::max(amax2, ax * ax + ay * ay + az * az);
+      vmax2 = std::max(vmax2, vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]);
+    }
+  }
+  amax_ = std::sqrt(amax2);
+  vmax_ = std::sqrt(vmax2);
+}
+
+void SphSystem::dfsph_pressure() {
+  for (std::size_t i = 0; i < n_; ++i) p_arr_[i] = rho_[i] * (kappa_[i] + kappav_[i]) / corr_[i];
+}
+
+// BK15 Algorithm 1, entered at the neighbour search: the divergence-free solve of the last step's
+// velocities (the factors at the new positions), advection, dt, the constant-density solve, positions.
+double SphSystem::step_dfsph() {
+  {
+    StageTimer t(stats_[sid_.neighbours]);
+    sort_particles();
+  }
+  {
+    StageTimer t(stats_[sid_.density]);
+    dfsph_factors();
+  }
+  if (!all_finite(density())) throw NonFiniteError("density", steps_);
+  double dt;
+  {
+    StageTimer t(stats_[sid_.forces]);
+    div_iter_ = dt_prev_ > 0 ? dfsph_solve(static_cast<float>(dt_prev_), false) : 0;
+    dfsph_advection_forces();
+    // dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max) (BK15 section 4.3)
+    dt = sph_choose_dt(p_, h_, 0.f, nu_, 0.f, amax_, dts_.limiter);
+    if (vmax_ > 0.f && p_.dfsph_cfl * p_.spacing_m / vmax_ < dt) {
+      dt = p_.dfsph_cfl * p_.spacing_m / vmax_;
+      dts_.limiter = "cfl";
+    }
+    const float fdt = static_cast<float>(dt);
+    for (std::size_t i = 0; i < n_; ++i) {
+      vx_[i] += fdt * ax_[i];
+      vy_[i] += fdt * ay_[i];
+      vz_[i] += fdt * az_[i];
+    }
+    dens_iter_ = dfsph_solve(fdt, true);
+  }
+  if (!all_finite(vx()) || !all_finite(vy()) || !all_finite(vz())) throw NonFiniteError("pressure solve", steps_);
+  {
+    StageTimer t(stats_[sid_.integration]);
+    const float fdt = static_cast<float>(dt), damp = 1.f / (1.f + damping_ * fdt);
+    for (std::size_t i = 0; i < n_; ++i) {
+      vx_[i] *= damp, vy_[i] *= damp, vz_[i] *= damp;
+      x_[i] += fdt * vx_[i];
+      y_[i] += fdt * vy_[i];
+      z_[i] += fdt * vz_[i];
+    }
+    dfsph_pressure();
+  }
+  if (!all_finite(x()) || !all_finite(y()) || !all_finite(z())) throw NonFiniteError("integration", steps_);
+  total_iter_ += div_iter_ + dens_iter_;
+  dt_prev_ = dt;
+  record_dt(dt);
+  return dt;
+}
+
+}  // namespace huygens
