@@ -419,7 +419,7 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
   EXPECT_GE(compared, 1) << "no shipped scene to compare";
 }
 
-// The real window (GLFW, GLX under Xvfb): 60 frames of a scene, a left click in the middle
+// The real window (GLFW, GLX under Xvfb): 60 frames of a scene, a left click on open water
 // halfway (through the mouse handler: a stone command reaches the simulation), then the S
 // key's screenshot path and Esc, exit code 0, and a screenshot that is not blank.
 TEST(VizWindow, XvfbRunsSixtyFramesAndTakesAScreenshot) {

@@ -549,16 +549,32 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
   glfwSwapBuffers(a.window);
 }
 
-// --auto-frames: a left click in the middle of the window halfway (through the mouse handler),
-// then the S key's screenshot and Esc, as a user would.
+// A window point (x, y) whose ray hits the simulated water and no ship: the middle of the window
+// or the first such point of a coarse raster from there (the camera may frame a moving ship in
+// the middle, or the region's edge). False if there is none.
+bool open_water_point(const App& a, int ww, int wh, double& x, double& y) {
+  for (int r = 0; r < 9; ++r)
+    for (int c = 0; c < 9; ++c) {
+      x = (0.5 + 0.1 * ((c + 1) / 2) * (c % 2 ? 1 : -1)) * ww;  // 0.5, 0.4, 0.6, 0.3, 0.7, ...
+      y = (0.5 + 0.1 * ((r + 1) / 2) * (r % 2 ? 1 : -1)) * wh;
+      glm::dvec2 p;
+      if (cursor_hit(a, x, y, p) && ship_under(a, p) < 0) return true;
+    }
+  return false;
+}
+
+// --auto-frames: a left click on open water halfway (through the mouse handler), then the S key's
+// screenshot and Esc, as a user would.
 void automate(App& a, long frame) {
   const int n = a.opt.auto_frames;
   if (n <= 0) return;
   if (frame == n / 2) {
     int ww, wh;
     glfwGetWindowSize(a.window, &ww, &wh);
-    on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0, 0.5 * ww, 0.5 * wh);
-    on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0, 0.5 * ww, 0.5 * wh);
+    double x = 0.5 * ww, y = 0.5 * wh;
+    if (!open_water_point(a, ww, wh, x, y)) std::printf("huygens-viz: no open water to click on\n");
+    on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_PRESS, 0, x, y);
+    on_mouse_button(a, GLFW_MOUSE_BUTTON_LEFT, GLFW_RELEASE, 0, x, y);
   }
   if (frame == n) on_key(a, GLFW_KEY_S);  // same path as the S key
   if (frame == n + 1) on_key(a, GLFW_KEY_ESCAPE);
