@@ -67,6 +67,17 @@ GridPlacement test_grid() {
   return g;
 }
 
+// An orthographic camera looking straight down at (x, y) (m), showing height_m of the scene.
+OrbitCamera top_down(double x, double y, double height_m) {
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = height_m;
+  cam.target = glm::dvec3(x, y, 0.0);
+  cam.distance = 10.0;
+  cam.pitch = 1.5707963267948966;
+  return cam;
+}
+
 double channel(const gl::Image8& img, int x, int y, int c) {
   return img.pixels[4 * (static_cast<std::size_t>(y) * img.width + x) + c] / 255.0;
 }
@@ -298,12 +309,7 @@ TEST_F(VizRender, TiltedSurfaceShiftsTheGroundAsSnellPredicts) {
   for (std::size_t i = 0; i < kN; ++i)
     for (std::size_t j = 0; j < kN; ++j) eta[i * kN + j] = static_cast<float>(slope * (g.x(j) - xc));
   r.set_heights(eta);
-  OrbitCamera cam;
-  cam.ortho = true;
-  cam.ortho_height = 2.0;
-  cam.target = glm::dvec3(xc, g.y0 + 1.75, 0.0);
-  cam.distance = 10.0;
-  cam.pitch = 1.5707963267948966;
+  const OrbitCamera cam = top_down(xc, g.y0 + 1.75, 2.0);
   RenderSettings s = plain_settings();
   s.ground = GroundPattern::checker;
   s.index = static_cast<float>(n);
@@ -466,12 +472,7 @@ TEST_F(VizRender, FoamIsAWhiteRoughOverlayWhereTheFieldIsOne) {
   for (std::size_t i = 44; i < 84; ++i)
     for (std::size_t j = 44; j < 84; ++j) foam[i * kN + j] = 1.0f;
   r.set_foam(foam);
-  OrbitCamera cam;
-  cam.ortho = true;
-  cam.ortho_height = 3.6;
-  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
-  cam.distance = 10.0;
-  cam.pitch = 1.5707963267948966;
+  const OrbitCamera cam = top_down(g.x0 + 2.0, g.y0 + 2.0, 3.6);
   RenderSettings s = plain_settings();
   s.ground = GroundPattern::uniform;
   s.ground_uniform = glm::vec3(0.0f);
@@ -518,12 +519,7 @@ TEST_F(VizRender, FoamIsAWhiteRoughOverlayWhereTheFieldIsOne) {
 TEST_F(VizRender, CausticsLightTheGroundWithoutDarkLines) {
   const GridPlacement g = test_grid();
   WaterRenderer r(g, -kDepth, 4);
-  OrbitCamera cam;
-  cam.ortho = true;
-  cam.ortho_height = 3.6;
-  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
-  cam.distance = 10.0;
-  cam.pitch = 1.5707963267948966;
+  const OrbitCamera cam = top_down(g.x0 + 2.0, g.y0 + 2.0, 3.6);
   // huygens-viz's default (explicit area, float) and the paper's MIP mode, 8-bit, emulated blur
   for (const CausticsMode mode : {CausticsMode::conserving, CausticsMode::mip_paper}) {
     RenderSettings s = plain_settings();
@@ -678,12 +674,7 @@ TEST_F(VizRender, ShipHullAtItsPositionAndHeading) {
   const GridPlacement g = test_grid();
   WaterRenderer r(g, -kDepth, 4);
   r.set_heights(std::vector<float>(kN * kN, 0.0f));
-  OrbitCamera cam;
-  cam.ortho = true;
-  cam.ortho_height = 2.0;
-  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
-  cam.distance = 10.0;
-  cam.pitch = 1.5707963267948966;
+  const OrbitCamera cam = top_down(g.x0 + 2.0, g.y0 + 2.0, 2.0);
   RenderSettings s = plain_settings();
   s.draw_ship = true;
   s.ground = GroundPattern::uniform;
@@ -726,12 +717,7 @@ TEST_F(VizRender, MeshObstacleIsDrawnAsItsTrianglesLit) {
   WaterRenderer r(g, -kDepth, 4);
   // 10 cm of water: a solid under the surface is not seen through it (the refraction shows the floor)
   r.set_heights(std::vector<float>(kN * kN, static_cast<float>(0.1 - kDepth)));
-  OrbitCamera cam;
-  cam.ortho = true;
-  cam.ortho_height = 4.0;
-  cam.target = glm::dvec3(g.x0 + 2.0, g.y0 + 2.0, 0.0);
-  cam.distance = 10.0;
-  cam.pitch = 1.5707963267948966;
+  const OrbitCamera cam = top_down(g.x0 + 2.0, g.y0 + 2.0, 4.0);
   RenderSettings s = plain_settings();
   s.ground = GroundPattern::uniform;
   s.sun_dir = glm::vec3(0.3f, 0.5f, 0.8f);

@@ -317,25 +317,19 @@ void WaterRenderer::set_heights(std::span<const float> eta) {
   times.prepare = elapsed_ms(t0);
 }
 
-void WaterRenderer::set_dye(std::span<const float> dye) {
-  has_dye_ = dye.size() == grid_.rows * grid_.cols;
-  if (!has_dye_) return;
-  if (dye_tex_.width() != static_cast<int>(grid_.cols)) {
-    dye_tex_ = gl::Texture(static_cast<int>(grid_.cols), static_cast<int>(grid_.rows), GL_R32F);
-    dye_tex_.set_filter(GL_LINEAR, GL_LINEAR);
+bool WaterRenderer::upload_grid_field(std::span<const float> values, gl::Texture& tex) const {
+  if (values.size() != grid_.rows * grid_.cols) return false;
+  if (tex.width() != static_cast<int>(grid_.cols)) {
+    tex = gl::Texture(static_cast<int>(grid_.cols), static_cast<int>(grid_.rows), GL_R32F);
+    tex.set_filter(GL_LINEAR, GL_LINEAR);
   }
-  dye_tex_.upload(dye.data(), GL_RED, GL_FLOAT);
+  tex.upload(values.data(), GL_RED, GL_FLOAT);
+  return true;
 }
 
-void WaterRenderer::set_foam(std::span<const float> foam) {
-  has_foam_ = foam.size() == grid_.rows * grid_.cols;
-  if (!has_foam_) return;
-  if (foam_tex_.width() != static_cast<int>(grid_.cols)) {
-    foam_tex_ = gl::Texture(static_cast<int>(grid_.cols), static_cast<int>(grid_.rows), GL_R32F);
-    foam_tex_.set_filter(GL_LINEAR, GL_LINEAR);
-  }
-  foam_tex_.upload(foam.data(), GL_RED, GL_FLOAT);
-}
+void WaterRenderer::set_dye(std::span<const float> dye) { has_dye_ = upload_grid_field(dye, dye_tex_); }
+
+void WaterRenderer::set_foam(std::span<const float> foam) { has_foam_ = upload_grid_field(foam, foam_tex_); }
 
 void WaterRenderer::set_bed(std::span<const float> bed) {
   has_bed_ = bed.size() == grid_.rows * grid_.cols;

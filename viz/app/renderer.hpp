@@ -238,6 +238,8 @@ class WaterRenderer {
   void draw_ships(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void update_linearisation(const OrbitCamera& camera, float index);
   void build_ground_texture(const RenderSettings& s);
+  // uploads a rows x cols field into tex (R32F, linear; made on first use); false if the size is wrong
+  bool upload_grid_field(std::span<const float> values, gl::Texture& tex) const;
   void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void add_mesh_solids(std::span<const RenderObstacle> obstacles);
   void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
