@@ -17,6 +17,7 @@
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 #include "huygens/huygens/slab_solver.hpp"
 #include "huygens/huygens/solver.hpp"
 #include "huygens/lbm/solver.hpp"
@@ -82,7 +83,7 @@ std::function<MemoryEstimate(int)> rank_memory(const Scene& scene) {
 }  // namespace
 
 int cmd_dry_run(const std::string& scene_file, int ranks, double rank_gib) {
-  const Scene scene = load_scene(scene_file);
+  const Scene scene = open_scene(scene_file);
   const Sizing z = sizing(scene);
   const std::uint64_t limit =
       rank_gib > 0 ? static_cast<std::uint64_t>(rank_gib * 1024.0 * 1024.0 * 1024.0) : available_memory();
