@@ -2,7 +2,7 @@
 // MPI ranks, from the solvers' own estimates (memory.hpp) before anything is allocated, and the
 // fewest ranks (powers of two) on which it fits a given memory per rank. Nothing runs.
 //   LBM: lbm_memory(params, P) (its largest rank: ceil(rows / P) rows, halos, the whole scene
-//        fields every rank parses).
+//        fields every rank parses; the mass carry plane when the scene starts dry).
 //   Huygens: the slab solver's huygens_slab_memory(scene, P) (its slabs of
 //        fftwf_mpi_local_size_2d); P = 1 the one-process solver's huygens_memory.
 //   SPH: not distributed (docs/scale.md): one process holds it all, whatever P.
@@ -67,7 +67,10 @@ Sizing sizing(const Scene& scene) {
 
 // The estimate on P ranks as a function of P; the scene is parsed once.
 std::function<MemoryEstimate(int)> rank_memory(const Scene& scene) {
-  if (scene.solver == "lbm") return [&scene](int p) { return lbm_scene_memory(scene, p); };
+  if (scene.solver == "lbm") {
+    const bool carry = lbm_scene_may_start_dry(scene);
+    return [&scene, carry](int p) { return lbm_scene_memory(scene, p, carry); };
+  }
   const MemoryCheckOff sizing_only;  // parsed to be sized, not run
   if (scene.solver == "huygens") {
     auto hs = std::make_shared<const HuygensScene>(parse_huygens_scene(scene));
