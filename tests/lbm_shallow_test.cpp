@@ -158,6 +158,16 @@ TEST(LbmCheck, RefusesUnstableParametersNamingThemWithAFix) {
   q = p;
   q.expected_froude = 1.2;
   EXPECT_EQ(refusal(q, uniform(8, 32, 1.0)).substr(0, 15), "expected_froude");
+  // a supercritical initial state (Froude 1.6) is refused, with allow_supercritical_start too while
+  // every cell is wet (the all-wet pass would run it); with it and a dry cell it is accepted
+  LbmFields sup = uniform(8, 32, 0.01, 0.5);
+  EXPECT_EQ(refusal(p, sup).substr(0, 7), "depth_m");
+  q = p;
+  q.allow_supercritical_start = true;
+  EXPECT_EQ(refusal(q, sup).substr(0, 7), "depth_m");
+  sup.depth_m[40] = 0.0f;
+  EXPECT_EQ(refusal(p, sup).substr(0, 7), "depth_m");
+  EXPECT_EQ(refusal(q, sup), "<accepted>");
   // periodic sides in pairs
   q = p;
   q.left = LbmSide::periodic;
