@@ -138,9 +138,7 @@ class SphSystem {
   void place_boundary();
   float pressure_of(float rho) const;
   /// Square of the contact range r_c = wall_contact_range dx of the contact density (unit: m^2).
-  float contact_r2() const {
-    return p_.wall_contact_range * p_.wall_contact_range * p_.spacing_m * p_.spacing_m;
-  }
+  float contact_r2() const { return p_.wall_contact_range * p_.wall_contact_range * p_.spacing_m * p_.spacing_m; }
   /// Gradient correction l = 1 / M from the spiky first-moment sum msum = sum (h - r)^2 r.
   float gradient_correction(float msum) const {
     if (mvol_ == 0.f) return 1.f;
