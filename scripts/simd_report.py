@@ -22,8 +22,8 @@ import re
 import subprocess
 import sys
 
-HOT = re.compile(r"SphSystem::compute_(density|forces)\(|sph_(poly6|force)_range<|sph_wall_range\(")
-LOOP = re.compile(r"sph_(poly6|force)_range<|sph_wall_range\(")  # the functions that hold a neighbour loop
+HOT = re.compile(r"SphSystem::compute_(density|forces)\(|sph_(poly6|force)_range<|sph_(wall|contact)_range\(")
+LOOP = re.compile(r"sph_(poly6|force)_range<|sph_(wall|contact)_range\(")  # the functions that hold a neighbour loop
 ARITH = re.compile(r"^v?(add|sub|mul|min|max|f[n]?m(add|sub)(132|213|231))(ss|ps)$")
 WIDTH = {"xmm": 128, "ymm": 256, "zmm": 512}
 

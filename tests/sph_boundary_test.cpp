@@ -4,6 +4,7 @@
 // errors name the file and line, open meshes refused).
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -160,6 +161,52 @@ TEST(SphBoundary, FloorHoldsALoneParticleAboveTheFace) {
   };
   for (float z : {0.1f, 0.2f, 0.3f}) EXPECT_GT(az(z * dx), 0.f) << z;
   for (float z : {0.6f, 0.8f}) EXPECT_LT(az(z * dx), 0.f) << z;
+}
+
+// A lone particle at a box's convex edge (the upstream top edge of a step on the floor), on the
+// bisector of the edge at d from it: p = 0 (density ~0.45 rho0), and within h of only a quarter of
+// the support's boundary particles, so neither its own pressure nor the hydrostatic term of the wall
+// pressure holds it (without the contact density: pulled in and down, a_z -3 to -6 m/s^2 with g).
+// The contact density (forces.cpp: rho0 plus the excess of the kernel values of the boundary
+// particles nearer than 0.8 dx, the corner particle being 0.71 dx from the edge) pushes it out along
+// the bisector and up with more than g, from 0.05 dx outside the edge to 0.3 dx inside. With g = 0
+// the same holds (the push is not the wall's hydrostatic term; without it: 0), and at the rest
+// spacing above a flat face nothing acts (no boundary particle nearer than 0.8 dx).
+TEST(SphBoundary, ConvexEdgePushesALoneParticleOut) {
+  for (const float g : {9.81f, 0.f}) {
+    SphParams p;
+    p.spacing_m = 0.01f;
+    p.gravity_mps2 = {0.f, 0.f, -g};
+    p.sound_speed_mps = 12.f;  // c0 = 10 sqrt(2 g H) of the default with g = 9.81 (a g of 0 gives c0 ~ 0)
+    p.container_m = {0.1f, 0.1f, 0.1f};
+    p.fluid.push_back({{0.f, 0.f, 0.06f}, {0.01f, 0.01f, 0.07f}});
+    SphObstacle box;
+    box.min_m = {0.05f, 0.f, 0.f};
+    box.max_m = {0.1f, 0.1f, 0.04f};
+    p.obstacles = {box};
+    SphSystem s(p);
+    const float dx = p.spacing_m, c = std::sqrt(0.5f);
+    auto accel = [&](float x, float z) {
+      const float X[1] = {x}, Y[1] = {0.055f}, Z[1] = {z};
+      s.set_particles(X, Y, Z);
+      float ax[1], ay[1], az[1], rho[1];
+      s.grid_accelerations(ax, ay, az, rho);
+      EXPECT_LT(rho[0], 0.7f * p.rest_density_kgpm3) << x << " " << z;  // p = 0
+      return std::array<float, 2>{ax[0], az[0]};
+    };
+    for (const float d : {-0.3f, -0.1f, 0.f, 0.05f}) {
+      // outward bisector (-1, 0, 1) / sqrt(2) from the edge (x, z) = (0.05, 0.04)
+      const auto a = accel(0.05f - c * d * dx, 0.04f + c * d * dx);
+      EXPECT_GT(c * (a[1] - a[0]), 9.81f) << "g " << g << ", d " << d << " dx";
+      EXPECT_GT(a[1], 9.81f - g) << "g " << g << ", d " << d << " dx";
+    }
+    // the rest spacing above the middle of the top face, over a lattice point: no contact
+    const auto a = accel(0.075f, 0.04f + 0.5f * dx);
+    if (g == 0.f) {
+      EXPECT_NEAR(a[0], 0.f, 1e-3f);
+      EXPECT_NEAR(a[1], 0.f, 1e-3f);
+    }
+  }
 }
 
 // A wedge standing on the floor against a side wall (the 58-degree face of scenes/meshes/wedge.obj):

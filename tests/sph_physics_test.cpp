@@ -37,9 +37,9 @@ TEST(SphPhysics, NoLeakageShort) { expect_rows_pass(sph_leakage_rows(8, 1.0, 4.f
 // dx = 0.02 m onto a wedge read as an OBJ mesh, a sphere, a cylinder and a box, 0.5 s (validate:
 // dx = 0.01 m, 1 s): no particle centre passes the first layer of boundary particles (dx/2 behind
 // a surface), nothing goes non-finite. The rows counting centres just beyond a surface are
-// reported, not asserted here: zero-pressure water carried over a convex edge (the wedge's end,
-// the box's top, the cylinder's rim) reaches up to 0.32 dx past the face at dx = 0.01 m
-// (docs/sph.md, "Leakage at the obstacles").
+// reported, not asserted here: zero-pressure water carried over a convex edge (the wedge's
+// 64-degree ridge, the cylinder's rim) reaches up to 0.14 dx past the face at dx = 0.01 m, 0.32 dx
+// before the contact density (docs/sph.md, "Convex edges").
 TEST(SphPhysics, NoParticlePassesAnObstacleShort) {
   int asserted = 0;
   for (const auto& r : sph_obstacle_rows(0.02f, 0.5))

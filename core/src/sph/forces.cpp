@@ -26,14 +26,21 @@ float SphSystem::pressure_of(float rho) const {
 }
 
 // rho_i = m 315/(64 pi h^9) sum_j w_j (h^2 - r^2)^3 over the fluid (w = 1) and boundary neighbours
-// (w = m_b / m); then p_i, 1/rho_i, l_i/rho_i and P_i = l_i p_i / rho_i^2.
+// (w = m_b / m); then p_i, 1/rho_i, l_i/rho_i and P_i = l_i p_i / rho_i^2. The contact density
+// rho_c = max(rho_i, rho0 + m 315/(64 pi h^9) sum_b w_b max(0, (h^2 - r^2)^3 - (h^2 - r_c^2)^3))
+// (sph_contact_range; r_c = SphParams::wall_contact_range dx) gives Pc_i = l_i p(rho_c) / rho_c^2,
+// the P_i of the pairs with boundary particles: a particle stands for water at least at rest
+// density (the clamped equation of state's own premise), and a boundary particle nearer than r_c
+// compresses it by the excess of its kernel value over the one at r_c. rho_c = rho_i wherever the
+// summation density already holds that compression (docs/sph.md, "Convex edges").
 void SphSystem::compute_density(bool fresh_moment) {
   const std::size_t n = n_;
   const SphView v{x_.data(),  y_.data(), z_.data(),    vx_.data(),   vy_.data(),
                   vz_.data(), P_.data(), irho_.data(), lirho_.data()};
   const SphView bv{bx_.data(), by_.data(), bz_.data(), nullptr, nullptr,
                    nullptr,    nullptr,    nullptr,    nullptr, bw_.data()};
-  const float h = h_, h2 = k_.h2, mk = mass_ * k_.poly6_k;
+  const float h = h_, h2 = k_.h2, mk = mass_ * k_.poly6_k, rho0 = p_.rest_density_kgpm3;
+  const float q0 = std::max(h2 - contact_r2(), 0.f), q0c = q0 * q0 * q0;
 #pragma omp parallel if (n > kSphParallelMin)
   {
     const float* src[3] = {v.X, v.Y, v.Z};
@@ -46,11 +53,12 @@ void SphSystem::compute_density(bool fresh_moment) {
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
-      float sum = 0.f, msum = 0.f;
+      float sum = 0.f, msum = 0.f, csum = 0.f;
       // the direct path always sums the moment
       const bool gathered =
           cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
             const SphView& w = bnd ? (g ? sbv : bv) : (g ? sv : v);
+            if (bnd) sph_contact_range(w, b, e, xi, yi, zi, h2, q0c, csum);
             if (fresh_moment || !g) {
               if (bnd)
                 sph_poly6_range<true, true>(w, b, e, xi, yi, zi, h, h2, sum, msum);
@@ -74,6 +82,8 @@ void SphSystem::compute_density(bool fresh_moment) {
       irho_[i] = 1.f / rho;
       lirho_[i] = l / rho;
       P_[i] = l * p / (rho * rho);
+      const float rc = std::max(rho, rho0 + mk * csum);
+      Pc_[i] = rc > rho ? l * pressure_of(rc) / (rc * rc) : P_[i];
     }
   }
 }
@@ -144,12 +154,12 @@ void SphSystem::compute_forces() {
                       cur.scratch(14), cur.scratch(15), cur.scratch(16)};
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i], Pi = v.PP[i];
+      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i], Pi = v.PP[i], Pci = Pc_[i];
       const float vi[3] = {v.VX[i], v.VY[i], v.VZ[i]};
       float acc[7] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
       cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
         if (bnd)
-          sph_force_range<true>(g ? sbv : bv, b, e, xi, yi, zi, vi, Pi, h, h2, rmin, pikw, pbk, acc);
+          sph_force_range<true>(g ? sbv : bv, b, e, xi, yi, zi, vi, Pci, h, h2, rmin, pikw, pbk, acc);
         else
           sph_force_range<false>(g ? sv : v, b, e, xi, yi, zi, vi, Pi, h, h2, rmin, pik, pbk, acc);
       });
@@ -196,15 +206,19 @@ void SphSystem::brute_force_accelerations(std::span<float> ax, std::span<float> 
   float* La = tz_.data();   // scratch: l / rho
   float* Pr = tvx_.data();  // scratch: p
   float* Lc = tvy_.data();  // scratch: l
+  float* Pc = tvz_.data();  // scratch: l p(rho_c) / rho_c^2 (compute_density)
+  const float rho0 = p_.rest_density_kgpm3;
+  const float q0 = std::max(h2 - contact_r2(), 0.f), q0c = q0 * q0 * q0;
   const auto un = static_cast<std::uint32_t>(n), ub = static_cast<std::uint32_t>(nb);
   const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), Pa, Ia, La};
   const SphView bv{bx_.data(), by_.data(), bz_.data(), nullptr,     nullptr,     nullptr,    bP_.data(),
                    nullptr,    nullptr,    bw_.data(), bnx_.data(), bny_.data(), bnz_.data()};
 #pragma omp parallel for schedule(static) if (n > kSphParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
-    float sum = 0.f, msum = 0.f;
+    float sum = 0.f, msum = 0.f, csum = 0.f;
     sph_poly6_range<false, true>(v, 0, un, v.X[i], v.Y[i], v.Z[i], h, h2, sum, msum);
     sph_poly6_range<true, true>(bv, 0, ub, v.X[i], v.Y[i], v.Z[i], h, h2, sum, msum);
+    sph_contact_range(bv, 0, ub, v.X[i], v.Y[i], v.Z[i], h2, q0c, csum);
     const float r = mk * sum;
     R[i] = r;
     const float p = pressure_of(r);
@@ -214,6 +228,8 @@ void SphSystem::brute_force_accelerations(std::span<float> ax, std::span<float> 
     Ia[i] = 1.f / r;
     La[i] = l / r;
     Pa[i] = l * p / (r * r);
+    const float rc = std::max(r, rho0 + mk * csum);
+    Pc[i] = rc > r ? l * pressure_of(rc) / (rc * rc) : Pa[i];
   }
   const SphView pv{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, Pr, R, Lc};
   for (std::size_t b = 0; b < nb; ++b) {
@@ -227,7 +243,7 @@ void SphSystem::brute_force_accelerations(std::span<float> ax, std::span<float> 
     const float vi[3] = {v.VX[i], v.VY[i], v.VZ[i]};
     float acc[7] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
     sph_force_range<false>(v, 0, un, v.X[i], v.Y[i], v.Z[i], vi, Pa[i], h, h2, rmin, pik, pbk, acc);
-    sph_force_range<true>(bv, 0, ub, v.X[i], v.Y[i], v.Z[i], vi, Pa[i], h, h2, rmin, pikw, pbk, acc);
+    sph_force_range<true>(bv, 0, ub, v.X[i], v.Y[i], v.Z[i], vi, Pc[i], h, h2, rmin, pikw, pbk, acc);
     ax[i] = g_[0] + cp * acc[0] + cv * Ia[i] * acc[3];
     ay[i] = g_[1] + cp * acc[1] + cv * Ia[i] * acc[4];
     az[i] = g_[2] + cp * acc[2] + cv * Ia[i] * acc[5];

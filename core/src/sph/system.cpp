@@ -15,7 +15,7 @@ namespace huygens {
 
 void SphSystem::allocate(std::size_t n) {
   n_ = n;
-  for (auto* b : {&x_,    &y_,     &z_,    &vx_,    &vy_, &vz_, &ax_, &ay_,  &az_,  &rho_, &P_,
+  for (auto* b : {&x_,    &y_,     &z_,    &vx_,    &vy_, &vz_, &ax_, &ay_,  &az_,  &rho_, &P_,    &Pc_,
                   &irho_, &lirho_, &corr_, &p_arr_, &tx_, &ty_, &tz_, &tvx_, &tvy_, &tvz_, &tcorr_})
     *b = AlignedBuffer<float>(n + 8);  // padded to whole vectors (masked lanes read the zero tail)
   if (p_.method == SphMethod::dfsph)

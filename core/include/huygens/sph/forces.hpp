@@ -151,6 +151,33 @@ template <bool kBoundary>
   acc[6] += sm;
 }
 
+/// Adds the contact sum of a fluid particle at (xi, yi, zi) over boundary candidates to `csum`:
+///   sum_b W_b max(0, (h^2 - r^2)^3 - q0c), q0c = (h^2 - r_c^2)^3, r_c = the contact range
+/// (poly6 without its constant; W = m_b / m): every boundary particle nearer than r_c, by the
+/// excess of its kernel value over the one at r_c, 0 for none (a lattice at a flat wall, r = dx: 0).
+/// x m 315/(64 pi h^9) it is the compression the wall's particles impose on the fluid particle in
+/// contact (SphSystem::compute_density: the contact density).
+[[gnu::noinline]] inline void sph_contact_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi,
+                                                float zi, float h2, float q0c, float& csum) {
+  const float* X = v.X;
+  const float* Y = v.Y;
+  const float* Z = v.Z;
+  const float* W = v.W;
+  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+  float sc = 0.f;
+#pragma omp simd reduction(+ : sc) aligned(X, Y, Z : 32)
+  for (std::uint32_t j = b0; j < e0; ++j) {
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    const bool in = (r2 < h2) & (j >= b) & (j < e);
+    const float q = sph_keep(in, h2 - r2);
+    sc += sph_keep(in, std::max(q * q * q - q0c, 0.f) * W[j]);
+  }
+  csum += sc;
+}
+
 /// The sums of a boundary particle at (xb, yb, zb) over fluid candidates for its extrapolated
 /// pressure (Adami et al. 2012 eq. 27): s[0] = sum W, s[1] = sum p W, s[2..4] = sum rho (x_b - x_f) W,
 /// s[5] = sum l W, with W = (h^2 - r^2)^3 (poly6 without its constant, which cancels). v: X, Y, Z

@@ -64,6 +64,13 @@ struct SphParams {
   /// Alpha of the impact viscosity between fluid and boundary particles, on the velocity normal to
   /// the wall only (free slip): stops zero-pressure fluid drifting into a wall (unit: 1).
   float wall_alpha = 0.1f;
+  /// Contact range r_c of the contact density, as a multiple of the spacing (unit: 1; 0 = off): a
+  /// boundary particle nearer than r_c to a fluid particle compresses it in the pressure of their
+  /// pair, by the excess of its kernel value over the one at r_c, on top of rho0 (forces.cpp,
+  /// SphSystem::compute_density). 0.8: below the closest approach of settled water to the first
+  /// boundary layer (0.88 dx), above the 0.71 dx from a 90-degree edge to its corner particle
+  /// (docs/sph.md, "Convex edges").
+  float wall_contact_range = 0.8f;
   /// Speed of sound c0 of the Tait equation; 0 = automatic, 10 sqrt(2 g H) with H the fluid height (unit: m/s).
   float sound_speed_mps = 0.f;
   /// Tait exponent gamma (unit: 1).

@@ -137,6 +137,8 @@ class SphSystem {
   /// Samples the container walls and the obstacles and sorts them into the grid's static table.
   void place_boundary();
   float pressure_of(float rho) const;
+  /// Square of the contact range r_c = wall_contact_range dx of the contact density (unit: m^2).
+  float contact_r2() const { return p_.wall_contact_range * p_.wall_contact_range * p_.spacing_m * p_.spacing_m; }
   /// Gradient correction l = 1 / M from the spiky first-moment sum msum = sum (h - r)^2 r.
   float gradient_correction(float msum) const {
     if (mvol_ == 0.f) return 1.f;
@@ -185,7 +187,8 @@ class SphSystem {
   // boundary particles, grid static order: positions, mass ratio, l p / rho^2, pressure, normal
   AlignedBuffer<float> bx_, by_, bz_, bw_, bP_, bp_, bnx_, bny_, bnz_;
   // SoA state (64-byte aligned) and sort buffers.
-  AlignedBuffer<float> x_, y_, z_, vx_, vy_, vz_, ax_, ay_, az_, rho_, P_, irho_, lirho_, corr_, p_arr_;
+  // Pc_: l p / rho^2 at the contact density, the P_i of the pairs with boundary particles (forces.cpp)
+  AlignedBuffer<float> x_, y_, z_, vx_, vy_, vz_, ax_, ay_, az_, rho_, P_, Pc_, irho_, lirho_, corr_, p_arr_;
   AlignedBuffer<float> tx_, ty_, tz_, tvx_, tvy_, tvz_, tcorr_;
   std::vector<std::uint32_t> id_, tid_;
   // DFSPH per particle (sized by allocate() with method dfsph): alpha, kappa, kappa^v (warm start,
