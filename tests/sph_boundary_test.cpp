@@ -265,6 +265,44 @@ TEST(SphBoundary, ObjReadsVerticesAndFacesAndTriangulates) {
   EXPECT_FALSE(o.blocks(1.05f, 0.5f, 0.5f, 0.01f));
 }
 
+// Inside a mesh by its winding number: points whose rays pass through an edge shared by two triangles
+// (the cube's face diagonals, which a ray's crossing count used to count twice) and a lattice of points
+// around the cube, against the analytic box, for both orientations of the triangles.
+TEST(SphBoundary, MeshInsideHoldsOnEdgesAndForEitherOrientation) {
+  SphObstacle o = cube_mesh(0.f, 1.f);
+  auto in_box = [](float x, float y, float z) {
+    return x > 0.f && x < 1.f && y > 0.f && y < 1.f && z > 0.f && z < 1.f;
+  };
+  const float d[3] = {0.8017f, 0.4721f, 0.3667f};  // the old ray's direction
+  int wrong_on_edges = 0;                          // points on either side of every triangle edge, aimed at it along d
+  for (const auto& tri : o.mesh->triangles)
+    for (int e = 0; e < 3; ++e) {
+      const auto& a = o.mesh->vertices[tri[e]];
+      const auto& b = o.mesh->vertices[tri[(e + 1) % 3]];
+      for (float s = 0.05f; s < 1.f; s += 0.1f)
+        for (float t : {-0.05f, -0.01f, 0.01f, 0.05f}) {
+          const float x = a[0] + s * (b[0] - a[0]) - t * d[0], y = a[1] + s * (b[1] - a[1]) - t * d[1],
+                      z = a[2] + s * (b[2] - a[2]) - t * d[2];
+          wrong_on_edges += o.blocks(x, y, z, 0.f) != in_box(x, y, z);
+        }
+    }
+  EXPECT_EQ(wrong_on_edges, 0);
+  SphMesh flipped = *o.mesh;
+  for (auto& tri : flipped.triangles) std::swap(tri[1], tri[2]);
+  SphObstacle f = o;
+  f.mesh = std::make_shared<const SphMesh>(std::move(flipped));
+  int wrong = 0;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j)
+      for (int k = 0; k < 9; ++k) {
+        const float x = -0.5f + 0.25f * i + 0.01f, y = -0.5f + 0.25f * j + 0.02f, z = -0.5f + 0.25f * k + 0.03f;
+        const bool in = in_box(x, y, z);
+        wrong += o.blocks(x, y, z, 0.f) != in;
+        wrong += f.blocks(x, y, z, 0.f) != in;
+      }
+  EXPECT_EQ(wrong, 0);
+}
+
 TEST(SphBoundary, BadObjNamesTheFileAndLine) {
   auto message = [](const std::string& text) {
     try {

@@ -105,31 +105,25 @@ SphMesh sph_read_obj(const std::string& file) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// mesh geometry: inside test by ray parity, distance to the surface
+// mesh geometry: inside test by winding number, distance to the surface
 
 namespace {
 
-// Moeller and Trumbore 1997: does the ray o + t d (t > 0) cross triangle (a, b, c)?
-bool ray_hits(const V3& o, const V3& d, const V3& a, const V3& b, const V3& c) {
-  const V3 e1 = sub(b, a), e2 = sub(c, a), pv = cross(d, e2);
-  const float det = dot(e1, pv);
-  if (std::fabs(det) < 1e-20f) return false;
-  const float inv = 1.f / det;
-  const V3 tv = sub(o, a);
-  const float u = dot(tv, pv) * inv;
-  if (u < 0.f || u > 1.f) return false;
-  const V3 qv = cross(tv, e1);
-  const float v = dot(d, qv) * inv;
-  if (v < 0.f || u + v > 1.f) return false;
-  return dot(e2, qv) * inv > 0.f;
-}
-
+// Inside a closed mesh where its winding number sum_t Omega_t / (4 pi) is above 1/2 (Jacobson et al.
+// 2013, generalised winding number): Omega_t is the signed solid angle of triangle t seen from p,
+// tan(Omega/2) = a.(b x c) / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|) with a, b, c its corners
+// relative to p (Van Oosterom and Strackee 1983). Unlike a ray's crossing count it has no edge or
+// vertex case: a ray through an edge shared by two triangles counted twice.
 bool mesh_inside(const SphMesh& m, const V3& p) {
-  // a direction off every axis and diagonal, so rays through edges are unlikely
-  const V3 d{0.8017f, 0.4721f, 0.3667f};
-  int hits = 0;
-  for (const auto& t : m.triangles) hits += ray_hits(p, d, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]);
-  return hits % 2 == 1;
+  double omega = 0.0;
+  for (const auto& t : m.triangles) {
+    const V3 a = sub(m.vertices[t[0]], p), b = sub(m.vertices[t[1]], p), c = sub(m.vertices[t[2]], p);
+    const double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b)), lc = std::sqrt(dot(c, c));
+    const double num = dot(a, cross(b, c));
+    const double den = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+    omega += 2.0 * std::atan2(num, den);
+  }
+  return std::fabs(omega) > 2.0 * std::numbers::pi;  // |winding number| above 1/2, either orientation
 }
 
 // squared distance from p to triangle (a, b, c) (Ericson 2005, Real-Time Collision Detection, 5.1.5)
