@@ -43,20 +43,32 @@
 
 namespace huygens {
 
+/// The cubic spline (kernels.hpp) of a candidate at r = r2 ri (ri = 1/r, r2 < h2 where `in`): its value
+/// shape w = 6 q^3 - 6 q^2 + 1 (q <= 1/2) or 2 (1 - q)^3 and its gradient shape f = 2 - 3 q or
+/// (1 - q)^2 / q, q = r / h, both 0 where not `in` (branch-free: both sides computed, one selected).
+inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, float& w, float& f) {
+  const float q = r2 * ri * ih, om = 1.f - q;
+  const bool inner = in & (q <= 0.5f), outer = in & (q > 0.5f);
+  w = sph_keep(inner, (6.f * q - 6.f) * q * q + 1.f) + sph_keep(outer, 2.f * om * om * om);
+  f = sph_keep(inner, 2.f - 3.f * q) + sph_keep(outer, om * om * h * ri);
+}
+
 /// Factor sums of particle (xi, yi, zi) over fluid (kBoundary false) or boundary candidates (true,
-/// each weighted by W): acc[0] density sum, acc[1..3] gradient sum, acc[4] squared gradient sum (fluid
-/// only, the particle itself left out), acc[5] the spiky first moment (gradient correction).
+/// each weighted by W): acc[0] value sum sum w, acc[1..3] gradient sum sum f x_ij, acc[4] squared gradient
+/// sum sum f^2 r^2 (fluid only, the particle itself left out), acc[5] the first moment sum f r^2;
+/// boundary only: acc[6..8] the hydrostatic sum sum W f (g . x_ji) x_ij (g = gravity, m/s^2).
 template <bool kBoundary>
 [[gnu::noinline]] void sph_dfsph_factor_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi,
-                                              float zi, float h, float h2, float rmin, float acc[6]) {
-  const float rmin2 = rmin * rmin;
+                                              float zi, float h, float h2, float rmin, const float g[3], float acc[9]) {
+  const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
   const float* W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
-  float s6 = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f;
-#pragma omp simd reduction(+ : s6, gx, gy, gz, sq, sm) aligned(X, Y, Z : 32)
+  const float g0 = g[0], g1 = g[1], g2 = g[2];
+  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;
+#pragma omp simd reduction(+ : sw, gx, gy, gz, sq, sm, hx, hy, hz) aligned(X, Y, Z : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
     const float dx = xi - X[j];
     const float dy = yi - Y[j];
@@ -64,31 +76,38 @@ template <bool kBoundary>
     const float r2 = dx * dx + dy * dy + dz * dz;
     const bool in = (r2 < h2) & (j >= b) & (j < e);
     const float wj = kBoundary ? W[j] : 1.f;
-    const float q = sph_keep(in, h2 - r2);
-    s6 += sph_keep(in, q * q * q * wj);
-    const float ri = sph_rsqrt(std::max(r2, rmin2));
-    const float r = r2 * ri;
-    const float hr = sph_keep(in, h - r);
-    const float g = hr * hr * ri * wj;
-    gx += g * dx;
-    gy += g * dy;
-    gz += g * dz;
-    if constexpr (!kBoundary) sq += sph_keep(r2 > rmin2, hr * hr * hr * hr);
-    sm += hr * hr * r * wj;
+    float w, f;
+    sph_cubic_shapes(in, r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    sw += w * wj;
+    const float gr = f * wj;
+    gx += gr * dx;
+    gy += gr * dy;
+    gz += gr * dz;
+    if constexpr (!kBoundary) sq += sph_keep(r2 > rmin2, f * f * r2);
+    sm += gr * r2;
+    if constexpr (kBoundary) {
+      const float c = -gr * (g0 * dx + g1 * dy + g2 * dz);
+      hx += c * dx;
+      hy += c * dy;
+      hz += c * dz;
+    }
   }
-  acc[0] += s6;
+  acc[0] += sw;
   acc[1] += gx;
   acc[2] += gy;
   acc[3] += gz;
   acc[4] += sq;
   acc[5] += sm;
+  acc[6] += hx;
+  acc[7] += hy;
+  acc[8] += hz;
 }
 
-/// Adds sum_j (h - r)^2 / r (v_i - v_j) . x_ij over fluid candidates to `sum`.
+/// Adds sum_j f(q) (v_i - v_j) . x_ij over fluid candidates to `sum`.
 [[gnu::noinline]] inline void sph_dfsph_divergence_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
                                                          float yi, float zi, const float vi[3], float h, float h2,
                                                          float rmin, float& sum) {
-  const float rmin2 = rmin * rmin;
+  const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
@@ -104,19 +123,19 @@ template <bool kBoundary>
     const float dy = yi - Y[j];
     const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float ri = sph_rsqrt(std::max(r2, rmin2));
-    const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r2 * ri);
+    float w, f;
+    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
     const float vr = (vxi - VX[j]) * dx + (vyi - VY[j]) * dy + (vzi - VZ[j]) * dz;
-    s += hr * hr * ri * vr;
+    s += f * vr;
   }
   sum += s;
 }
 
-/// Adds sum_j (K_i + K_j) (h - r)^2 / r x_ij over fluid candidates (K in v.PP) to acc[0..2].
+/// Adds sum_j (K_i + K_j) f(q) x_ij over fluid candidates (K in v.PP) to acc[0..2].
 [[gnu::noinline]] inline void sph_dfsph_kick_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
                                                    float yi, float zi, float Ki, float h, float h2, float rmin,
                                                    float acc[3]) {
-  const float rmin2 = rmin * rmin;
+  const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
@@ -129,12 +148,12 @@ template <bool kBoundary>
     const float dy = yi - Y[j];
     const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float ri = sph_rsqrt(std::max(r2, rmin2));
-    const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r2 * ri);
-    const float f = (Ki + K[j]) * hr * hr * ri;
-    ax += f * dx;
-    ay += f * dy;
-    az += f * dz;
+    float w, f;
+    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    const float c = (Ki + K[j]) * f;
+    ax += c * dx;
+    ay += c * dy;
+    az += c * dz;
   }
   acc[0] += ax;
   acc[1] += ay;
