@@ -63,7 +63,8 @@ void SphSystem::dfsph_factors() {
   }
 }
 
-// v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f(q) x_ij + K_i gb_i)  (BK15 eq. 16, Akinci boundary)
+// v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f(q) x_ij + c K_i gb_i)  (BK15 eq. 16; wall: c = 2 with p_b = p_i +
+// its hydrostatic part (applied in the advection), 1 with Akinci's single term)
 void SphSystem::dfsph_kick(float dt) {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, kick_.data(), nullptr, nullptr};
@@ -156,8 +157,9 @@ int SphSystem::dfsph_solve(float dt, bool density) {
   return it;
 }
 
-// a_i = g + nu rho0 m 45/(pi h^6) / rho_i sum_j (v_j - v_i) (h - r) / rho_j (MCG03 eq. 14, as the WCSPH
-// viscous term; free-slip walls: no boundary term); also max |a| and max |v|.
+// a_i = g + a_h,i + nu rho0 m 45/(pi h^6) / rho_i sum_j (v_j - v_i) (h - r) / rho_j (MCG03 eq. 14, as the
+// WCSPH viscous term; free-slip walls: no boundary term; a_h: the walls' hydrostatic push, left in ax_ by
+// dfsph_factors); also max |a| and max |v|.
 void SphSystem::dfsph_advection_forces() {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, irho_.data(), nullptr};

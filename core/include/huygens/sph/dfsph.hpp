@@ -2,40 +2,54 @@
 // Divergence-free SPH (DFSPH) of Bender and Koschier 2015 ("Divergence-free smoothed particle
 // hydrodynamics", SCA 2015; BK15 below), the pressure solver of `"method": "dfsph"` (SphParams).
 // One step of SphSystem with it (dfsph.cpp; BK15 Algorithm 1, started at the neighbour search):
-//   factors      rho_i = sum_j m_j W_ij (poly6, fluid and boundary neighbours)
+//   factors      rho_i = sum_j m_j W_ij (fluid and boundary neighbours)
 //                alpha_i = rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2)      (BK15 eq. 11)
 //   divergence   Drho_i/Dt = sum_j m_j (v_i - v_j) . grad W_ij                           (BK15 eq. 6)
 //                kappa^v_i += Drho_i/Dt alpha_i / dt                                     (BK15 eq. 17)
 //   velocities   v_i -= dt sum_j m_j (k_i / rho_i + k_j / rho_j) grad W_ij                 (BK15 eq. 16)
-//   advection    v*_i = v_i + dt (g + viscous acceleration)
+//   advection    v*_i = v_i + dt (g + viscous acceleration + the walls' hydrostatic push, below)
 //   density      rho*_i = rho_i + dt Drho_i/Dt(v*), kappa_i += (rho*_i - rho0) alpha_i / dt^2 (BK15 eq. 12-13)
 //                then the same velocity update; x_i += dt v*_i
+// Kernel: the cubic spline (kernels.hpp) for the density AND its gradient, support h = support_factor
+// dx (2 dx: ~33 neighbours; its lattice sum there is 0.99997, and the particle mass is rho0 over it),
+// so rho_i + dt Drho_i/Dt is the first-order change of the density sum the next step computes.
 // Each solve is a relaxed Jacobi iteration, kappa += omega (error) alpha / dt^2 (omega =
 // dfsph_relaxation, 0.5), repeated until the mean error is below its tolerance (BK15 Algorithm 2
-// and 3: at least 2 density and 1 divergence iterations). kappa, kappa^v are kept >= 0 (a projected
-// Jacobi step: an expanding particle is not pulled back, as the clamped free-surface density of BK15
-// section 4.2), and the error is that of the complementarity: |rho* - rho0| where kappa > 0, else
-// max(0, rho* - rho0). Warm start (BK15 section 4.3): kappa and kappa^v persist per particle
-// (sorted with it); each solve first applies dfsph_warm_start (0.8) times the last step's values,
-// then iterates on them.
+// and 3: at least 2 density and 1 divergence iterations). The system matrix is A = J J^T with J the
+// density change per velocity and alpha its exact diagonal; on the rest lattice the largest
+// eigenvalue of diag(A)^-1 A is 2.82 (Fourier symbol |sum_d sin(k.d) grad W(d)|^2 / sum_d |grad W(d)|^2
+// at k ~ (1, 1, 1) / dx), so the signed Jacobi step converges only for omega < 2 / 2.82 = 0.71.
+// kappa, kappa^v are kept >= 0 (a projected Jacobi step: an expanding particle is not pulled back,
+// as the clamped free-surface density of BK15 section 4.2), and the error is that of the
+// complementarity: |rho* - rho0| where kappa > 0, else max(0, rho* - rho0). dfsph_compression_only
+// uses max(0, error) in the update as well (kappa only grows within a solve: stable at omega = 1,
+// fewer iterations, but the overshoot is never taken back: docs/sph.md "DFSPH").
+// Warm start (BK15 section 4.3): kappa and kappa^v persist per particle (sorted with it); each solve
+// first applies dfsph_warm_start (0.8) times the last step's values, then iterates on them.
 // Time step (BK15 section 4.3): dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max).
-// Kernels: poly6 values, spiky gradients grad W_ij = -45/(pi h^6) (h - r)^2 x_ij / r (kernels.hpp).
-// Boundary particles (boundary.hpp) after Akinci et al. 2012: a boundary particle b adds
-// m_b W_ib = rho0 V_b W_ib to the density (its sampled volume V_b = w_b m / rho0) and, at rest,
-// m_b v_i . grad W_ib to Drho_i/Dt; its pressure force uses the fluid particle's own pressure,
-// -m_b (k_i / rho_i) grad W_ib (Akinci et al. 2012 eq. 10), or twice that with dfsph_mirror
-// (p_b = p_i, rho_b = rho_i in the symmetric pair term); alpha_i's first sum is taken along the
-// same direction. The boundary does not move during the solves, so each particle's
-// gb_i = sum_b w_b (h - r)^2 x_ib / r is summed once per step (no boundary loop in the iterations).
+// Boundary particles (boundary.hpp, sampled volume V_b = w_b m / rho0): b adds m_b W_ib to the density
+// and, at rest, m_b v_i . grad W_ib to Drho_i/Dt. Its pressure in the pair term
+// m_b (p_i / rho_i^2 + p_b / rho0^2) grad W_ib (dfsph_wall) is, by default, the fluid particle's own
+// continued hydrostatically, p_b = p_i + rho0 g . (x_b - x_i) (Adami et al. 2012 eq. 27 with the one
+// fluid particle i, wall at rest): the part 2 k_i / rho_i is linear in the particle's own kappa, so it
+// enters alpha_i's first sum (the change per kappa_i is along gf + 2 gb) and the kick; the part
+// g . (x_b - x_i) / rho0 does not depend on kappa and is summed once per step into the advection
+// acceleration, a_h = m 48/(pi h^5) / rho0 sum_b w_b f (g . x_bi) x_ib. Akinci et al. 2012 eq. 10's
+// single p_i / rho_i^2 (akinci) leaves a wall particle half the push a fluid continuation gives and
+// misses the hydrostatic rise below it and beside it, so p rises to 1.4-1.8 rho0 g (H - z) in a
+// narrow column; p_b = p_i (mirror) misses the rise only. The walls do not move during the solves, so
+// gb_i = sum_b w_b f x_ib is summed once per step (no boundary loop in the iterations).
 // Reported pressure p_i = rho_i (kappa_i + kappa^v_i) / l_i: the pair term
 // (k_i / rho_i + k_j / rho_j) equals (l_i p_i / rho_i^2 + l_j p_j / rho_j^2) of the WCSPH force with
-// the gradient correction l (system.hpp), so p is the field whose corrected gradient the solve applies.
+// the gradient correction l (system.hpp, here from the cubic spline's first moment), so p is the
+// field whose corrected gradient the solve applies.
 // Pair sums below over one index range [b, e) of cell-sorted (or gathered) arrays, in the style of
-// forces.hpp (whole 8-float vectors, masked lanes, branch-free), x_ij = x_i - x_j, r = |x_ij|:
-//   factor      sum (h^2 - r^2)^3, sum (h - r)^2 x_ij / r, sum (h - r)^4, sum (h - r)^2 r
-//   divergence  sum (h - r)^2 / r (v_i - v_j) . x_ij      (x -m 45/(pi h^6) = Drho/Dt)
-//   kick        sum (K_i + K_j) (h - r)^2 / r x_ij          (x dt m 45/(pi h^6) = dv, K = kappa / rho)
-//   viscous     sum (v_j - v_i) (h - r) / rho_j             (as forces.hpp)
+// forces.hpp (whole 8-float vectors, masked lanes, branch-free), x_ij = x_i - x_j, r = |x_ij|, q = r / h,
+// w(q), f(q) the cubic spline's value and gradient shapes (grad W_ij = -48/(pi h^5) f x_ij):
+//   factor      sum w, sum f x_ij, sum f^2 r^2, sum f r^2, boundary: sum W f (g . x_ji) x_ij
+//   divergence  sum f (v_i - v_j) . x_ij      (x -m 48/(pi h^5) = Drho/Dt)
+//   kick        sum (K_i + K_j) f x_ij        (x dt m 48/(pi h^5) = dv, K = kappa / rho)
+//   viscous     sum (v_j - v_i) (h - r) / rho_j   (as forces.hpp: the MCG03 viscosity Laplacian)
 #include <algorithm>
 #include <cstdint>
 
