@@ -94,14 +94,16 @@ void SphSystem::dfsph_kick(float dt) {
 
 // Drho_i/Dt = -m 48/(pi h^5) (sum_j f(q) v_ij . x_ij + v_i . gb_i)  (BK15 eq. 6, boundary at rest);
 // density: kappa_i += (rho_i + dt Drho_i/Dt - rho0) alpha_i / dt^2 (eq. 12-13), error max(0, rho* - rho0) / rho0;
-// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0; both kept >= 0.
-double SphSystem::dfsph_update(float dt, bool density) {
+// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0; both kept >= 0;
+// with the Chebyshev weight wc: kappa_i = max(0, wc (kappa_Jacobi - kappa_prev) + kappa_prev) (Wang 2015).
+double SphSystem::dfsph_update(float dt, bool density, float wc) {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, nullptr, nullptr};
   const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, mg = mass_ * k_.cubic_g, rho0 = p_.rest_density_kgpm3;
   float* kap = density ? kappa_.data() : kappav_.data();
   const float w = p_.dfsph_relaxation / (dt * dt);
   const bool oneside = p_.dfsph_compression_only;
+  float* prev = tkappa_.data();
 #pragma omp parallel if (n > kSphParallelMin)
   {
     const float* src[6] = {v.X, v.Y, v.Z, v.VX, v.VY, v.VZ};
@@ -120,7 +122,9 @@ double SphSystem::dfsph_update(float dt, bool density) {
       const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
       const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho;
       const float inc = (oneside ? std::max(res, 0.f) : res) * alpha_[i] * w;
-      const float k = std::max(kap[i] + inc, 0.f);
+      const float kj = std::max(kap[i] + inc, 0.f);
+      const float k = wc == 1.f ? kj : std::max(wc * (kj - prev[i]) + prev[i], 0.f);
+      prev[i] = kap[i];
       kick_[i] = (k - kap[i]) * irho_[i];
       kap[i] = k;
       // the residual of the complementarity p >= 0, rho* <= rho0, p (rho* - rho0) = 0: |res| where pushed
@@ -134,7 +138,7 @@ double SphSystem::dfsph_update(float dt, bool density) {
 
 // Warm start (BK15 section 4.3: the last step's kappa, scaled by dfsph_warm_start, applied first), then Jacobi
 // iterations until the mean error is at most the tolerance (at least 2 density / 1 divergence iterations, BK15 Alg.
-// 2-3).
+// 2-3), accelerated by Chebyshev's semi-iteration (Wang 2015, dfsph.hpp).
 int SphSystem::dfsph_solve(float dt, bool density) {
   float* kap = density ? kappa_.data() : kappav_.data();
   const float wf = p_.dfsph_warm_start;
@@ -149,8 +153,13 @@ int SphSystem::dfsph_solve(float dt, bool density) {
   const int min_iter = density ? 2 : 1;
   int it = 0;
   double err = 0;
+  // Chebyshev weights (Wang 2015) from the third iteration: w = 2 / (2 - r^2), then 4 / (4 - r^2 w)
+  const float r2 = p_.dfsph_chebyshev_rho * p_.dfsph_chebyshev_rho;
+  float wc = 1.f;
+  std::copy(kap, kap + n_, tkappa_.data());  // the previous iterate (the sort buffer is free during a solve)
   do {
-    err = dfsph_update(dt, density);
+    if (r2 > 0.f && it >= 2) wc = it == 2 ? 2.f / (2.f - r2) : 4.f / (4.f - r2 * wc);
+    err = dfsph_update(dt, density, wc);
     dfsph_kick(dt);
     ++it;
   } while ((err > eta || it < min_iter) && it < p_.dfsph_max_iterations);

@@ -14,16 +14,19 @@
 // dx (2 dx: ~33 neighbours; its lattice sum there is 0.99997, and the particle mass is rho0 over it),
 // so rho_i + dt Drho_i/Dt is the first-order change of the density sum the next step computes.
 // Each solve is a relaxed Jacobi iteration, kappa += omega (error) alpha / dt^2 (omega =
-// dfsph_relaxation, 0.5), repeated until the mean error is below its tolerance (BK15 Algorithm 2
-// and 3: at least 2 density and 1 divergence iterations). The system matrix is A = J J^T with J the
-// density change per velocity and alpha its exact diagonal; on the rest lattice the largest
-// eigenvalue of diag(A)^-1 A is 2.82 (Fourier symbol |sum_d sin(k.d) grad W(d)|^2 / sum_d |grad W(d)|^2
-// at k ~ (1, 1, 1) / dx), so the signed Jacobi step converges only for omega < 2 / 2.82 = 0.71.
-// kappa, kappa^v are kept >= 0 (a projected Jacobi step: an expanding particle is not pulled back,
-// as the clamped free-surface density of BK15 section 4.2), and the error is that of the
-// complementarity: |rho* - rho0| where kappa > 0, else max(0, rho* - rho0). dfsph_compression_only
+// dfsph_relaxation, 0.5), repeated until the mean error is below its tolerance (0.005 % density,
+// 0.1 % divergence; BK15 Algorithm 2 and 3: at least 2 density and 1 divergence iterations). The system matrix is A = J
+// J^T with J the density change per velocity and alpha its exact diagonal; on the rest lattice the largest eigenvalue
+// of diag(A)^-1 A is 2.82 (Fourier symbol |sum_d sin(k.d) grad W(d)|^2 / sum_d |grad W(d)|^2 at k ~ (1, 1, 1) / dx), so
+// the signed Jacobi step converges only for omega < 2 / 2.82 = 0.71. kappa, kappa^v are kept >= 0 (a projected Jacobi
+// step: an expanding particle is not pulled back, as the clamped free-surface density of BK15 section 4.2), and the
+// error is that of the complementarity: |rho* - rho0| where kappa > 0, else max(0, rho* - rho0). dfsph_compression_only
 // uses max(0, error) in the update as well (kappa only grows within a solve: stable at omega = 1,
 // fewer iterations, but the overshoot is never taken back: docs/sph.md "DFSPH").
+// Chebyshev semi-iteration (Wang 2015, "A Chebyshev semi-iterative approach for accelerating projective
+// and position-based dynamics"): from the third iteration kappa = wc (kappa_Jacobi - kappa_prev) +
+// kappa_prev (then >= 0), wc = 2 / (2 - rho^2), then 4 / (4 - rho^2 wc), rho = dfsph_chebyshev_rho (0.95):
+// the smooth modes (eigenvalues near 0, the hydrostatic pressure of a deep column) converge ~2x faster.
 // Warm start (BK15 section 4.3): kappa and kappa^v persist per particle (sorted with it); each solve
 // first applies dfsph_warm_start (0.8) times the last step's values, then iterates on them.
 // Time step (BK15 section 4.3): dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max).

@@ -12,8 +12,8 @@
 // Adams 2012 eq. 27-28), recomputed between the density and force passes. Units: SI (m, s, kg).
 // Kernels: kernels.hpp; walls and obstacles: boundary.hpp; pair sums: forces.hpp; neighbour grid:
 // grid.hpp; time step: integration.hpp. With SphParams::method = dfsph the pressure comes from the
-// divergence-free SPH solver instead (dfsph.hpp: cubic spline kernel, hydrostatic wall pressure). Why each choice, and the
-// measurements: docs/sph.md.
+// divergence-free SPH solver instead (dfsph.hpp: cubic spline kernel, hydrostatic wall pressure). Why each choice, and
+// the measurements: docs/sph.md.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -157,8 +157,9 @@ class SphSystem {
   /// v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f x_ij + c K_i gb_i), K = kick_, c = 2 (1 with akinci walls).
   void dfsph_kick(float dt);
   /// One Jacobi update of kappa (density: true) or kappa^v from the predicted density or the
-  /// divergence of the current velocities; K = the change / rho into kick_; returns the mean error.
-  double dfsph_update(float dt, bool density);
+  /// divergence of the current velocities, with the Chebyshev weight wc over the previous iterate (in
+  /// tkappa_); K = the change / rho into kick_; returns the mean error.
+  double dfsph_update(float dt, bool density, float wc = 1.f);
   /// Warm start, then Jacobi iterations until the mean error is below the tolerance; returns them.
   int dfsph_solve(float dt, bool density);
   /// a = g + the walls' hydrostatic push + the viscous acceleration into ax_, ay_, az_; max |a| and |v|.
