@@ -12,11 +12,11 @@
 #include <thread>
 
 #include "bench.hpp"
-#include "bench_scenes.hpp"
 #include "huygens/common/atomic_file.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/common/isa.hpp"
 #include "huygens/common/program.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 
 namespace huygens::bench {
 
@@ -33,7 +33,7 @@ void Context::expect(bool ok, const std::string& what) {
 }
 
 std::string shipped_scene(const std::string& name) {
-  const std::string_view text = embedded::bench_scenes(name);
+  const std::string_view text = shipped_scene_text(name);
   if (text.empty()) throw std::runtime_error("huygens-bench: scene '" + name + "' is not embedded");
   return std::string(text);
 }

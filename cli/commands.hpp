@@ -6,8 +6,8 @@
 
 namespace huygens {
 
-/// The usage text (huygens --help).
-extern const char* const kUsage;
+/// Prints the usage text (huygens --help) to stdout, with the shipped scenes' names.
+void print_usage();
 /// huygens run SCENE [options]: argv holds the words after "run".
 int cmd_run(int argc, char** argv);
 /// huygens run SCENE --dry-run [--ranks P] [--rank-memory GIB]: the memory per rank (dry_run.cpp).

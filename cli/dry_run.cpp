@@ -2,7 +2,7 @@
 // MPI ranks, from the solvers' own estimates (memory.hpp) before anything is allocated, and the
 // fewest ranks (powers of two) on which it fits a given memory per rank. Nothing runs.
 //   LBM: lbm_memory(params, P) (its largest rank: ceil(rows / P) rows, halos, the whole scene
-//        fields every rank parses).
+//        fields every rank parses; the mass carry plane when the scene starts dry).
 //   Huygens: the slab solver's huygens_slab_memory(scene, P) (its slabs of
 //        fftwf_mpi_local_size_2d); P = 1 the one-process solver's huygens_memory.
 //   SPH: not distributed (docs/scale.md): one process holds it all, whatever P.
@@ -17,6 +17,7 @@
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 #include "huygens/huygens/slab_solver.hpp"
 #include "huygens/huygens/solver.hpp"
 #include "huygens/lbm/solver.hpp"
@@ -66,7 +67,10 @@ Sizing sizing(const Scene& scene) {
 
 // The estimate on P ranks as a function of P; the scene is parsed once.
 std::function<MemoryEstimate(int)> rank_memory(const Scene& scene) {
-  if (scene.solver == "lbm") return [&scene](int p) { return lbm_scene_memory(scene, p); };
+  if (scene.solver == "lbm") {
+    const bool carry = lbm_scene_may_start_dry(scene);
+    return [&scene, carry](int p) { return lbm_scene_memory(scene, p, carry); };
+  }
   const MemoryCheckOff sizing_only;  // parsed to be sized, not run
   if (scene.solver == "huygens") {
     auto hs = std::make_shared<const HuygensScene>(parse_huygens_scene(scene));
@@ -82,7 +86,7 @@ std::function<MemoryEstimate(int)> rank_memory(const Scene& scene) {
 }  // namespace
 
 int cmd_dry_run(const std::string& scene_file, int ranks, double rank_gib) {
-  const Scene scene = load_scene(scene_file);
+  const Scene scene = open_scene(scene_file);
   const Sizing z = sizing(scene);
   const std::uint64_t limit =
       rank_gib > 0 ? static_cast<std::uint64_t>(rank_gib * 1024.0 * 1024.0 * 1024.0) : available_memory();

@@ -10,9 +10,11 @@
 #include "commands.hpp"
 #include "huygens/common/comm.hpp"
 #include "huygens/common/program.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 
 namespace huygens {
 
+namespace {
 const char* const kUsage =
     "usage: huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--overwrite] [--stats-json FILE]\n"
     "                         [--fast-plans]\n"
@@ -21,8 +23,10 @@ const char* const kUsage =
     "       huygens validate [CASE...] [--list]\n"
     "       huygens --help\n"
     "\n"
-    "run       runs SCENE (a JSON scene file) without graphics for N full steps (default 100),\n"
-    "          prints the per-stage timing table, and with --dump writes DIR/<field>_NNNNNN.npy\n"
+    "run       runs SCENE without graphics for N full steps (default 100). SCENE is a JSON scene\n"
+    "          file or, when no such file exists, a shipped scene by name (\"ocean\" or \"ocean.json\"):\n"
+    "          %s.\n"
+    "          It prints the per-stage timing table, and with --dump writes DIR/<field>_NNNNNN.npy\n"
     "          (float32, C order, metres) every K steps (default 1) plus DIR/meta.json. With\n"
     "          time.display_per_step = D > 1 it also writes the D - 1 displayed frames\n"
     "          interpolated inside the step before each dumped step as <field>_NNNNNN_J.npy\n"
@@ -48,11 +52,31 @@ const char* const kUsage =
     "            value (or a negative LBM depth); 4 not enough memory; 130/143 stopped by\n"
     "            SIGINT/SIGTERM.\n";
 
+// the shipped scenes' names, wrapped to the usage text's width and indent
+std::string scene_list() {
+  std::string out, word;
+  std::size_t line = 10;
+  for (const char* c = shipped_scene_names();; ++c) {
+    if (*c != ' ' && *c != '\0') {
+      word += *c;
+      continue;
+    }
+    if (line + word.size() + 1 > 100) out += "\n          ", line = 10;
+    out += (line > 10 ? " " : "") + word;
+    line += word.size() + (line > 10 ? 1 : 0);
+    word.clear();
+    if (*c == '\0') return out;
+  }
+}
+}  // namespace
+
+void print_usage() { std::printf(kUsage, scene_list().c_str()); }
+
 int command(int argc, char** argv) {
   if (argc < 2) throw UsageError("no command given");
   const std::string cmd = argv[1];
   if (cmd == "--help" || cmd == "-h" || cmd == "help") {
-    std::fputs(kUsage, stdout);
+    print_usage();
     return 0;
   }
   if (cmd == "run") return cmd_run(argc - 2, argv + 2);

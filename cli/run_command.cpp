@@ -17,6 +17,7 @@
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 #include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/solver.hpp"
 
@@ -72,7 +73,7 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
     else
       throw UsageError("more than one scene given");
   }
-  if (a.scene_file.empty()) throw UsageError("run needs a SCENE file");
+  if (a.scene_file.empty()) throw UsageError("run needs a SCENE (a scene file or a shipped scene's name)");
   if ((a.ranks || a.rank_gib > 0) && !a.dry_run)
     throw UsageError("--ranks and --rank-memory size a --dry-run (a run's ranks are mpirun -np P)");
   return true;
@@ -228,7 +229,7 @@ void report(const RunArgs& a, Solver& solver, double wall, int rc) {
 int cmd_run(int argc, char** argv) {
   RunArgs a;
   if (!parse_run_args(argc, argv, a)) {
-    std::fputs(kUsage, stdout);
+    print_usage();
     return kExitOk;
   }
   if (a.dry_run) {
@@ -245,7 +246,7 @@ int cmd_run(int argc, char** argv) {
   stop_request::install();
   std::unique_ptr<Solver> solver;
   try {
-    solver = make_solver(load_scene(a.scene_file), a.options);
+    solver = make_solver(open_scene(a.scene_file), a.options);
   } catch (const SceneError& e) {
     const bool named = std::string(e.what()).find(a.scene_file) != std::string::npos;  // syntax errors name it
     if (comm::root())  // every rank read the same scene and failed alike

@@ -20,7 +20,7 @@ int cmd_validate(int argc, char** argv) {
     if (a == "--list")
       list = true;
     else if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
+      print_usage();
       return 0;
     } else if (!a.empty() && a[0] == '-')
       throw UsageError("unknown option " + a);

@@ -250,6 +250,32 @@ TEST(Cli, AMeshObstacleIsReadBesideItsSceneFromAnyFolder) {
 #endif
 }
 
+// A shipped scene runs by its name from any folder (it is compiled in, with its meshes); a file of
+// that name in the working folder comes first; an unknown name is refused listing the shipped ones.
+TEST(Cli, AShippedSceneRunsByNameAndAFileOfThatNameComesFirst) {
+  const fs::path d = work_dir("shipped");
+  const Result wedge = run(d, "run sph_wedge --steps 1");
+  EXPECT_EQ(wedge.code, 0) << wedge.output;
+  EXPECT_NE(wedge.output.find("solver sph"), std::string::npos) << wedge.output;
+  const Result dry = run(d, "run ocean.json --dry-run");
+  EXPECT_EQ(dry.code, 0) << dry.output;
+  EXPECT_NE(dry.output.find("solver huygens"), std::string::npos) << dry.output;
+  const Result shipped = run(d, "run ocean --steps 1");
+  EXPECT_EQ(shipped.code, 0) << shipped.output;
+  EXPECT_NE(shipped.output.find("wind sea"), std::string::npos) << shipped.output;
+  fs::copy_file(scene(d), d / "ocean.json");  // a 64^2 Huygens scene under the shipped scene's name
+  const Result local = run(d, "run ocean.json --steps 1");
+  EXPECT_EQ(local.code, 0) << local.output;
+  EXPECT_EQ(local.output.find("wind sea"), std::string::npos) << local.output;  // the shipped ocean has one
+  const Result unknown = run(d, "run oceanic --steps 1");
+  EXPECT_EQ(unknown.code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("no shipped scene of that name"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("sph_wedge.json"), std::string::npos) << unknown.output;
+  const Result path = run(d, "run no/ocean.json --steps 1");  // a path is a path: no fallback
+  EXPECT_EQ(path.code, 2) << path.output;
+  EXPECT_NE(path.output.find("cannot open scene file no/ocean.json"), std::string::npos) << path.output;
+}
+
 // OpenMP threads spin briefly (GOMP_SPINCOUNT 3000) then sleep, unless the user sets
 // OMP_WAIT_POLICY or GOMP_SPINCOUNT (program.cpp): libgomp prints what it took with OMP_DISPLAY_ENV.
 TEST(Cli, OpenMpWaitsSpinBrieflyUnlessTheUserChooses) {

@@ -134,7 +134,28 @@ double lbm_mass_drift(int rows, int cols, std::int64_t steps) {
   return (sim.volume_m3() - v0) / v0;
 }
 
-LbmRitterResult lbm_ritter(int cells, double tau, double cfl) {
+namespace {
+
+// Ritter's exact state at time t (> 0) as cell averages over `cells` cells of size dx, the dam at
+// x0 (unit: m): depth, and velocity = averaged discharge / averaged depth; below min_depth dry.
+void ritter_initial(const RitterParams& rp, double x0, double dx, double t, double min_depth, LbmFields& f) {
+  constexpr int kSub = 64;  // sub-samples per cell
+  for (std::size_t c = 0; c < f.depth_m.size(); ++c) {
+    double h = 0, q = 0;
+    for (int k = 0; k < kSub; ++k) {
+      const double x = (static_cast<double>(c) + (k + 0.5) / kSub) * dx - x0;
+      const double hk = ritter_depth(rp, x, t);
+      h += hk / kSub;
+      q += hk * ritter_velocity(rp, x, t) / kSub;
+    }
+    f.depth_m[c] = h >= min_depth ? static_cast<float>(h) : 0.0f;
+    f.ux_mps[c] = h >= min_depth ? static_cast<float>(q / h) : 0.0f;
+  }
+}
+
+}  // namespace
+
+LbmRitterResult lbm_ritter(int cells, double tau, double cfl, double start_s) {
   const RitterParams rp{1.0, kG};
   const double length = 100.0, c0 = std::sqrt(kG * rp.depth_m);
   LbmParams p;
@@ -152,14 +173,19 @@ LbmRitterResult lbm_ritter(int cells, double tau, double cfl) {
   LbmRitterResult out;
   out.cell_m = p.cell_m;
   out.steps = static_cast<std::int64_t>(std::llround(0.9 * x0 / c0 / p.dt_s));  // head 0.1 x0 from the wall
+  const std::int64_t first = start_s > 0 ? static_cast<std::int64_t>(std::ceil(start_s / p.dt_s)) : 0;
+  if (first > 0) {
+    ritter_initial(rp, x0, p.cell_m, static_cast<double>(first) * p.dt_s, p.min_depth_m, f);
+    p.allow_supercritical_start = true;  // the fan beyond the dam is supercritical
+  }
   LbmShallow sim(p, f);
   const double v0 = sim.volume_m3();
   try {
-    sim.run(out.steps);
+    sim.run(out.steps - first);
   } catch (const std::exception& e) {
     out.stopped = e.what();
   }
-  const double t = out.time_s = sim.time_s();
+  const double t = out.time_s = static_cast<double>(first) * p.dt_s + sim.time_s();
   double err = 0, norm = 0;
   out.min_depth_m = INFINITY;
   int last_wet = -1;
@@ -521,14 +547,22 @@ std::vector<ValidationRow> cylinder_rows() {
 // the dry-bed front 2 sqrt(g h0) t, which no threshold front can reach; docs/lbm.md).
 std::vector<ValidationRow> ritter_rows() {
   const auto r = lbm_ritter(1024);
+  // the same run with its first 2 s (257 steps) taken from the exact solution: the tip
+  // treatment once the fan is resolved (the row above misses 1 % through those first steps)
+  const auto resolved = lbm_ritter(1024, 0.55, 0.5, 2.0);
   const double fail = r.stopped.empty() ? 0.0 : INFINITY;
-  return {check("lbm_ritter", "L1 relative depth error, 1024 cells", r.l1_relative, 0.0, r.l1_relative + fail, 1e-2),
-          check("lbm_ritter", "x where h = 0.01 h0 (m from the dam; error / exact)", r.x01_m, r.x01_exact_m,
-                std::abs(r.x01_m - r.x01_exact_m) / r.x01_exact_m + fail, 1e-2),
-          check("lbm_ritter", "last wet cell's face (m from the dam; error / exact x where h = min_depth_m)", r.front_m,
-                r.front_threshold_exact_m,
-                std::abs(r.front_m - r.front_threshold_exact_m) / r.front_threshold_exact_m + fail, 1e-2),
-          check("lbm_ritter", "smallest depth (m, >= 0)", r.min_depth_m, 0.0, r.min_depth_m >= 0 ? 0.0 : 1.0, 0.0)};
+  return {
+      check("lbm_ritter", "L1 relative depth error, 1024 cells", r.l1_relative, 0.0, r.l1_relative + fail, 1e-2),
+      check("lbm_ritter", "x where h = 0.01 h0 (m from the dam; error / exact)", r.x01_m, r.x01_exact_m,
+            std::abs(r.x01_m - r.x01_exact_m) / r.x01_exact_m + fail, 1e-2),
+      check("lbm_ritter", "last wet cell's face (m from the dam; error / exact x where h = min_depth_m)", r.front_m,
+            r.front_threshold_exact_m,
+            std::abs(r.front_m - r.front_threshold_exact_m) / r.front_threshold_exact_m + fail, 1e-2),
+      check("lbm_ritter", "smallest depth (m, >= 0)", r.min_depth_m, 0.0, r.min_depth_m >= 0 ? 0.0 : 1.0, 0.0),
+      report_only("lbm_ritter", "last wet cell's face, run started from the exact state at t = 2 s (m; error / exact)",
+                  resolved.front_m, resolved.front_threshold_exact_m,
+                  (resolved.front_m - resolved.front_threshold_exact_m) / resolved.front_threshold_exact_m +
+                      (resolved.stopped.empty() ? 0.0 : INFINITY))};
 }
 
 // Thacker's bowl at 400 cells (100 per lens half width a) after 1 and 3 periods: shorelines

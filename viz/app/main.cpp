@@ -25,6 +25,7 @@
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "scene_view.hpp"
@@ -64,7 +65,7 @@ void usage(std::FILE* f) {
                "  F Fresnel model, P plan view (again: speed, dye, foam or particles), Esc quit.\n"
                "Mouse: left click drops a stone, left drag on a ship moves it, right drag orbits, middle\n"
                "  drag (or shift+right) pans, wheel zooms.\n",
-               builtin_scene_names());
+               shipped_scene_names());
 }
 
 struct CliOptions {

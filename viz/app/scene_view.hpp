@@ -93,10 +93,8 @@ struct ViewerSolver {
   std::string name;
 };
 
-/// Loads `arg` through load_scene and makes its solver; an empty `arg` is the built-in
-/// default.json, and an `arg` that names no file but a built-in scene ("ocean" or "ocean.json")
-/// is that scene (both compiled into the program, parsed by parse_scene_text; the files a built-in
-/// scene names, its OBJ meshes, are compiled in too: Scene::embedded).
+/// Opens `arg` with open_scene (a scene file, or a shipped scene by name; "" the shipped
+/// default.json: huygens/common/shipped_scenes.hpp) and makes its solver.
 /// Throws SceneError for a bad scene or a file that does not exist.
 ViewerSolver open_viewer_solver(const std::string& arg, const RunOptions& options);
 
@@ -138,8 +136,5 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
 /// True when the solver's outputs include a velocity on the visible grid (an LBM's "u"): its
 /// frames carry it (Frame::velocity) for the speed, dye and foam views.
 bool solver_has_velocity(Solver& solver);
-
-/// Base names of the built-in scenes, space separated.
-const char* builtin_scene_names();
 
 }  // namespace huygens

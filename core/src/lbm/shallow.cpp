@@ -147,8 +147,9 @@ void check_tau(const LbmParams& p, const LbmLattice& lat, double smax) {
                    "BGK relaxation time tau = 1/2 + 3 nu dt/dx^2 = " + g6(lat.tau) + " < 0.55 (unstable): " + fix);
 }
 
-// f0 >= 0, (|u| + sqrt(g h)) dt/dx < 0.8, Froude <= kLbmMaxFroude now and expected, then tau.
-void check_stability(const LbmParams& p, LbmLattice& lat, const InitialScan& s) {
+// f0 >= 0, (|u| + sqrt(g h)) dt/dx < 0.8, Froude <= kLbmMaxFroude now (unless allowed for a run
+// that starts dry) and expected, then tau.
+void check_stability(const LbmParams& p, LbmLattice& lat, const InitialScan& s, bool starts_dry) {
   const double dx = p.cell_m, dt = p.dt_s;
   double smax = std::max(s.smax, p.expected_signal_speed_mps);
   if (p.left == LbmSide::inflow) smax = std::max(smax, p.inflow_discharge_m2s / std::max(s.hmax, p.min_depth_m));
@@ -166,7 +167,7 @@ void check_stability(const LbmParams& p, LbmLattice& lat, const InitialScan& s) 
   const char* why =
       ": transcritical flow is refused (the BGK equilibrium cannot stay positive at "
       "u = sqrt(g h) within the lattice-speed limit)";
-  if (s.frmax > kLbmMaxFroude)
+  if (s.frmax > kLbmMaxFroude && !(p.allow_supercritical_start && starts_dry))
     throw LbmRefused("depth_m", "the initial flow has Froude number |u|/sqrt(g h) = " + g6(s.frmax) + " > " +
                                     g6(kLbmMaxFroude) + why + "; lower the velocity or deepen the water");
   if (p.expected_froude > kLbmMaxFroude)
@@ -187,7 +188,7 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& in) {
   lat.g_lat_pm = g * dt * dt / (dx * dx);
   lat.tau = 0.5 + 3.0 * p.viscosity_m2s * dt / (dx * dx);
   const InitialScan scan = scan_initial(p, in, lat);
-  check_stability(p, lat, scan);
+  check_stability(p, lat, scan, lbm_starts_dry(p, in));
   return lat;
 }
 

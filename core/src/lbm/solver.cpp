@@ -428,10 +428,20 @@ MemoryEstimate lbm_memory(const LbmParams& p, int ranks, bool carry) {
   return m;
 }
 
-MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks) {
+bool lbm_scene_may_start_dry(const Scene& scene) {
   LbmParams p;
   parse_grid(scene.root().object("lbm"), p);
-  return lbm_memory(p, ranks);
+  const std::uint64_t fields = static_cast<std::uint64_t>(p.rows) * p.cols * (4 * 4 + 1);  // as lbm_memory
+  if (fields > available_memory() / 2) return true;  // its fields cannot be built here: counted
+  const MemoryCheckOff sizing_only;
+  const LbmScene s = parse_lbm_scene(scene);
+  return lbm_starts_dry(s.params, s.fields);
+}
+
+MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks, bool carry) {
+  LbmParams p;
+  parse_grid(scene.root().object("lbm"), p);
+  return lbm_memory(p, ranks, carry);
 }
 
 LbmScene parse_lbm_scene(const Scene& scene) {

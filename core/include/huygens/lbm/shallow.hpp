@@ -87,6 +87,11 @@ struct LbmParams {
   /// Largest Froude number |u| / sqrt(g h) the flow is expected to reach beyond the initial
   /// state, e.g. the Stoker middle state of a dam (dimensionless); 0 = initial state only.
   double expected_froude = 0.0;
+  /// Accept an initial state above kLbmMaxFroude when a fluid cell starts dry: the wet/dry pass,
+  /// which then runs while a cell is dry, takes the HLL flux on every cell above Froude 0.8 (once
+  /// every cell is wet the all-wet pass runs, unchecked). For a run started from an analytic state
+  /// (validation: Ritter from its exact fan); scenes cannot set it. Default: refused.
+  bool allow_supercritical_start = false;
 };
 
 /// Largest Froude number accepted before the run: at u = c = sqrt(g h) the equilibrium against the

@@ -39,10 +39,14 @@ LbmScene parse_lbm_scene(const Scene& scene);
 /// that needs more than available_memory() on a rank of this run. `carry`: the scene starts with a
 /// dry cell, so the solver also keeps its mass carry plane (lbm_starts_dry, 4 B per lattice cell).
 MemoryEstimate lbm_memory(const LbmParams& params, int ranks = 1, bool carry = false);
-/// The estimate of an "lbm" scene on `ranks` ranks from its grid block alone (huygens run --dry-run:
-/// nothing is allocated or refused; without the carry plane of a scene that starts dry, which needs
-/// the initial fields). Throws SceneError for a bad grid block.
-MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks);
+/// True when an "lbm" scene starts with a dry cell (lbm_starts_dry: its solver keeps the mass
+/// carry plane). The scene is parsed without the memory check when its fields take at most half
+/// of available_memory(); a larger one is not built and counts as starting dry (an upper bound).
+bool lbm_scene_may_start_dry(const Scene& scene);
+/// The estimate of an "lbm" scene on `ranks` ranks from its grid block (huygens run --dry-run:
+/// nothing is refused), with the carry plane when `carry` (lbm_scene_may_start_dry). Throws
+/// SceneError for a bad grid block.
+MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks, bool carry);
 /// The Solver of a parsed scene.
 std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene);
 /// parse_lbm_scene() then make_lbm_solver() (this solver uses no RunOptions).

@@ -73,7 +73,11 @@ struct LbmRitterResult {
   /// Non-empty when the run stopped (negative depth or a non-finite value).
   std::string stopped;
 };
-LbmRitterResult lbm_ritter(int cells, double tau = 0.55, double cfl = 0.5);
+/// `start_s` > 0: the run starts at the first step at or after start_s (unit: s) from Ritter's
+/// exact state there (cell averages of depth and discharge) instead of the dam, and ends at the
+/// same step as from the dam; this removes the first steps, in which the fan and its thin tip span
+/// only a few cells (docs/lbm.md, "The front of a dam break onto a dry bed").
+LbmRitterResult lbm_ritter(int cells, double tau = 0.55, double cfl = 0.5, double start_s = 0.0);
 
 /// Thacker's planar oscillation in a parabolic bowl (validation/reference/thacker.hpp), one row
 /// (periodic in y) of `cells` across [-2a, 2a], a = 1 m, h0 = 0.5 m, U0 = 0.5 m/s, released at
