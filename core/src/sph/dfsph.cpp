@@ -12,15 +12,18 @@
 
 namespace huygens {
 
-// rho_i = m 315/(64 pi h^9) sum_j w_j (h^2 - r^2)^3; G_i = sum_j m_j grad W_ij = -m 45/(pi h^6) (gf + gb);
-// alpha_i = rho_i / (|G_i|^2 + (m 45/(pi h^6))^2 sum_fluid (h - r)^4) (BK15 eq. 11); l_i from the moment.
+// rho_i = m 8/(pi h^3) sum_j w_j w(q); G_i = sum_j m_j grad W_ij = -m 48/(pi h^5) (gf + gb);
+// alpha_i = rho_i / (|G_i|^2 + (m 48/(pi h^5))^2 sum_fluid f^2 r^2) (BK15 eq. 11); l_i from the moment.
 void SphSystem::dfsph_factors() {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
   const SphView bv{bx_.data(), by_.data(), bz_.data(), nullptr, nullptr,
                    nullptr,    nullptr,    nullptr,    nullptr, bw_.data()};
-  const float h = h_, h2 = k_.h2, mk = mass_ * k_.poly6_k, rmin = 1e-6f * h_;
-  const float mg = mass_ * k_.spiky_k, mg2 = mg * mg;
+  const float h = h_, h2 = k_.h2, mk = mass_ * k_.cubic_k, rmin = 1e-6f * h_;
+  const float mg = mass_ * k_.cubic_g, mg2 = mg * mg;
+  const float mb = p_.dfsph_wall == SphDfsphWall::akinci ? 0.f : 1.f;
+  const float ch = p_.dfsph_wall == SphDfsphWall::hydrostatic ? mg / p_.rest_density_kgpm3 : 0.f;
+  const float grav[3] = {g_[0], g_[1], g_[2]};
 #pragma omp parallel if (n > kSphParallelMin)
   {
     const float* src[3] = {v.X, v.Y, v.Z};
@@ -33,17 +36,16 @@ void SphSystem::dfsph_factors() {
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
-      float f[6] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f}, fb[6] = {0.f, 0.f, 0.f, 0.f, 0.f, 0.f};
+      float f[9] = {}, fb[9] = {};
       cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
         if (bnd)
-          sph_dfsph_factor_range<true>(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, fb);
+          sph_dfsph_factor_range<true>(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, grav, fb);
         else
-          sph_dfsph_factor_range<false>(g ? sv : v, b, e, xi, yi, zi, h, h2, rmin, f);
+          sph_dfsph_factor_range<false>(g ? sv : v, b, e, xi, yi, zi, h, h2, rmin, grav, f);
       });
       const float rho = std::isfinite(xi + yi + zi) ? mk * (f[0] + fb[0]) : std::numeric_limits<float>::quiet_NaN();
-      // the velocity change per kappa_i is along gf + 2 gb (the mirrored boundary term counts twice)
+      // the velocity change per kappa_i is along gf + 2 gb where the wall term mirrors p_i (counted twice)
       const float gx = f[1] + fb[1], gy = f[2] + fb[2], gz = f[3] + fb[3];
-      const float mb = p_.dfsph_mirror ? 1.f : 0.f;
       const float gx2 = gx + mb * fb[1], gy2 = gy + mb * fb[2], gz2 = gz + mb * fb[3];
       const float den = mg2 * (std::max(gx * gx2 + gy * gy2 + gz * gz2, 0.f) + f[4]);
       rho_[i] = rho;
@@ -53,15 +55,20 @@ void SphSystem::dfsph_factors() {
       gbx_[i] = fb[1];
       gby_[i] = fb[2];
       gbz_[i] = fb[3];
+      // the walls' hydrostatic share, p_b - p_i = rho0 g . (x_b - x_i): m 48/(pi h^5) / rho0 x the sum
+      ax_[i] = ch * fb[6];
+      ay_[i] = ch * fb[7];
+      az_[i] = ch * fb[8];
     }
   }
 }
 
-// v_i += dt m 45/(pi h^6) (sum_j (K_i + K_j) (h - r)^2 x_ij / r + K_i gb_i)  (BK15 eq. 16, Akinci boundary)
+// v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f(q) x_ij + c K_i gb_i)  (BK15 eq. 16; wall: c = 2 with p_b = p_i +
+// its hydrostatic part (applied in the advection), 1 with Akinci's single term)
 void SphSystem::dfsph_kick(float dt) {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, kick_.data(), nullptr, nullptr};
-  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, c = dt * mass_ * k_.spiky_k;
+  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, c = dt * mass_ * k_.cubic_g;
 #pragma omp parallel if (n > kSphParallelMin)
   {
     const float* src[4] = {v.X, v.Y, v.Z, v.PP};
@@ -73,7 +80,7 @@ void SphSystem::dfsph_kick(float dt) {
       const float Ki = v.PP[i];
       if (Ki == 0.f && alpha_[i] == 0.f) continue;  // no own change, and no neighbour to take one from
       const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
-      const float Kb = p_.dfsph_mirror ? 2.f * Ki : Ki;
+      const float Kb = p_.dfsph_wall == SphDfsphWall::akinci ? Ki : 2.f * Ki;
       float acc[3] = {Kb * gbx_[i], Kb * gby_[i], Kb * gbz_[i]};
       cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool, std::uint32_t b, std::uint32_t e) {
         sph_dfsph_kick_range(g ? sv : v, b, e, xi, yi, zi, Ki, h, h2, rmin, acc);
@@ -85,15 +92,18 @@ void SphSystem::dfsph_kick(float dt) {
   }
 }
 
-// Drho_i/Dt = -m 45/(pi h^6) (sum_j (h - r)^2 / r v_ij . x_ij + v_i . gb_i)  (BK15 eq. 6, boundary at rest);
+// Drho_i/Dt = -m 48/(pi h^5) (sum_j f(q) v_ij . x_ij + v_i . gb_i)  (BK15 eq. 6, boundary at rest);
 // density: kappa_i += (rho_i + dt Drho_i/Dt - rho0) alpha_i / dt^2 (eq. 12-13), error max(0, rho* - rho0) / rho0;
-// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0; both kept >= 0.
-double SphSystem::dfsph_update(float dt, bool density) {
+// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0; both kept >= 0;
+// with the Chebyshev weight wc: kappa_i = max(0, wc (kappa_Jacobi - kappa_prev) + kappa_prev) (Wang 2015).
+double SphSystem::dfsph_update(float dt, bool density, float wc) {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, nullptr, nullptr};
-  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, mg = mass_ * k_.spiky_k, rho0 = p_.rest_density_kgpm3;
+  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, mg = mass_ * k_.cubic_g, rho0 = p_.rest_density_kgpm3;
   float* kap = density ? kappa_.data() : kappav_.data();
   const float w = p_.dfsph_relaxation / (dt * dt);
+  const bool oneside = p_.dfsph_compression_only;
+  float* prev = tkappa_.data();
 #pragma omp parallel if (n > kSphParallelMin)
   {
     const float* src[6] = {v.X, v.Y, v.Z, v.VX, v.VY, v.VZ};
@@ -111,12 +121,14 @@ double SphSystem::dfsph_update(float dt, bool density) {
         });
       const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
       const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho;
-      const float inc = res * alpha_[i] * w;
-      const float k = std::max(kap[i] + inc, 0.f);
+      const float inc = (oneside ? std::max(res, 0.f) : res) * alpha_[i] * w;
+      const float kj = std::max(kap[i] + inc, 0.f);
+      const float k = wc == 1.f ? kj : std::max(wc * (kj - prev[i]) + prev[i], 0.f);
+      prev[i] = kap[i];
       kick_[i] = (k - kap[i]) * irho_[i];
       kap[i] = k;
       // the residual of the complementarity p >= 0, rho* <= rho0, p (rho* - rho0) = 0: |res| where pushed
-      err_[i] = (k > 0.f ? std::fabs(res) : std::max(res, 0.f)) / rho0;
+      err_[i] = (k > 0.f && !oneside ? std::fabs(res) : std::max(res, 0.f)) / rho0;
     }
   }
   double sum = 0;  // serial: the same iteration count for any thread count
@@ -126,7 +138,7 @@ double SphSystem::dfsph_update(float dt, bool density) {
 
 // Warm start (BK15 section 4.3: the last step's kappa, scaled by dfsph_warm_start, applied first), then Jacobi
 // iterations until the mean error is at most the tolerance (at least 2 density / 1 divergence iterations, BK15 Alg.
-// 2-3).
+// 2-3), accelerated by Chebyshev's semi-iteration (Wang 2015, dfsph.hpp).
 int SphSystem::dfsph_solve(float dt, bool density) {
   float* kap = density ? kappa_.data() : kappav_.data();
   const float wf = p_.dfsph_warm_start;
@@ -141,16 +153,22 @@ int SphSystem::dfsph_solve(float dt, bool density) {
   const int min_iter = density ? 2 : 1;
   int it = 0;
   double err = 0;
+  // Chebyshev weights (Wang 2015) from the third iteration: w = 2 / (2 - r^2), then 4 / (4 - r^2 w)
+  const float r2 = p_.dfsph_chebyshev_rho * p_.dfsph_chebyshev_rho;
+  float wc = 1.f;
+  std::copy(kap, kap + n_, tkappa_.data());  // the previous iterate (the sort buffer is free during a solve)
   do {
-    err = dfsph_update(dt, density);
+    if (r2 > 0.f && it >= 2) wc = it == 2 ? 2.f / (2.f - r2) : 4.f / (4.f - r2 * wc);
+    err = dfsph_update(dt, density, wc);
     dfsph_kick(dt);
     ++it;
   } while ((err > eta || it < min_iter) && it < p_.dfsph_max_iterations);
   return it;
 }
 
-// a_i = g + nu rho0 m 45/(pi h^6) / rho_i sum_j (v_j - v_i) (h - r) / rho_j (MCG03 eq. 14, as the WCSPH
-// viscous term; free-slip walls: no boundary term); also max |a| and max |v|.
+// a_i = g + a_h,i + nu rho0 m 45/(pi h^6) / rho_i sum_j (v_j - v_i) (h - r) / rho_j (MCG03 eq. 14, as the
+// WCSPH viscous term; free-slip walls: no boundary term; a_h: the walls' hydrostatic push, left in ax_ by
+// dfsph_factors); also max |a| and max |v|.
 void SphSystem::dfsph_advection_forces() {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, irho_.data(), nullptr};
@@ -173,7 +191,7 @@ void SphSystem::dfsph_advection_forces() {
         sph_dfsph_viscous_range(g ? sv : v, b, e, xi, yi, zi, vi, h, h2, acc);
       });
       const float vis = cv * v.IR[i];
-      const float ax = gx + vis * acc[0], ay = gy + vis * acc[1], az = gz + vis * acc[2];
+      const float ax = ax_[i] + gx + vis * acc[0], ay = ay_[i] + gy + vis * acc[1], az = az_[i] + gz + vis * acc[2];
       ax_[i] = ax;
       ay_[i] = ay;
       az_[i] = az;

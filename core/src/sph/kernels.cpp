@@ -1,4 +1,4 @@
-// The MCG03 kernels (eq. 20-22): see huygens/sph/kernels.hpp.
+// The MCG03 kernels (eq. 20-22) and the cubic spline: see huygens/sph/kernels.hpp.
 #include "huygens/sph/kernels.hpp"
 
 #include <cmath>
@@ -14,7 +14,9 @@ SphKernels::SphKernels(float support)
     : h(support),
       h2(support * support),
       poly6_k(static_cast<float>(315.0 / (64.0 * kPi * std::pow(double(support), 9)))),
-      spiky_k(static_cast<float>(45.0 / (kPi * std::pow(double(support), 6)))) {}
+      spiky_k(static_cast<float>(45.0 / (kPi * std::pow(double(support), 6)))),
+      cubic_k(static_cast<float>(8.0 / (kPi * std::pow(double(support), 3)))),
+      cubic_g(static_cast<float>(48.0 / (kPi * std::pow(double(support), 5)))) {}
 
 float SphKernels::viscosity(float r) const {
   if (r >= h || r <= 0.f) return 0.f;

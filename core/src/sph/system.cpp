@@ -87,12 +87,17 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   if (!(p_.rest_density_kgpm3 > 0.f) || !(p_.viscosity_m2s >= 0.f) || !(p_.artificial_viscosity >= 0.f))
     throw std::invalid_argument("bad density or viscosity");
 
-  // mass: the poly6 sum over a lattice of the spacing equals rho0 exactly
+  // mass: the density kernel's sum over a lattice of the spacing equals rho0 exactly (poly6; the
+  // cubic spline with DFSPH, dfsph.hpp)
+  const bool df = p_.method == SphMethod::dfsph;
   double lattice = 0.0;
   const int R = static_cast<int>(std::ceil(p_.support_factor)) + 1;
   for (int i = -R; i <= R; ++i)
     for (int j = -R; j <= R; ++j)
-      for (int k = -R; k <= R; ++k) lattice += k_.poly6(float(i * i + j * j + k * k) * dx * dx);
+      for (int k = -R; k <= R; ++k) {
+        const float r2 = float(i * i + j * j + k * k) * dx * dx;
+        lattice += df ? k_.cubic(std::sqrt(r2)) : k_.poly6(r2);
+      }
   mass_ = static_cast<float>(p_.rest_density_kgpm3 / lattice);
 
   std::vector<float> px, py, pz;
@@ -103,7 +108,7 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   c0_ =
       p_.sound_speed_mps > 0.f ? p_.sound_speed_mps : 10.f * std::sqrt(2.f * std::max(gmag, 1e-3f) * std::max(top, dx));
   B_ = rho0 * c0_ * c0_ / p_.tait_gamma;
-  mvol_ = p_.gradient_correction ? mass_ / rho0 * k_.spiky_k / 3.f : 0.f;
+  mvol_ = p_.gradient_correction ? mass_ / rho0 * (df ? k_.cubic_g : k_.spiky_k) / 3.f : 0.f;
   nu_ = p_.viscosity_m2s + p_.artificial_viscosity * c0_ * h_;
   pik_ = p_.impact_alpha * c0_ * h_ / rho0;
   pikw_ = std::max(p_.impact_alpha, p_.wall_alpha) * c0_ * h_ / rho0;

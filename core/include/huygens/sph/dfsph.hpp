@@ -2,40 +2,57 @@
 // Divergence-free SPH (DFSPH) of Bender and Koschier 2015 ("Divergence-free smoothed particle
 // hydrodynamics", SCA 2015; BK15 below), the pressure solver of `"method": "dfsph"` (SphParams).
 // One step of SphSystem with it (dfsph.cpp; BK15 Algorithm 1, started at the neighbour search):
-//   factors      rho_i = sum_j m_j W_ij (poly6, fluid and boundary neighbours)
+//   factors      rho_i = sum_j m_j W_ij (fluid and boundary neighbours)
 //                alpha_i = rho_i / (|sum_j m_j grad W_ij|^2 + sum_j |m_j grad W_ij|^2)      (BK15 eq. 11)
 //   divergence   Drho_i/Dt = sum_j m_j (v_i - v_j) . grad W_ij                           (BK15 eq. 6)
 //                kappa^v_i += Drho_i/Dt alpha_i / dt                                     (BK15 eq. 17)
 //   velocities   v_i -= dt sum_j m_j (k_i / rho_i + k_j / rho_j) grad W_ij                 (BK15 eq. 16)
-//   advection    v*_i = v_i + dt (g + viscous acceleration)
+//   advection    v*_i = v_i + dt (g + viscous acceleration + the walls' hydrostatic push, below)
 //   density      rho*_i = rho_i + dt Drho_i/Dt(v*), kappa_i += (rho*_i - rho0) alpha_i / dt^2 (BK15 eq. 12-13)
 //                then the same velocity update; x_i += dt v*_i
+// Kernel: the cubic spline (kernels.hpp) for the density AND its gradient, support h = support_factor
+// dx (2 dx: ~33 neighbours; its lattice sum there is 0.99997, and the particle mass is rho0 over it),
+// so rho_i + dt Drho_i/Dt is the first-order change of the density sum the next step computes.
 // Each solve is a relaxed Jacobi iteration, kappa += omega (error) alpha / dt^2 (omega =
-// dfsph_relaxation, 0.5), repeated until the mean error is below its tolerance (BK15 Algorithm 2
-// and 3: at least 2 density and 1 divergence iterations). kappa, kappa^v are kept >= 0 (a projected
-// Jacobi step: an expanding particle is not pulled back, as the clamped free-surface density of BK15
-// section 4.2), and the error is that of the complementarity: |rho* - rho0| where kappa > 0, else
-// max(0, rho* - rho0). Warm start (BK15 section 4.3): kappa and kappa^v persist per particle
-// (sorted with it); each solve first applies dfsph_warm_start (0.8) times the last step's values,
-// then iterates on them.
+// dfsph_relaxation, 0.5), repeated until the mean error is below its tolerance (0.005 % density,
+// 0.1 % divergence; BK15 Algorithm 2 and 3: at least 2 density and 1 divergence iterations). The system matrix is A = J
+// J^T with J the density change per velocity and alpha its exact diagonal; on the rest lattice the largest eigenvalue
+// of diag(A)^-1 A is 2.82 (Fourier symbol |sum_d sin(k.d) grad W(d)|^2 / sum_d |grad W(d)|^2 at k ~ (1, 1, 1) / dx), so
+// the signed Jacobi step converges only for omega < 2 / 2.82 = 0.71. kappa, kappa^v are kept >= 0 (a projected Jacobi
+// step: an expanding particle is not pulled back, as the clamped free-surface density of BK15 section 4.2), and the
+// error is that of the complementarity: |rho* - rho0| where kappa > 0, else max(0, rho* - rho0). dfsph_compression_only
+// uses max(0, error) in the update as well (kappa only grows within a solve: stable at omega = 1,
+// fewer iterations, but the overshoot is never taken back: docs/sph.md "DFSPH").
+// Chebyshev semi-iteration (Wang 2015, "A Chebyshev semi-iterative approach for accelerating projective
+// and position-based dynamics"): from the third iteration kappa = wc (kappa_Jacobi - kappa_prev) +
+// kappa_prev (then >= 0), wc = 2 / (2 - rho^2), then 4 / (4 - rho^2 wc), rho = dfsph_chebyshev_rho (0.95):
+// the smooth modes (eigenvalues near 0, the hydrostatic pressure of a deep column) converge ~2x faster.
+// Warm start (BK15 section 4.3): kappa and kappa^v persist per particle (sorted with it); each solve
+// first applies dfsph_warm_start (0.8) times the last step's values, then iterates on them.
 // Time step (BK15 section 4.3): dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max).
-// Kernels: poly6 values, spiky gradients grad W_ij = -45/(pi h^6) (h - r)^2 x_ij / r (kernels.hpp).
-// Boundary particles (boundary.hpp) after Akinci et al. 2012: a boundary particle b adds
-// m_b W_ib = rho0 V_b W_ib to the density (its sampled volume V_b = w_b m / rho0) and, at rest,
-// m_b v_i . grad W_ib to Drho_i/Dt; its pressure force uses the fluid particle's own pressure,
-// -m_b (k_i / rho_i) grad W_ib (Akinci et al. 2012 eq. 10), or twice that with dfsph_mirror
-// (p_b = p_i, rho_b = rho_i in the symmetric pair term); alpha_i's first sum is taken along the
-// same direction. The boundary does not move during the solves, so each particle's
-// gb_i = sum_b w_b (h - r)^2 x_ib / r is summed once per step (no boundary loop in the iterations).
+// Boundary particles (boundary.hpp, sampled volume V_b = w_b m / rho0): b adds m_b W_ib to the density
+// and, at rest, m_b v_i . grad W_ib to Drho_i/Dt. Its pressure in the pair term
+// m_b (p_i / rho_i^2 + p_b / rho0^2) grad W_ib (dfsph_wall) is, by default, the fluid particle's own
+// continued hydrostatically, p_b = p_i + rho0 g . (x_b - x_i) (Adami et al. 2012 eq. 27 with the one
+// fluid particle i, wall at rest): the part 2 k_i / rho_i is linear in the particle's own kappa, so it
+// enters alpha_i's first sum (the change per kappa_i is along gf + 2 gb) and the kick; the part
+// g . (x_b - x_i) / rho0 does not depend on kappa and is summed once per step into the advection
+// acceleration, a_h = m 48/(pi h^5) / rho0 sum_b w_b f (g . x_bi) x_ib. Akinci et al. 2012 eq. 10's
+// single p_i / rho_i^2 (akinci) leaves a wall particle half the push a fluid continuation gives and
+// misses the hydrostatic rise below it and beside it, so p rises to 1.4-1.8 rho0 g (H - z) in a
+// narrow column; p_b = p_i (mirror) misses the rise only. The walls do not move during the solves, so
+// gb_i = sum_b w_b f x_ib is summed once per step (no boundary loop in the iterations).
 // Reported pressure p_i = rho_i (kappa_i + kappa^v_i) / l_i: the pair term
 // (k_i / rho_i + k_j / rho_j) equals (l_i p_i / rho_i^2 + l_j p_j / rho_j^2) of the WCSPH force with
-// the gradient correction l (system.hpp), so p is the field whose corrected gradient the solve applies.
+// the gradient correction l (system.hpp, here from the cubic spline's first moment), so p is the
+// field whose corrected gradient the solve applies.
 // Pair sums below over one index range [b, e) of cell-sorted (or gathered) arrays, in the style of
-// forces.hpp (whole 8-float vectors, masked lanes, branch-free), x_ij = x_i - x_j, r = |x_ij|:
-//   factor      sum (h^2 - r^2)^3, sum (h - r)^2 x_ij / r, sum (h - r)^4, sum (h - r)^2 r
-//   divergence  sum (h - r)^2 / r (v_i - v_j) . x_ij      (x -m 45/(pi h^6) = Drho/Dt)
-//   kick        sum (K_i + K_j) (h - r)^2 / r x_ij          (x dt m 45/(pi h^6) = dv, K = kappa / rho)
-//   viscous     sum (v_j - v_i) (h - r) / rho_j             (as forces.hpp)
+// forces.hpp (whole 8-float vectors, masked lanes, branch-free), x_ij = x_i - x_j, r = |x_ij|, q = r / h,
+// w(q), f(q) the cubic spline's value and gradient shapes (grad W_ij = -48/(pi h^5) f x_ij):
+//   factor      sum w, sum f x_ij, sum f^2 r^2, sum f r^2, boundary: sum W f (g . x_ji) x_ij
+//   divergence  sum f (v_i - v_j) . x_ij      (x -m 48/(pi h^5) = Drho/Dt)
+//   kick        sum (K_i + K_j) f x_ij        (x dt m 48/(pi h^5) = dv, K = kappa / rho)
+//   viscous     sum (v_j - v_i) (h - r) / rho_j   (as forces.hpp: the MCG03 viscosity Laplacian)
 #include <algorithm>
 #include <cstdint>
 
@@ -43,20 +60,32 @@
 
 namespace huygens {
 
+/// The cubic spline (kernels.hpp) of a candidate at r = r2 ri (ri = 1/r, r2 < h2 where `in`): its value
+/// shape w = 6 q^3 - 6 q^2 + 1 (q <= 1/2) or 2 (1 - q)^3 and its gradient shape f = 2 - 3 q or
+/// (1 - q)^2 / q, q = r / h, both 0 where not `in` (branch-free: both sides computed, one selected).
+inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, float& w, float& f) {
+  const float q = r2 * ri * ih, om = 1.f - q;
+  const bool inner = in & (q <= 0.5f), outer = in & (q > 0.5f);
+  w = sph_keep(inner, (6.f * q - 6.f) * q * q + 1.f) + sph_keep(outer, 2.f * om * om * om);
+  f = sph_keep(inner, 2.f - 3.f * q) + sph_keep(outer, om * om * h * ri);
+}
+
 /// Factor sums of particle (xi, yi, zi) over fluid (kBoundary false) or boundary candidates (true,
-/// each weighted by W): acc[0] density sum, acc[1..3] gradient sum, acc[4] squared gradient sum (fluid
-/// only, the particle itself left out), acc[5] the spiky first moment (gradient correction).
+/// each weighted by W): acc[0] value sum sum w, acc[1..3] gradient sum sum f x_ij, acc[4] squared gradient
+/// sum sum f^2 r^2 (fluid only, the particle itself left out), acc[5] the first moment sum f r^2;
+/// boundary only: acc[6..8] the hydrostatic sum sum W f (g . x_ji) x_ij (g = gravity, m/s^2).
 template <bool kBoundary>
 [[gnu::noinline]] void sph_dfsph_factor_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi,
-                                              float zi, float h, float h2, float rmin, float acc[6]) {
-  const float rmin2 = rmin * rmin;
+                                              float zi, float h, float h2, float rmin, const float g[3], float acc[9]) {
+  const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
   const float* W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
-  float s6 = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f;
-#pragma omp simd reduction(+ : s6, gx, gy, gz, sq, sm) aligned(X, Y, Z : 32)
+  const float g0 = g[0], g1 = g[1], g2 = g[2];
+  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;
+#pragma omp simd reduction(+ : sw, gx, gy, gz, sq, sm, hx, hy, hz) aligned(X, Y, Z : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
     const float dx = xi - X[j];
     const float dy = yi - Y[j];
@@ -64,31 +93,38 @@ template <bool kBoundary>
     const float r2 = dx * dx + dy * dy + dz * dz;
     const bool in = (r2 < h2) & (j >= b) & (j < e);
     const float wj = kBoundary ? W[j] : 1.f;
-    const float q = sph_keep(in, h2 - r2);
-    s6 += sph_keep(in, q * q * q * wj);
-    const float ri = sph_rsqrt(std::max(r2, rmin2));
-    const float r = r2 * ri;
-    const float hr = sph_keep(in, h - r);
-    const float g = hr * hr * ri * wj;
-    gx += g * dx;
-    gy += g * dy;
-    gz += g * dz;
-    if constexpr (!kBoundary) sq += sph_keep(r2 > rmin2, hr * hr * hr * hr);
-    sm += hr * hr * r * wj;
+    float w, f;
+    sph_cubic_shapes(in, r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    sw += w * wj;
+    const float gr = f * wj;
+    gx += gr * dx;
+    gy += gr * dy;
+    gz += gr * dz;
+    if constexpr (!kBoundary) sq += sph_keep(r2 > rmin2, f * f * r2);
+    sm += gr * r2;
+    if constexpr (kBoundary) {
+      const float c = -gr * (g0 * dx + g1 * dy + g2 * dz);
+      hx += c * dx;
+      hy += c * dy;
+      hz += c * dz;
+    }
   }
-  acc[0] += s6;
+  acc[0] += sw;
   acc[1] += gx;
   acc[2] += gy;
   acc[3] += gz;
   acc[4] += sq;
   acc[5] += sm;
+  acc[6] += hx;
+  acc[7] += hy;
+  acc[8] += hz;
 }
 
-/// Adds sum_j (h - r)^2 / r (v_i - v_j) . x_ij over fluid candidates to `sum`.
+/// Adds sum_j f(q) (v_i - v_j) . x_ij over fluid candidates to `sum`.
 [[gnu::noinline]] inline void sph_dfsph_divergence_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
                                                          float yi, float zi, const float vi[3], float h, float h2,
                                                          float rmin, float& sum) {
-  const float rmin2 = rmin * rmin;
+  const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
@@ -104,19 +140,19 @@ template <bool kBoundary>
     const float dy = yi - Y[j];
     const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float ri = sph_rsqrt(std::max(r2, rmin2));
-    const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r2 * ri);
+    float w, f;
+    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
     const float vr = (vxi - VX[j]) * dx + (vyi - VY[j]) * dy + (vzi - VZ[j]) * dz;
-    s += hr * hr * ri * vr;
+    s += f * vr;
   }
   sum += s;
 }
 
-/// Adds sum_j (K_i + K_j) (h - r)^2 / r x_ij over fluid candidates (K in v.PP) to acc[0..2].
+/// Adds sum_j (K_i + K_j) f(q) x_ij over fluid candidates (K in v.PP) to acc[0..2].
 [[gnu::noinline]] inline void sph_dfsph_kick_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
                                                    float yi, float zi, float Ki, float h, float h2, float rmin,
                                                    float acc[3]) {
-  const float rmin2 = rmin * rmin;
+  const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float* X = v.X;
   const float* Y = v.Y;
   const float* Z = v.Z;
@@ -129,12 +165,12 @@ template <bool kBoundary>
     const float dy = yi - Y[j];
     const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float ri = sph_rsqrt(std::max(r2, rmin2));
-    const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r2 * ri);
-    const float f = (Ki + K[j]) * hr * hr * ri;
-    ax += f * dx;
-    ay += f * dy;
-    az += f * dz;
+    float w, f;
+    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    const float c = (Ki + K[j]) * f;
+    ax += c * dx;
+    ay += c * dy;
+    az += c * dz;
   }
   acc[0] += ax;
   acc[1] += ay;

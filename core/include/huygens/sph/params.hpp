@@ -24,12 +24,17 @@ struct SphFluidBlock {
 /// start, time step bounded by the particle speed.
 enum class SphMethod { wcsph, dfsph };
 
+/// The wall pressure of the DFSPH solver (SphParams::dfsph_wall).
+enum class SphDfsphWall { akinci, mirror, hydrostatic };
+
 struct SphParams {
   /// Pressure solver (unit: choice; scene key "method": "wcsph" (default) or "dfsph").
   SphMethod method = SphMethod::wcsph;
   /// DFSPH: largest mean predicted compression of the constant-density solve, mean over the
-  /// particles of max(0, rho*_i - rho0) / rho0 (Bender and Koschier 2015 section 4.2; their 0.01 %) (unit: 1).
-  float dfsph_density_error = 1e-4f;
+  /// particles of |rho*_i - rho0| / rho0 where kappa_i > 0, else max(0, rho*_i - rho0) / rho0 (Bender and Koschier
+  /// 2015 section 4.2 ask 0.01 %; 0.005 % here: at 0.01 % the solve stops with the hydrostatic pressure ~5 % short,
+  /// docs/sph.md "DFSPH") (unit: 1).
+  float dfsph_density_error = 5e-5f;
   /// DFSPH: largest mean divergence error of the divergence-free solve, mean of max(0, dt Drho_i/Dt) / rho0
   /// (section 4.1; 0.1 %) (unit: 1).
   float dfsph_divergence_error = 1e-3f;
@@ -37,9 +42,17 @@ struct SphParams {
   float dfsph_cfl = 0.4f;
   /// DFSPH: relaxation omega of the Jacobi updates, kappa += omega (error) alpha / dt^2 (unit: 1).
   float dfsph_relaxation = 0.5f;
-  /// DFSPH: boundary pressure term with the fluid particle's pressure mirrored, (p_i/rho_i^2 + p_b/rho_b^2)
-  /// with p_b = p_i, rho_b = rho_i (true), or Akinci et al. 2012 eq. 10's single p_i/rho_i^2 (false) (unit: on/off).
-  bool dfsph_mirror = false;
+  /// DFSPH: the boundary particle's pressure p_b in the pair term (p_i/rho_i^2 + p_b/rho0^2) of fluid particle i
+  /// (dfsph.hpp): akinci, Akinci et al. 2012 eq. 10's single p_i/rho_i^2 (no p_b); mirror, p_b = p_i; hydrostatic,
+  /// p_b = p_i + rho0 g . (x_b - x_i), Adami et al. 2012 eq. 27 with the one fluid particle (unit: choice).
+  SphDfsphWall dfsph_wall = SphDfsphWall::hydrostatic;
+  /// DFSPH: Chebyshev semi-iteration over the Jacobi updates (Wang 2015), the estimated spectral radius rho of the
+  /// Jacobi iteration; 0 = plain Jacobi (unit: 1).
+  float dfsph_chebyshev_rho = 0.95f;
+  /// DFSPH: Jacobi updates from the compression only, kappa += omega max(0, error) alpha / dt^2, so kappa never
+  /// decreases within a solve (stable at omega = 1; false: the signed error, kappa >= 0, stable below omega ~0.7:
+  /// docs/sph.md "DFSPH") (unit: on/off).
+  bool dfsph_compression_only = false;
   /// DFSPH: the share of the last step's kappa and kappa^v a solve starts from (warm start; 1 = all of
   /// it; below 1 the Jacobi noise that the full warm start carries from step to step decays) (unit: 1).
   float dfsph_warm_start = 0.8f;

@@ -12,8 +12,8 @@
 // Adams 2012 eq. 27-28), recomputed between the density and force passes. Units: SI (m, s, kg).
 // Kernels: kernels.hpp; walls and obstacles: boundary.hpp; pair sums: forces.hpp; neighbour grid:
 // grid.hpp; time step: integration.hpp. With SphParams::method = dfsph the pressure comes from the
-// divergence-free SPH solver instead (dfsph.hpp, Akinci-style boundary). Why each choice, and the
-// measurements: docs/sph.md.
+// divergence-free SPH solver instead (dfsph.hpp: cubic spline kernel, hydrostatic wall pressure). Why each choice, and
+// the measurements: docs/sph.md.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -139,7 +139,7 @@ class SphSystem {
   float pressure_of(float rho) const;
   /// Square of the contact range r_c = wall_contact_range dx of the contact density (unit: m^2).
   float contact_r2() const { return p_.wall_contact_range * p_.wall_contact_range * p_.spacing_m * p_.spacing_m; }
-  /// Gradient correction l = 1 / M from the spiky first-moment sum msum = sum (h - r)^2 r.
+  /// Gradient correction l = 1 / M from the first-moment sum msum = sum (h - r)^2 r (spiky; DFSPH: sum f r^2).
   float gradient_correction(float msum) const {
     if (mvol_ == 0.f) return 1.f;
     const float M = mvol_ * msum;
@@ -153,16 +153,18 @@ class SphSystem {
   // DFSPH (dfsph.hpp, dfsph.cpp)
   /// The DFSPH step: factors, divergence-free solve, advection, constant-density solve, positions.
   double step_dfsph();
-  /// rho_i, alpha_i, l_i and the boundary gradient sum gb_i at the current positions.
+  /// rho_i, alpha_i, l_i, the boundary gradient sum gb_i and the walls' hydrostatic push (into ax_, ay_, az_)
+  /// at the current positions.
   void dfsph_factors();
-  /// v_i += dt m 45/(pi h^6) (sum_j (K_i + K_j) (h - r)^2 x_ij / r + K_i gb_i), K = kick_.
+  /// v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f x_ij + c K_i gb_i), K = kick_, c = 2 (1 with akinci walls).
   void dfsph_kick(float dt);
   /// One Jacobi update of kappa (density: true) or kappa^v from the predicted density or the
-  /// divergence of the current velocities; K = the change / rho into kick_; returns the mean error.
-  double dfsph_update(float dt, bool density);
+  /// divergence of the current velocities, with the Chebyshev weight wc over the previous iterate (in
+  /// tkappa_); K = the change / rho into kick_; returns the mean error.
+  double dfsph_update(float dt, bool density, float wc = 1.f);
   /// Warm start, then Jacobi iterations until the mean error is below the tolerance; returns them.
   int dfsph_solve(float dt, bool density);
-  /// a = g + the viscous acceleration into ax_, ay_, az_; max |a| and |v|.
+  /// a = g + the walls' hydrostatic push + the viscous acceleration into ax_, ay_, az_; max |a| and |v|.
   void dfsph_advection_forces();
   /// p_i = rho_i (kappa_i + kappa^v_i) / l_i into p_arr_.
   void dfsph_pressure();
@@ -170,7 +172,7 @@ class SphSystem {
   SphParams p_;
   SphKernels k_;
   float h_, mass_, c0_, B_, nu_;
-  float mvol_ = 0;  // (m / rho0) 45 / (pi h^6) / 3: tr(M) / 3 per unit moment sum
+  float mvol_ = 0;  // (m / rho0) 45 / (pi h^6) / 3 (DFSPH: 48 / (pi h^5) / 3): tr(M) / 3 per unit moment sum
   // impact viscosity Pi_ij = (pik_ + pbk_ mu) mu, mu = max(0, -v_ij . x_ij) / (r^2 + h^2/100):
   // pik_ = alpha c0 h / rho0, pbk_ = beta h^2 / rho0
   float pik_ = 0, pbk_ = 0;
