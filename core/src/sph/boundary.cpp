@@ -300,6 +300,55 @@ bool buried_in_wall(const V3& a, const V3& b, const V3& c, const V3& L, float ep
 // each keeps its own part. Where the mesh stands on a wall (a wedge on the floor), its face there
 // is buried: the layers of the faces rising from the wall run down to the wall, as the solid (the
 // union of mesh and wall) does, instead of stopping at the bisector of the mesh's edge there.
+// The tip of a convex edge: at an edge where two exposed faces meet at interior angle 2 alpha, the
+// faces' layer points stop at the bisector, dx/2 deep, i.e. s* = (dx/2)/sin(alpha) from the edge, and
+// the kite between the edge and that point (area (dx/2)^2 / tan(alpha) of cross-section: two
+// triangles with legs dx/2 and (dx/2)/tan(alpha)) holds solid no point samples. It gets one line of
+// points along the edge, ~dx apart, at the kite's centroid on the bisector, (dx/2)(1 + cos^2 alpha) /
+// (3 sin alpha) from the edge, weight = the kite's volume per point / dx^3. Edges flatter than 150
+// degrees (a quad's diagonal: 180) are left out, as are points outside the mesh or the container.
+void sample_convex_edges(const SphMesh& exposed, const SphMesh& m, float orient, const V3& container, float dx,
+                         SphBoundarySample& out) {
+  std::map<std::pair<int, int>, std::vector<std::size_t>> edges;
+  for (std::size_t t = 0; t < exposed.triangles.size(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = exposed.triangles[t][e], b = exposed.triangles[t][(e + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  auto normal = [&](std::size_t t) {
+    const auto& tri = exposed.triangles[t];
+    const V3 n = cross(sub(m.vertices[tri[1]], m.vertices[tri[0]]), sub(m.vertices[tri[2]], m.vertices[tri[0]]));
+    const float l = orient / std::sqrt(dot(n, n));
+    return V3{n[0] * l, n[1] * l, n[2] * l};
+  };
+  for (const auto& [key, faces] : edges) {
+    if (faces.size() != 2) continue;
+    const V3 n1 = normal(faces[0]), n2 = normal(faces[1]), &a = m.vertices[key.first], &b = m.vertices[key.second];
+    const float cos_phi = dot(n1, n2);  // phi = pi - 2 alpha, the angle between the outward normals
+    if (cos_phi > std::cos(30.f * std::numbers::pi_v<float> / 180.f)) continue;
+    const auto& t2 = exposed.triangles[faces[1]];
+    const int far = t2[0] != key.first && t2[0] != key.second   ? t2[0]
+                    : t2[1] != key.first && t2[1] != key.second ? t2[1]
+                                                                : t2[2];
+    if (dot(n1, sub(m.vertices[far], a)) >= 0.f) continue;  // concave: the faces' layers overlap there already
+    const V3 bis{-(n1[0] + n2[0]), -(n1[1] + n2[1]), -(n1[2] + n2[2])};  // inward
+    const float lb = std::sqrt(dot(bis, bis));
+    const float sin_a = std::sqrt(std::max(0.5f * (1.f + cos_phi), 1e-6f)), cos_a2 = 1.f - sin_a * sin_a;
+    const float depth = 0.5f * dx * (1.f + cos_a2) / (3.f * sin_a);
+    const float len = std::sqrt(dot(sub(b, a), sub(b, a)));
+    const int n = std::max(1, static_cast<int>(std::lround(len / dx)));
+    const float w = 0.25f * dx * dx * std::sqrt(cos_a2) / sin_a * (len / n) / (dx * dx * dx);
+    for (int i = 0; i < n; ++i) {
+      const float u = (i + 0.5f) / n;
+      const V3 p{a[0] + u * (b[0] - a[0]) + depth * bis[0] / lb, a[1] + u * (b[1] - a[1]) + depth * bis[1] / lb,
+                 a[2] + u * (b[2] - a[2]) + depth * bis[2] / lb};
+      const bool in_box =
+          p[0] > 0.f && p[1] > 0.f && p[2] > 0.f && p[0] < container[0] && p[1] < container[1] && p[2] < container[2];
+      if (in_box && mesh_inside(m, p)) out.add(p[0], p[1], p[2], w, -bis[0] / lb, -bis[1] / lb, -bis[2] / lb);
+    }
+  }
+}
+
 void sample_mesh(const SphMesh& m, const V3& container, float dx, int layers, SphBoundarySample& out) {
   double vol = 0;
   for (const auto& t : m.triangles) vol += dot(m.vertices[t[0]], cross(m.vertices[t[1]], m.vertices[t[2]]));
@@ -308,6 +357,7 @@ void sample_mesh(const SphMesh& m, const V3& container, float dx, int layers, Sp
   for (const auto& t : m.triangles)
     if (!buried_in_wall(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], container, 1e-3f * dx))
       exposed.triangles.push_back(t);
+  sample_convex_edges(exposed, m, orient, container, dx, out);
   for (const auto& t : exposed.triangles) {
     const V3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
     const V3 ab = sub(b, a), ac = sub(c, a), nn = cross(ab, ac);
