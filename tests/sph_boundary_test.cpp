@@ -43,6 +43,22 @@ SphObstacle cube_mesh(float lo, float size) {
   return o;
 }
 
+// The prism of scenes/meshes/wedge.obj (0.1 m long in x and wide in y, 0.08 m high, ridge along y)
+// with its lower corner at (x0, y0, z0).
+SphObstacle wedge_mesh(float x0, float y0, float z0) {
+  SphMesh m = sph_parse_obj(
+      "v 0 0 0\nv 0.1 0 0\nv 0.05 0 0.08\nv 0 0.1 0\nv 0.1 0.1 0\nv 0.05 0.1 0.08\n"
+      "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 1 3 6 4\nf 2 5 6 3\n",
+      "wedge.obj");
+  for (auto& v : m.vertices) v = {v[0] + x0, v[1] + y0, v[2] + z0};
+  SphObstacle o;
+  o.type = SphObstacle::Type::mesh;
+  o.min_m = {x0, y0, z0};
+  o.max_m = {x0 + 0.1f, y0 + 0.1f, z0 + 0.08f};
+  o.mesh = std::make_shared<const SphMesh>(std::move(m));
+  return o;
+}
+
 }  // namespace
 
 TEST(SphBoundary, LayersCoverTheSupport) {
@@ -218,16 +234,7 @@ TEST(SphBoundary, ConvexEdgePushesALoneParticleOut) {
 // with the face's layers stopping at the bisector of the mesh's edge at the foot: 0.14 and 0.17).
 TEST(SphBoundary, MeshOnTheFloorIsSampledDownToTheFloor) {
   const float dx = 0.01f, h = 2.f * dx;
-  SphMesh m = sph_parse_obj(
-      "v 0 0 0\nv 0.1 0 0\nv 0.05 0 0.08\nv 0 0.1 0\nv 0.1 0.1 0\nv 0.05 0.1 0.08\n"
-      "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 1 3 6 4\nf 2 5 6 3\n",
-      "wedge.obj");
-  for (auto& v : m.vertices) v[0] += 0.25f;
-  SphObstacle o;
-  o.type = SphObstacle::Type::mesh;
-  o.min_m = {0.25f, 0.f, 0.f};
-  o.max_m = {0.35f, 0.1f, 0.08f};
-  o.mesh = std::make_shared<const SphMesh>(std::move(m));
+  const SphObstacle o = wedge_mesh(0.25f, 0.f, 0.f);
   const std::array<float, 3> box{0.6f, 0.2f, 0.3f};
   SphBoundarySample s;
   sph_sample_container(box, dx, 2, s);
@@ -260,16 +267,7 @@ TEST(SphBoundary, MeshOnTheFloorIsSampledDownToTheFloor) {
 // the faces' layers leave out) the sums over the ridge and the edge were 0.24 and 0.35 of the solid's.
 TEST(SphBoundary, ConvexMeshEdgesHoldTheirSolid) {
   const float dx = 0.01f, h = 2.f * dx;
-  SphMesh m = sph_parse_obj(
-      "v 0 0 0\nv 0.1 0 0\nv 0.05 0 0.08\nv 0 0.1 0\nv 0.1 0.1 0\nv 0.05 0.1 0.08\n"
-      "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 1 3 6 4\nf 2 5 6 3\n",
-      "wedge.obj");
-  for (auto& v : m.vertices) v = {v[0] + 0.2f, v[1] + 0.2f, v[2] + 0.1f};
-  SphObstacle o;
-  o.type = SphObstacle::Type::mesh;
-  o.min_m = {0.2f, 0.2f, 0.1f};
-  o.max_m = {0.3f, 0.3f, 0.18f};
-  o.mesh = std::make_shared<const SphMesh>(std::move(m));
+  const SphObstacle o = wedge_mesh(0.2f, 0.2f, 0.1f);
   SphBoundarySample s;
   sph_sample_obstacle(o, {0.5f, 0.5f, 0.4f}, dx, 2, s);
   const SphKernels k(h);
