@@ -301,6 +301,37 @@ TEST(SphBoundary, ConvexMeshEdgesHoldTheirSolid) {
   }
 }
 
+// A cylinder's rim (the outer ring of the top and bottom levels) carries both faces' normals, as a
+// box's edge does, so the impact term brakes water falling onto it; a cap buried in the floor or the
+// lid has no rim: the ring there keeps the side's radial normal.
+TEST(SphBoundary, CylinderRimHasBothFacesNormals) {
+  const float dx = 0.01f;
+  SphObstacle cyl;
+  cyl.type = SphObstacle::Type::cylinder;
+  cyl.centre_m = {0.2f, 0.2f};
+  cyl.radius_m = 0.05f;
+  auto rim_normals_z = [&](float z0, float z1, float lid) {
+    cyl.z0_m = z0;
+    cyl.z1_m = z1;
+    SphBoundarySample s;
+    sph_sample_obstacle(cyl, {0.4f, 0.4f, lid}, dx, 2, s);
+    std::array<float, 2> nz{0.f, 0.f};  // the bottom and top rings' n_z, outer ring (r = R - dx/2)
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const float r = std::hypot(s.x[i] - 0.2f, s.y[i] - 0.2f);
+      if (std::fabs(r - 0.045f) > 1e-4f) continue;
+      if (std::fabs(s.z[i] - (z0 + 0.5f * dx)) < 1e-4f) nz[0] = s.nz[i];
+      if (std::fabs(s.z[i] - (z1 - 0.5f * dx)) < 1e-4f) nz[1] = s.nz[i];
+    }
+    return nz;
+  };
+  const auto floating = rim_normals_z(0.05f, 0.15f, 0.3f);
+  EXPECT_NEAR(floating[0], -std::sqrt(0.5f), 1e-5f);
+  EXPECT_NEAR(floating[1], std::sqrt(0.5f), 1e-5f);
+  const auto floor_to_lid = rim_normals_z(0.f, 0.3f, 0.3f);
+  EXPECT_EQ(floor_to_lid[0], 0.f);
+  EXPECT_EQ(floor_to_lid[1], 0.f);
+}
+
 TEST(SphBoundary, ObjReadsVerticesAndFacesAndTriangulates) {
   const SphMesh m = sph_parse_obj(kCube, "cube.obj");
   EXPECT_EQ(m.vertices.size(), 8u);

@@ -231,26 +231,32 @@ void sample_box_lattice(const V3& lo, const V3& hi, float dx, int layers, bool o
 }
 
 // ring of radius r at height z, points ~dx apart, each standing for (2 pi r / count) x dz x dr;
-// normal radial (cap = 0) or (0, 0, cap)
-void sample_ring(float cx, float cy, float r, float z, float dz, float dr, float dx, float cap,
+// normal (n_radial cos t, n_radial sin t, n_z) into the fluid
+void sample_ring(float cx, float cy, float r, float z, float dz, float dr, float dx, float n_radial, float n_z,
                  SphBoundarySample& out) {
   const int cnt = std::max(1, static_cast<int>(std::lround(2.f * std::numbers::pi_v<float> * r / dx)));
   const float w = 2.f * std::numbers::pi_v<float> * r / cnt * dz * dr / (dx * dx * dx);
   for (int q = 0; q < cnt; ++q) {
     const float t = 2.f * std::numbers::pi_v<float> * (q + 0.5f * (std::lround(z / dx) % 2)) / cnt;
     const float c = std::cos(t), sn = std::sin(t);
-    out.add(cx + r * c, cy + r * sn, z, w, cap == 0.f ? c : 0.f, cap == 0.f ? sn : 0.f, cap);
+    out.add(cx + r * c, cy + r * sn, z, w, n_radial * c, n_radial * sn, n_z);
   }
 }
 
-void sample_cylinder(const SphObstacle& o, float dx, int layers, SphBoundarySample& out) {
+void sample_cylinder(const SphObstacle& o, float container_z, float dx, int layers, SphBoundarySample& out) {
   const float R = o.radius_m, H = o.z1_m - o.z0_m, cx = o.centre_m[0], cy = o.centre_m[1];
   const int nz = std::max(1, static_cast<int>(std::lround(H / dx)));
   const float sz = H / nz;
-  // the side: `layers` rings per height level, over the whole height
+  // the side: `layers` rings per height level, over the whole height; the outer ring's top and bottom
+  // levels are the rim, equally near the side and a cap, with both faces' normals (as a box's edge),
+  // unless that cap is buried in the floor or the lid (a cylinder standing on the floor has no rim there)
+  const bool rim_lo = o.z0_m > 1e-3f * dx, rim_hi = o.z1_m < container_z - 1e-3f * dx;
   for (int k = 0; k < layers && R - (k + 0.5f) * dx > 0.f; ++k)
-    for (int j = 0; j < nz; ++j)
-      sample_ring(cx, cy, R - (k + 0.5f) * dx, o.z0_m + (j + 0.5f) * sz, sz, dx, dx, 0.f, out);
+    for (int j = 0; j < nz; ++j) {
+      const bool rim = k == 0 && nz > 1 && ((j == 0 && rim_lo) || (j == nz - 1 && rim_hi));
+      const float nr = rim ? std::sqrt(0.5f) : 1.f, nzr = rim ? (j == 0 ? -nr : nr) : 0.f;
+      sample_ring(cx, cy, R - (k + 0.5f) * dx, o.z0_m + (j + 0.5f) * sz, sz, dx, dx, nr, nzr, out);
+    }
   // the caps inside the side layers: `layers` discs of rings of width rin / round(rin / dx) (a
   // cylinder thinner than the layers gets discs of half a spacing, overlapping the side rings)
   const float rin = std::max(R - layers * dx, std::min(R, 0.5f * dx));
@@ -259,7 +265,7 @@ void sample_cylinder(const SphObstacle& o, float dx, int layers, SphBoundarySamp
   for (int k = 0; k < layers && (k + 0.5f) * dx < 0.5f * H; ++k)
     for (const float cap : {1.f, -1.f}) {
       const float z = cap > 0.f ? o.z1_m - (k + 0.5f) * dx : o.z0_m + (k + 0.5f) * dx;
-      for (int q = 0; q < nq; ++q) sample_ring(cx, cy, (q + 0.5f) * sr, z, dx, sr, dx, cap, out);
+      for (int q = 0; q < nq; ++q) sample_ring(cx, cy, (q + 0.5f) * sr, z, dx, sr, dx, 0.f, cap, out);
     }
 }
 
@@ -397,7 +403,7 @@ void sph_sample_obstacle(const SphObstacle& o, const std::array<float, 3>& conta
       sample_box_lattice(o.min_m, o.max_m, dx, layers, false, out);
       return;
     case SphObstacle::Type::cylinder:
-      sample_cylinder(o, dx, layers, out);
+      sample_cylinder(o, container_m[2], dx, layers, out);
       return;
     case SphObstacle::Type::sphere:
       sample_sphere(o, dx, layers, out);
