@@ -21,6 +21,11 @@ void SphSystem::allocate(std::size_t n) {
   if (p_.method == SphMethod::dfsph)
     for (auto* b : {&alpha_, &kappa_, &kappav_, &kick_, &gbx_, &gby_, &gbz_, &err_, &tkappa_, &tkappav_})
       *b = AlignedBuffer<float>(n + 8);
+  if (p_.method == SphMethod::dfsph) {
+    nbeg_ = AlignedBuffer<std::uint32_t>(n + 8);
+    nend_ = AlignedBuffer<std::uint32_t>(n + 8);
+    dfsph_list_allocate((n + 8) * kDfsphListSlots);
+  }
   id_.assign(n, 0);
   tid_.assign(n, 0);
   grid_ = SphGrid(p_.container_m, h_, n);
@@ -29,6 +34,8 @@ void SphSystem::allocate(std::size_t n) {
   // take the direct path)
   const double occ = std::pow(double(p_.support_factor), 3);
   gather_ = SphCellGather(static_cast<std::size_t>(std::min(double(std::max(n, nb_)) + 8.0, 27.0 * 4.0 * occ + 64.0)));
+  if (p_.method == SphMethod::dfsph)  // the DFSPH list's candidate flags, per thread with scratch
+    nflag_ = AlignedBuffer<std::uint32_t>(std::size_t(gather_.threads()) * (gather_.capacity() + 16));
 }
 
 // The boundary particles into the grid's static table, their arrays in that order.

@@ -99,6 +99,9 @@ class SphCellGather {
   SphCellGather() = default;
   /// Room for `capacity` candidates per array and thread, for every thread OpenMP may run.
   explicit SphCellGather(std::size_t capacity);
+  /// Candidates per array and thread, and the threads with scratch (higher thread numbers take the direct path).
+  std::size_t capacity() const { return cap_; }
+  int threads() const { return threads_; }
 
   /// One thread's walk over the cells of its particles (in sorted order, so each cell is
   /// gathered once per thread). `src` holds `arrays` fluid arrays in the grid's sorted order,
