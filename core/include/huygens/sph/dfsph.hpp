@@ -173,7 +173,7 @@ inline void sph_dfsph_list_append(const float* X, const float* Y, const float* Z
   const float rmin2 = rmin * rmin, ih = 1.f / h;
   float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f;
 #pragma omp simd reduction(+ : sw, gx, gy, gz, sq, sm) aligned(J, GX, GY, GZ : 32)
-  for (std::uint32_t k = b; k < e; ++k) {
+  for (std::size_t k = b; k < e; ++k) {  // a 64-bit index: GCC 12 does not vectorise this loop over a 32-bit one
     const std::uint32_t j = J[k];
     const float dx = xi - X[j];
     const float dy = yi - Y[j];
