@@ -46,10 +46,14 @@
 // (k_i / rho_i + k_j / rho_j) equals (l_i p_i / rho_i^2 + l_j p_j / rho_j^2) of the WCSPH force with
 // the gradient correction l (system.hpp, here from the cubic spline's first moment), so p is the
 // field whose corrected gradient the solve applies.
-// Pair sums below over one index range [b, e) of cell-sorted (or gathered) arrays, in the style of
-// forces.hpp (whole 8-float vectors, masked lanes, branch-free), x_ij = x_i - x_j, r = |x_ij|, q = r / h,
-// w(q), f(q) the cubic spline's value and gradient shapes (grad W_ij = -48/(pi h^5) f x_ij):
-//   factor      sum w, sum f x_ij, sum f^2 r^2, sum f r^2, boundary: sum W f (g . x_ji) x_ij
+// Neighbour list: the factor pass, once per step after the sort, stores each particle's fluid neighbours
+// within the support (index j and f(q) x_ij, grad W_ij = -48/(pi h^5) f x_ij) in SphDfsphList; the
+// passes of both solves and the viscous term stream it (no cell search, no square root, no kernel in the
+// iterations). x_ij = x_i - x_j, r = |x_ij|, q = r / h, w(q), f(q) the cubic spline's value and gradient
+// shapes. Sums below (whole 8-float vectors, branch-free, in the style of forces.hpp):
+//   boundary    over boundary candidates: sum W w, sum W f x_ib, sum W f r^2, sum W f (g . x_bi) x_ib
+//   list        the list of particle i from its candidates (flags, then the indices), then over it:
+//               sum w, sum f x_ij, sum f^2 r^2, sum f r^2 and the stored f x_ij
 //   divergence  sum f (v_i - v_j) . x_ij      (x -m 48/(pi h^5) = Drho/Dt)
 //   kick        sum (K_i + K_j) f x_ij        (x dt m 48/(pi h^5) = dv, K = kappa / rho)
 //   viscous     sum (v_j - v_i) (h - r) / rho_j   (as forces.hpp: the MCG03 viscosity Laplacian)

@@ -4,7 +4,8 @@
 // (x fastest). Particles are reordered by cell with a counting sort every step, so the particles
 // of a cell are contiguous and the three x-neighbour cells of a row form ONE contiguous index
 // range: a particle's neighbours lie in 9 ranges (the 27 cells), scanned by flat vectorisable
-// loops. No per-particle neighbour lists are built. The static boundary particles (boundary.hpp)
+// loops. WCSPH builds no per-particle neighbour lists (DFSPH builds one per step for the
+// iterations of its solves, from these ranges: dfsph.hpp). The static boundary particles (boundary.hpp)
 // have a second start table over the same cells, sorted once (build_static); points outside the
 // container fall into the edge cells (cell coordinates are clamped). SphCellGather copies the 9
 // fluid ranges and the 9 boundary ranges of a cell once into per-thread contiguous scratch, so
