@@ -49,7 +49,7 @@ TEST(SphDfsph, HydrostaticPressureIsRho0GDepthWithinTwoPercent) {
 
 // The step's neighbour list (dfsph.hpp SphDfsphList) holds every fluid pair within the support: the
 // density it sums equals the all-pairs cubic spline sum m (sum_j W_ij + sum_b w_b W_ib), also for a block
-// compressed to 0.6 dx, whose ~150 neighbours per particle overflow the list's 48 slots, so the list
+// compressed to 0.6 dx, whose ~150 neighbours per particle overflow the list's 56 slots, so the list
 // grows and the pass runs again.
 TEST(SphDfsph, NeighbourListHoldsEveryPairAndGrowsWhenItOverflows) {
   for (const float s : {1.f, 0.6f}) {

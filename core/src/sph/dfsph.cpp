@@ -21,8 +21,8 @@ void SphSystem::dfsph_list_allocate(std::size_t slots) {
 }
 
 // The pass writes at most the list's capacity (each thread in its own part of it) and reports an
-// overflow; the list then doubles, outside the solves, and the pass runs again (kDfsphListSlots, 48 per
-// particle, hold a mean of ~36 slots at rest density: 32 neighbours and the padding).
+// overflow; the list then doubles, outside the solves, and the pass runs again (allocate() gives 56 slots
+// per particle at h = 2 dx, a mean of ~36 used at rest density: 32 neighbours and the padding).
 void SphSystem::dfsph_factors() {
   while (!dfsph_factors_pass()) dfsph_list_allocate(2 * nlist_);
 }

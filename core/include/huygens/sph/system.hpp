@@ -200,8 +200,8 @@ class SphSystem {
   // sum gb, the error of the last update, the sort buffers of kappa and kappa^v
   AlignedBuffer<float> alpha_, kappa_, kappav_, kick_, gbx_, gby_, gbz_, err_, tkappa_, tkappav_;
   // DFSPH neighbour list (dfsph.hpp SphDfsphList): slots [nbeg_[i], nend_[i]) of nj_ (index) and ngx_, ngy_,
-  // ngz_ (f x_ij); capacity nlist_ slots, kDfsphListSlots per particle (doubled when a step overflows it)
-  static constexpr std::size_t kDfsphListSlots = 48;
+  // ngz_ (f x_ij); capacity nlist_ slots (allocate(): 56 per particle at h = 2 dx; doubled when a step overflows it);
+  // nflag_: the candidate flags, per thread
   AlignedBuffer<std::uint32_t> nj_, nbeg_, nend_, nflag_;
   AlignedBuffer<float> ngx_, ngy_, ngz_;
   std::size_t nlist_ = 0;
