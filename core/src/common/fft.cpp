@@ -3,6 +3,7 @@
 #include <fftw3.h>
 #include <omp.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <mutex>
 #include <new>
@@ -68,6 +69,7 @@ template class AlignedBuffer<float>;
 template class AlignedBuffer<double>;
 template class AlignedBuffer<cfloat>;
 template class AlignedBuffer<unsigned char>;
+template class AlignedBuffer<std::uint32_t>;
 
 int fft_set_threads(int threads) {
   init_threads_once();
