@@ -179,6 +179,24 @@ TEST(SphBoundary, FloorHoldsALoneParticleAboveTheFace) {
   for (float z : {0.6f, 0.8f}) EXPECT_LT(az(z * dx), 0.f) << z;
 }
 
+// A 0.1 m box container with a box obstacle on its floor, x 0.05-0.1 m and 0.04 m high (its upstream
+// top edge at x = 0.05, z = 0.04), gravity g downwards and one fluid particle out of the way.
+namespace {
+SphParams box_edge_params(float g) {
+  SphParams p;
+  p.spacing_m = 0.01f;
+  p.gravity_mps2 = {0.f, 0.f, -g};
+  p.sound_speed_mps = 12.f;  // c0 = 10 sqrt(2 g H) of the default with g = 9.81 (a g of 0 gives c0 ~ 0)
+  p.container_m = {0.1f, 0.1f, 0.1f};
+  p.fluid.push_back({{0.f, 0.f, 0.06f}, {0.01f, 0.01f, 0.07f}});
+  SphObstacle box;
+  box.min_m = {0.05f, 0.f, 0.f};
+  box.max_m = {0.1f, 0.1f, 0.04f};
+  p.obstacles = {box};
+  return p;
+}
+}  // namespace
+
 // A lone particle at a box's convex edge (the upstream top edge of a step on the floor), on the
 // bisector of the edge at d from it: p = 0 (density ~0.45 rho0), and within h of only a quarter of
 // the support's boundary particles, so neither its own pressure nor the hydrostatic term of the wall
@@ -190,16 +208,7 @@ TEST(SphBoundary, FloorHoldsALoneParticleAboveTheFace) {
 // spacing above a flat face nothing acts (no boundary particle nearer than 0.8 dx).
 TEST(SphBoundary, ConvexEdgePushesALoneParticleOut) {
   for (const float g : {9.81f, 0.f}) {
-    SphParams p;
-    p.spacing_m = 0.01f;
-    p.gravity_mps2 = {0.f, 0.f, -g};
-    p.sound_speed_mps = 12.f;  // c0 = 10 sqrt(2 g H) of the default with g = 9.81 (a g of 0 gives c0 ~ 0)
-    p.container_m = {0.1f, 0.1f, 0.1f};
-    p.fluid.push_back({{0.f, 0.f, 0.06f}, {0.01f, 0.01f, 0.07f}});
-    SphObstacle box;
-    box.min_m = {0.05f, 0.f, 0.f};
-    box.max_m = {0.1f, 0.1f, 0.04f};
-    p.obstacles = {box};
+    const SphParams p = box_edge_params(g);
     SphSystem s(p);
     const float dx = p.spacing_m, c = std::sqrt(0.5f);
     auto accel = [&](float x, float z) {
@@ -233,16 +242,7 @@ TEST(SphBoundary, ConvexEdgePushesALoneParticleOut) {
 // between the rows and nothing acted there (0 m/s^2 from 0.2 dx outside to 0.05 dx inside); the edge
 // cells are split in 2 x 2 (a point 0.35 dx from the edge, as on a mesh's edge).
 TEST(SphBoundary, BoxEdgePushesOutAlongTheWholeEdge) {
-  SphParams p;
-  p.spacing_m = 0.01f;
-  p.gravity_mps2 = {0.f, 0.f, 0.f};
-  p.sound_speed_mps = 12.f;
-  p.container_m = {0.1f, 0.1f, 0.1f};
-  p.fluid.push_back({{0.f, 0.f, 0.06f}, {0.01f, 0.01f, 0.07f}});
-  SphObstacle box;
-  box.min_m = {0.05f, 0.f, 0.f};
-  box.max_m = {0.1f, 0.1f, 0.04f};
-  p.obstacles = {box};
+  const SphParams p = box_edge_params(0.f);
   SphSystem s(p);
   const float dx = p.spacing_m, c = std::sqrt(0.5f);
   for (const float y : {0.055f, 0.05f})
