@@ -5,8 +5,8 @@ usage: simd_report.py OBJECT_OR_ARCHIVE [--min-bits 128|256|512] [--objdump objd
 
 Disassembles the object (or static library, e.g. libhuygens_core.a) with objdump and, for the
 functions of the SPH density and force passes (SphSystem::compute_density / compute_forces and
-their OpenMP bodies, and the range sums sph_poly6_range / sph_force_range / sph_wall_range, kept
-out of line), counts the single-precision arithmetic instructions (add, sub, mul, fused
+their OpenMP bodies, the range sums sph_poly6_range / sph_force_range / sph_wall_range and the
+DFSPH sums sph_dfsph_boundary_range / sph_dfsph_list_*, kept out of line), counts the single-precision arithmetic instructions (add, sub, mul, fused
 multiply-add, min, max) by register width: scalar (ss), 128-bit (xmm ps), 256-bit (ymm ps), 512-bit (zmm ps); and
 the innermost loops (a backward jump and its target) holding six or more of them, each by the
 widest register its arithmetic uses.
@@ -22,8 +22,11 @@ import re
 import subprocess
 import sys
 
-HOT = re.compile(r"SphSystem::compute_(density|forces)\(|sph_(poly6|force)_range<|sph_(wall|contact)_range\(")
-LOOP = re.compile(r"sph_(poly6|force)_range<|sph_(wall|contact)_range\(")  # the functions that hold a neighbour loop
+DFSPH = r"|sph_dfsph_(boundary_range|list_(flags|factors|divergence|kick|viscous))\("
+HOT = re.compile(r"SphSystem::compute_(density|forces)\(|sph_(poly6|force)_range<|sph_(wall|contact)_range\(" + DFSPH)
+# the functions that hold a neighbour loop (not the DFSPH kick: its vector loop holds 4 such instructions, one add
+# and three fused multiply-adds, below the 6 that make a loop here; it is listed)
+LOOP = re.compile(r"sph_(poly6|force)_range<|sph_(wall|contact)_range\(" + DFSPH.replace("|kick", ""))
 ARITH = re.compile(r"^v?(add|sub|mul|min|max|f[n]?m(add|sub)(132|213|231))(ss|ps)$")
 WIDTH = {"xmm": 128, "ymm": 256, "zmm": 512}
 

@@ -225,6 +225,67 @@ TEST(SphBoundary, ConvexEdgePushesALoneParticleOut) {
   }
 }
 
+// The same lone particle at p = 0 without gravity, crossing a box's convex edge anywhere along it: in
+// line with a row of the box's lattice (y = 0.055) and between two rows (y = 0.05), from 0.2 dx
+// outside the edge to 0.3 dx inside. The wall pushes it out along the bisector with more than g at
+// every point. With one point at the centre of each edge cell (0.71 dx from the edge, 0.87 dx from a
+// point between two rows) no boundary particle was within the contact range 0.8 dx of the edge
+// between the rows and nothing acted there (0 m/s^2 from 0.2 dx outside to 0.05 dx inside); the edge
+// cells are split in 2 x 2 (a point 0.35 dx from the edge, as on a mesh's edge).
+TEST(SphBoundary, BoxEdgePushesOutAlongTheWholeEdge) {
+  SphParams p;
+  p.spacing_m = 0.01f;
+  p.gravity_mps2 = {0.f, 0.f, 0.f};
+  p.sound_speed_mps = 12.f;
+  p.container_m = {0.1f, 0.1f, 0.1f};
+  p.fluid.push_back({{0.f, 0.f, 0.06f}, {0.01f, 0.01f, 0.07f}});
+  SphObstacle box;
+  box.min_m = {0.05f, 0.f, 0.f};
+  box.max_m = {0.1f, 0.1f, 0.04f};
+  p.obstacles = {box};
+  SphSystem s(p);
+  const float dx = p.spacing_m, c = std::sqrt(0.5f);
+  for (const float y : {0.055f, 0.05f})
+    for (const float d : {-0.3f, -0.1f, 0.f, 0.1f, 0.2f}) {
+      // outward bisector (-1, 0, 1) / sqrt(2) from the edge (x, z) = (0.05, 0.04)
+      const float X[1] = {0.05f - c * d * dx}, Y[1] = {y}, Z[1] = {0.04f + c * d * dx};
+      s.set_particles(X, Y, Z);
+      float ax[1], ay[1], az[1], rho[1];
+      s.grid_accelerations(ax, ay, az, rho);
+      EXPECT_LT(rho[0], 0.7f * p.rest_density_kgpm3);  // p = 0
+      EXPECT_GT(c * (az[0] - ax[0]), 9.81f) << "y " << y << ", d " << d << " dx";
+    }
+}
+
+// A box standing on the floor between the side walls (its bottom and end faces buried): its lattice
+// holds the box's volume, the cells at its two top edges are split (points 0.35 dx from the edge,
+// normal the bisector), nothing else is (no point nearer than 0.5 dx to a buried face's edge), and
+// no normal points into the floor or a side wall.
+TEST(SphBoundary, BoxSplitsItsExposedConvexEdges) {
+  const float dx = 0.01f;
+  SphObstacle box;
+  box.min_m = {0.52f, 0.f, 0.f};
+  box.max_m = {0.56f, 0.2f, 0.04f};
+  SphBoundarySample s;
+  sph_sample_obstacle(box, {0.6f, 0.2f, 0.3f}, dx, 2, s);
+  EXPECT_NEAR(volume(s, dx), 0.04 * 0.2 * 0.04, 1e-3 * 0.04 * 0.2 * 0.04);
+  std::size_t at_edge = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    EXPECT_GT(s.nz[i], -1e-6f) << i;
+    EXPECT_NEAR(s.ny[i], 0.f, 1e-6f) << i;
+    const float up = std::fabs(s.x[i] - 0.52f), down = std::fabs(s.x[i] - 0.56f), top = 0.04f - s.z[i];
+    for (const float side : {up, down})
+      if (std::hypot(side, top) < 0.4f * dx) {
+        ++at_edge;
+        EXPECT_NEAR(std::fabs(s.nx[i]), std::sqrt(0.5f), 1e-5f) << i;
+        EXPECT_NEAR(s.nz[i], std::sqrt(0.5f), 1e-5f) << i;
+        EXPECT_NEAR(s.w[i], 0.25f, 1e-4f) << i;
+      }
+    EXPECT_GE(std::min(std::hypot(up, s.z[i]), std::hypot(down, s.z[i])), 0.5f * dx) << i;
+  }
+  EXPECT_EQ(at_edge, std::size_t(2 * 20));
+}
+
 // A wedge standing on the floor against a side wall (the 58-degree face of scenes/meshes/wedge.obj):
 // its faces on the floor and the wall are buried there (not sampled: no point has the floor face's
 // normal), and the layers of the 58-degree face run down to the floor. In front of the foot the

@@ -562,6 +562,12 @@ void WaterRenderer::draw_water_sides(const OrbitCamera& camera, const RenderSett
     edge(l * vc + vc - 1, (l + 1) * vc + vc - 1, grid_.x(layout_.col_idx[vc - 1]), y0, grid_.x(layout_.col_idx[vc - 1]),
          y1);
   }
+  draw_flat(tri, FlatKind::water_side, camera, s, mvp);
+}
+
+// Triangles (x, y, z per vertex) in the ship program, flat-shaded in the colour of `kind`.
+void WaterRenderer::draw_flat(const std::vector<float>& tri, FlatKind kind, const OrbitCamera& camera,
+                              const RenderSettings& s, const glm::mat4& mvp) {
   glBindVertexArray(ship_vao_);
   glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
@@ -570,7 +576,7 @@ void WaterRenderer::draw_water_sides(const OrbitCamera& camera, const RenderSett
   glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
   const glm::vec3 eye(camera.eye());
   glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
-  glUniform1i(ship_prog_.loc("u_solid"), 2);
+  glUniform1i(ship_prog_.loc("u_solid"), static_cast<int>(kind));
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(tri.size() / 3));
   glUniform1i(ship_prog_.loc("u_solid"), 0);
 }
@@ -592,34 +598,13 @@ void WaterRenderer::draw_tank(const OrbitCamera& camera, const RenderSettings& s
   if (eye.y < Y) wall(0, Y, X, Y);
   if (eye.x > 0.0) wall(0, 0, 0, Y);
   if (eye.x < X) wall(X, 0, X, Y);
-  glBindVertexArray(ship_vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
-  ship_prog_.use();
-  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
-  const glm::vec3 e(eye);
-  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(e));
-  glUniform1i(ship_prog_.loc("u_solid"), 3);
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(tri.size() / 3));
-  glUniform1i(ship_prog_.loc("u_solid"), 0);
+  draw_flat(tri, FlatKind::tank_wall, camera, s, mvp);
 }
 
 // Obstacles as solids (flat-shaded, the ship program's solid colour).
 void WaterRenderer::draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
   if (solids_.empty() || !s.draw_solids) return;
-  glBindVertexArray(ship_vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(solids_.size() * sizeof(float)), solids_.data(),
-               GL_STREAM_DRAW);
-  ship_prog_.use();
-  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
-  const glm::vec3 eye(camera.eye());
-  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
-  glUniform1i(ship_prog_.loc("u_solid"), 1);
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(solids_.size() / 3));
-  glUniform1i(ship_prog_.loc("u_solid"), 0);
+  draw_flat(solids_, FlatKind::obstacle, camera, s, mvp);
 }
 
 // The half-float scene into the 8-bit image, tone-mapped once (renderer.hpp).
@@ -732,17 +717,7 @@ void WaterRenderer::draw_terrain(const OrbitCamera& camera, const RenderSettings
 void WaterRenderer::draw_ships(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
   std::vector<float> tri;
   for (const ShipPose& sp : ships_) append_hull(sp, tri);
-  ship_vertex_count_ = static_cast<GLsizei>(tri.size() / 3);
-  glBindVertexArray(ship_vao_);
-  glBindBuffer(GL_ARRAY_BUFFER, ship_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(tri.size() * sizeof(float)), tri.data(), GL_STREAM_DRAW);
-  ship_prog_.use();
-  glUniformMatrix4fv(ship_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-  glUniform3fv(ship_prog_.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
-  const glm::vec3 eye(camera.eye());
-  glUniform3fv(ship_prog_.loc("u_eye"), 1, glm::value_ptr(eye));
-  glUniform1i(ship_prog_.loc("u_solid"), 0);
-  glDrawArrays(GL_TRIANGLES, 0, ship_vertex_count_);
+  draw_flat(tri, FlatKind::hull, camera, s, mvp);
 }
 
 void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, const RenderTarget& target) {

@@ -245,6 +245,10 @@ class WaterRenderer {
   void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  // the colours of ship.frag's u_solid
+  enum class FlatKind { hull = 0, obstacle = 1, water_side = 2, tank_wall = 3 };
+  void draw_flat(const std::vector<float>& tri, FlatKind kind, const OrbitCamera& camera, const RenderSettings& s,
+                 const glm::mat4& mvp);
   void tone_map(const RenderSettings& s, const RenderTarget& target);
   void set_common_uniforms(const gl::Program& p, const RenderSettings& s, const OrbitCamera& cam) const;
 
@@ -263,7 +267,6 @@ class WaterRenderer {
   GLsizei surface_index_count_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0;
   GLuint ship_vao_ = 0, ship_vbo_ = 0;
-  GLsizei ship_vertex_count_ = 0;
   GLsizei ground_vertex_count_ = 0;
   std::vector<float> solids_;               // obstacle triangles (x, y, z)
   std::array<double, 3> tank_{};            // set_tank's box (m); 0 = none

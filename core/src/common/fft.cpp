@@ -7,6 +7,7 @@
 #include <sys/mman.h>
 #endif
 
+#include <cstdint>
 #include <cstdlib>
 #include <mutex>
 #include <new>
@@ -84,6 +85,7 @@ template class AlignedBuffer<float>;
 template class AlignedBuffer<double>;
 template class AlignedBuffer<cfloat>;
 template class AlignedBuffer<unsigned char>;
+template class AlignedBuffer<std::uint32_t>;
 
 int fft_set_threads(int threads) {
   init_threads_once();

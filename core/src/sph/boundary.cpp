@@ -2,6 +2,7 @@
 #include "huygens/sph/boundary.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -194,39 +195,94 @@ int sph_boundary_layers(float h, float dx) { return std::max(1, static_cast<int>
 
 namespace {
 
-// A lattice of spacing s_a = (hi_a - lo_a) / round((hi_a - lo_a) / dx) per axis, points at
-// lo + (i + 1/2) s for i in [-ext, n + ext): with ext = layers and `outside`, the points outside
-// [lo, hi] (the container walls); with ext = 0, the points within layers dx of the box faces.
-void sample_box_lattice(const V3& lo, const V3& hi, float dx, int layers, bool outside, SphBoundarySample& out) {
+// A lattice of spacing s_a = (hi_a - lo_a) / round((hi_a - lo_a) / dx) per axis (n_a cells), the
+// cell (i, j, k) centred at lo + (i + 1/2, j + 1/2, k + 1/2) s.
+struct BoxLattice {
   int n[3];
   float s[3];
-  for (int a = 0; a < 3; ++a) {
-    n[a] = std::max(1, static_cast<int>(std::lround((hi[a] - lo[a]) / dx)));
-    s[a] = (hi[a] - lo[a]) / n[a];
+  float w;  // a cell's volume / dx^3
+  BoxLattice(const V3& lo, const V3& hi, float dx) {
+    for (int a = 0; a < 3; ++a) {
+      n[a] = std::max(1, static_cast<int>(std::lround((hi[a] - lo[a]) / dx)));
+      s[a] = (hi[a] - lo[a]) / n[a];
+    }
+    w = s[0] * s[1] * s[2] / (dx * dx * dx);
   }
-  const float w = s[0] * s[1] * s[2] / (dx * dx * dx);
-  const int ext = outside ? layers : 0;
-  for (int k = -ext; k < n[2] + ext; ++k)
-    for (int j = -ext; j < n[1] + ext; ++j)
-      for (int i = -ext; i < n[0] + ext; ++i) {
+};
+
+// The container walls: the cells of the lattice of [0, L] extended by `layers` cells that lie outside
+// [0, L], normal toward the box (edges and corners included).
+void sample_container_lattice(const V3& hi, float dx, int layers, SphBoundarySample& out) {
+  const BoxLattice g({0.f, 0.f, 0.f}, hi, dx);
+  for (int k = -layers; k < g.n[2] + layers; ++k)
+    for (int j = -layers; j < g.n[1] + layers; ++j)
+      for (int i = -layers; i < g.n[0] + layers; ++i) {
         const int idx[3] = {i, j, k};
         bool out_of_box = false;
-        float depth = 1e30f;  // distance to the nearest face, inside (m)
-        const V3 p{lo[0] + (i + 0.5f) * s[0], lo[1] + (j + 0.5f) * s[1], lo[2] + (k + 0.5f) * s[2]};
-        for (int a = 0; a < 3; ++a) {
-          out_of_box = out_of_box || idx[a] < 0 || idx[a] >= n[a];
-          depth = std::min(depth, std::min(idx[a] + 0.5f, n[a] - idx[a] - 0.5f) * s[a]);
-        }
-        if (outside ? !out_of_box : depth > layers * dx) continue;
-        // normal into the fluid: toward the box from outside, out of the nearest faces from inside
+        for (int a = 0; a < 3; ++a) out_of_box = out_of_box || idx[a] < 0 || idx[a] >= g.n[a];
+        if (!out_of_box) continue;
+        const V3 p{(i + 0.5f) * g.s[0], (j + 0.5f) * g.s[1], (k + 0.5f) * g.s[2]};
         V3 nr{};
-        for (int a = 0; a < 3; ++a) {
-          if (outside) nr[a] = std::clamp(p[a], lo[a], hi[a]) - p[a];
-          if (!outside && std::fabs((idx[a] + 0.5f) * s[a] - depth) < 1e-3f * dx) nr[a] = -1.f;
-          if (!outside && std::fabs((n[a] - idx[a] - 0.5f) * s[a] - depth) < 1e-3f * dx) nr[a] = 1.f;
-        }
+        for (int a = 0; a < 3; ++a) nr[a] = std::clamp(p[a], 0.f, hi[a]) - p[a];
         const float len = std::sqrt(dot(nr, nr));
-        out.add(p[0], p[1], p[2], w, nr[0] / len, nr[1] / len, nr[2] / len);
+        out.add(p[0], p[1], p[2], g.w, nr[0] / len, nr[1] / len, nr[2] / len);
+      }
+}
+
+// A box obstacle: the cells of its lattice within `layers` dx of an exposed face (a face on or beyond
+// a container wall is buried in it, as a mesh's: not a face the depth is measured from; a box with
+// every face buried measures from all six), normal out of the nearest exposed faces. A cell in the
+// first row of two or three exposed faces lies at a convex edge or corner: one point at its centre
+// would stand 0.71 dx from the edge (the faces' rows 0.5 dx from their face), so the cell is split
+// into 2 x 2 (x 2 at a corner) sub-cells across those faces, one point of a quarter (eighth) of its
+// volume each, the nearest 0.35 dx from the edge as the line of a mesh's 90-degree edge
+// (sample_convex_edges); they carry the cell's normal, the bisector of its faces.
+void sample_box_obstacle(const V3& lo, const V3& hi, const V3& container, float dx, int layers,
+                         SphBoundarySample& out) {
+  const BoxLattice g(lo, hi, dx);
+  const float eps = 1e-3f * dx;
+  bool exposed[3][2];
+  bool any = false;
+  for (int a = 0; a < 3; ++a) {
+    exposed[a][0] = lo[a] > eps;
+    exposed[a][1] = hi[a] < container[a] - eps;
+    any = any || exposed[a][0] || exposed[a][1];
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int side = 0; side < 2; ++side) exposed[a][side] = exposed[a][side] || !any;
+  for (int k = 0; k < g.n[2]; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) {
+        const int idx[3] = {i, j, k};
+        float depth = 1e30f;  // distance to the nearest exposed face (m)
+        for (int a = 0; a < 3; ++a) {
+          if (exposed[a][0]) depth = std::min(depth, (idx[a] + 0.5f) * g.s[a]);
+          if (exposed[a][1]) depth = std::min(depth, (g.n[a] - idx[a] - 0.5f) * g.s[a]);
+        }
+        if (depth > layers * dx) continue;
+        V3 nr{};       // out of the exposed faces at that depth, or of those whose first row it is
+        int edge = 0;  // bit a: split across axis a
+        for (int a = 0; a < 3; ++a) {
+          const bool first_lo = exposed[a][0] && idx[a] == 0, first_hi = exposed[a][1] && idx[a] == g.n[a] - 1;
+          if (first_lo || first_hi) edge |= 1 << a;
+          if (exposed[a][0] && std::fabs((idx[a] + 0.5f) * g.s[a] - depth) < eps) nr[a] = -1.f;
+          if (exposed[a][1] && std::fabs((g.n[a] - idx[a] - 0.5f) * g.s[a] - depth) < eps) nr[a] = 1.f;
+        }
+        const bool split = edge != 0 && (edge & (edge - 1)) != 0;  // two or three faces
+        if (split)
+          for (int a = 0; a < 3; ++a)
+            if (edge & (1 << a)) nr[a] = exposed[a][0] && idx[a] == 0 ? -1.f : 1.f;
+        const float len = std::sqrt(dot(nr, nr));
+        const V3 c{lo[0] + (i + 0.5f) * g.s[0], lo[1] + (j + 0.5f) * g.s[1], lo[2] + (k + 0.5f) * g.s[2]};
+        const int m = split ? edge : 0;
+        const int parts = 1 << std::popcount(static_cast<unsigned>(m));
+        for (int q = 0; q < 8; ++q) {
+          if ((q & ~m) != 0) continue;  // sub-cell q: bit a set = the upper half along a
+          V3 p = c;
+          for (int a = 0; a < 3; ++a)
+            if (m & (1 << a)) p[a] += ((q >> a) & 1 ? 0.25f : -0.25f) * g.s[a];
+          out.add(p[0], p[1], p[2], g.w / parts, nr[0] / len, nr[1] / len, nr[2] / len);
+        }
       }
 }
 
@@ -393,14 +449,14 @@ void sample_mesh(const SphMesh& m, const V3& container, float dx, int layers, Sp
 }  // namespace
 
 void sph_sample_container(const std::array<float, 3>& container_m, float dx, int layers, SphBoundarySample& out) {
-  sample_box_lattice({0.f, 0.f, 0.f}, container_m, dx, layers, true, out);
+  sample_container_lattice(container_m, dx, layers, out);
 }
 
 void sph_sample_obstacle(const SphObstacle& o, const std::array<float, 3>& container_m, float dx, int layers,
                          SphBoundarySample& out) {
   switch (o.type) {
     case SphObstacle::Type::box:
-      sample_box_lattice(o.min_m, o.max_m, dx, layers, false, out);
+      sample_box_obstacle(o.min_m, o.max_m, container_m, dx, layers, out);
       return;
     case SphObstacle::Type::cylinder:
       sample_cylinder(o, container_m[2], dx, layers, out);

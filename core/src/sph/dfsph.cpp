@@ -6,44 +6,88 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "huygens/common/finite.hpp"
 #include "huygens/sph/system.hpp"
 
 namespace huygens {
 
-// rho_i = m 8/(pi h^3) sum_j w_j w(q); G_i = sum_j m_j grad W_ij = -m 48/(pi h^5) (gf + gb);
-// alpha_i = rho_i / (|G_i|^2 + (m 48/(pi h^5))^2 sum_fluid f^2 r^2) (BK15 eq. 11); l_i from the moment.
+void SphSystem::dfsph_list_allocate(std::size_t slots) {
+  if (slots > std::numeric_limits<std::uint32_t>::max()) throw std::length_error("DFSPH neighbour list");
+  nlist_ = slots;
+  nj_ = AlignedBuffer<std::uint32_t>(slots);
+  for (auto* g : {&ngx_, &ngy_, &ngz_}) *g = AlignedBuffer<float>(slots);
+}
+
+// The pass writes at most the list's capacity (each thread in its own part of it) and reports an
+// overflow; the list then doubles, outside the solves, and the pass runs again (allocate() gives 56 slots
+// per particle at h = 2 dx, a mean of ~36 used at rest density: 32 neighbours and the padding).
 void SphSystem::dfsph_factors() {
+  while (!dfsph_factors_pass()) dfsph_list_allocate(2 * nlist_);
+}
+
+// Fluid neighbours from the cell rows into the list (positions stream, no kernel), then over the list:
+// rho_i = m 8/(pi h^3) (sum_j w_j w(q) + the near count, w(0) = 1); G_i = sum_j m_j grad W_ij =
+// -m 48/(pi h^5) (gf + gb); alpha_i = rho_i / (|G_i|^2 + (m 48/(pi h^5))^2 sum_fluid f^2 r^2) (BK15 eq. 11);
+// l_i from the moment.
+bool SphSystem::dfsph_factors_pass() {
   const std::size_t n = n_;
-  const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
   const SphView bv{bx_.data(), by_.data(), bz_.data(), nullptr, nullptr,
                    nullptr,    nullptr,    nullptr,    nullptr, bw_.data()};
-  const float h = h_, h2 = k_.h2, mk = mass_ * k_.cubic_k, rmin = 1e-6f * h_;
+  const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+  const float *X = v.X, *Y = v.Y, *Z = v.Z;
+  const float h = h_, h2 = k_.h2, mk = mass_ * k_.cubic_k, rmin = 1e-6f * h_, rmin2 = rmin * rmin;
   const float mg = mass_ * k_.cubic_g, mg2 = mg * mg;
   const float mb = p_.dfsph_wall == SphDfsphWall::akinci ? 0.f : 1.f;
   const float ch = p_.dfsph_wall == SphDfsphWall::hydrostatic ? mg / p_.rest_density_kgpm3 : 0.f;
   const float grav[3] = {g_[0], g_[1], g_[2]};
-#pragma omp parallel if (n > kSphParallelMin)
+  bool fits = true;
+#pragma omp parallel if (n > kSphParallelMin) reduction(&& : fits)
   {
-    const float* src[3] = {v.X, v.Y, v.Z};
-    const float* bsrc[4] = {bv.X, bv.Y, bv.Z, bv.W};
-    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 3, bsrc, nb_ > 0 ? 4 : 0);
-    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), nullptr, nullptr,
-                     nullptr,        nullptr,        nullptr,        nullptr};
-    const SphView sbv{cur.scratch(3), cur.scratch(4), cur.scratch(5), nullptr, nullptr,
-                      nullptr,        nullptr,        nullptr,        nullptr, cur.scratch(6)};
+    const int t = omp_get_thread_num();
+    const std::size_t part = (nlist_ / std::size_t(omp_get_num_threads())) & ~std::size_t(7);
+    std::uint32_t pos = static_cast<std::uint32_t>(std::size_t(t) * part);
+    const std::uint32_t lim = static_cast<std::uint32_t>(pos + part);
+    SphCellGather::Cursor cur = sph_position_cursor(grid_, gather_, t, v, bv, nb_ > 0);
+    const SphView sv = sph_gathered_fluid(cur), sbv = sph_gathered_boundary(cur);
+    std::uint32_t* F = t < gather_.threads() ? nflag_.data() + std::size_t(t) * (gather_.capacity() + 16) : nullptr;
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
-      float f[9] = {}, fb[9] = {};
-      cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
-        if (bnd)
-          sph_dfsph_factor_range<true>(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, grav, fb);
-        else
-          sph_dfsph_factor_range<false>(g ? sv : v, b, e, xi, yi, zi, h, h2, rmin, grav, f);
+      const float xi = X[i], yi = Y[i], zi = Z[i];
+      const int cx = grid_.ix(xi), cy = grid_.iy(yi), cz = grid_.iz(zi);
+      std::uint32_t k = pos, near = 0;
+      float fb[8] = {};
+      cur.visit(cx, cy, cz, [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
+        if (bnd) {
+          sph_dfsph_boundary_range(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, grav, fb);
+        } else if (!fits || k + (e - b) + 8u > lim) {  // room for every candidate and the padding
+          fits = false;
+        } else if (g) {  // flags over the gathered copies, then the sorted indices of the flagged ones
+          sph_dfsph_list_flags(sv.X, sv.Y, sv.Z, e, xi, yi, zi, h2, rmin2, F, near);
+          std::uint32_t off = 0;
+          grid_.for_each_row(cx, cy, cz, [&](std::uint32_t rb, std::uint32_t re, int) {
+            for (std::uint32_t j = rb; j < re; ++j, ++off) {
+              nj_[k] = j;
+              k += F[off];
+            }
+            return true;
+          });
+        } else {
+          sph_dfsph_list_append(X, Y, Z, b, e, xi, yi, zi, h2, rmin2, nj_.data(), k, near);
+        }
       });
-      const float rho = std::isfinite(xi + yi + zi) ? mk * (f[0] + fb[0]) : std::numeric_limits<float>::quiet_NaN();
+      if (!fits) k = pos;  // this pass is repeated with a larger list
+      const std::uint32_t end = (k + 7u) & ~7u;
+      for (std::uint32_t u = k; u < end; ++u) nj_[u] = static_cast<std::uint32_t>(i);
+      nbeg_[i] = pos;
+      nend_[i] = end;
+      float f[6] = {};
+      sph_dfsph_list_factors(X, Y, Z, nj_.data(), ngx_.data(), ngy_.data(), ngz_.data(), pos, end, xi, yi, zi, h, h2,
+                             rmin, f);
+      pos = end;
+      const float rho =
+          std::isfinite(xi + yi + zi) ? mk * (f[0] + float(near) + fb[0]) : std::numeric_limits<float>::quiet_NaN();
       // the velocity change per kappa_i is along gf + 2 gb where the wall term mirrors p_i (counted twice)
       const float gx = f[1] + fb[1], gy = f[2] + fb[2], gz = f[3] + fb[3];
       const float gx2 = gx + mb * fb[1], gy2 = gy + mb * fb[2], gz2 = gz + mb * fb[3];
@@ -51,44 +95,35 @@ void SphSystem::dfsph_factors() {
       rho_[i] = rho;
       irho_[i] = 1.f / rho;
       alpha_[i] = den > 1e-6f * rho * rho ? rho / den : 0.f;
-      corr_[i] = gradient_correction(f[5] + fb[5]);
+      corr_[i] = gradient_correction(f[5] + fb[4]);
       gbx_[i] = fb[1];
       gby_[i] = fb[2];
       gbz_[i] = fb[3];
       // the walls' hydrostatic share, p_b - p_i = rho0 g . (x_b - x_i): m 48/(pi h^5) / rho0 x the sum
-      ax_[i] = ch * fb[6];
-      ay_[i] = ch * fb[7];
-      az_[i] = ch * fb[8];
+      ax_[i] = ch * fb[5];
+      ay_[i] = ch * fb[6];
+      az_[i] = ch * fb[7];
     }
   }
+  return fits;
 }
 
 // v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f(q) x_ij + c K_i gb_i)  (BK15 eq. 16; wall: c = 2 with p_b = p_i +
-// its hydrostatic part (applied in the advection), 1 with Akinci's single term)
+// its hydrostatic part (applied in the advection), 1 with Akinci's single term); j over the step's list
 void SphSystem::dfsph_kick(float dt) {
   const std::size_t n = n_;
-  const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, kick_.data(), nullptr, nullptr};
-  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, c = dt * mass_ * k_.cubic_g;
-#pragma omp parallel if (n > kSphParallelMin)
-  {
-    const float* src[4] = {v.X, v.Y, v.Z, v.PP};
-    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 4);
-    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), nullptr, nullptr,
-                     nullptr,        cur.scratch(3), nullptr,        nullptr};
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const float Ki = v.PP[i];
-      if (Ki == 0.f && alpha_[i] == 0.f) continue;  // no own change, and no neighbour to take one from
-      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
-      const float Kb = p_.dfsph_wall == SphDfsphWall::akinci ? Ki : 2.f * Ki;
-      float acc[3] = {Kb * gbx_[i], Kb * gby_[i], Kb * gbz_[i]};
-      cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool, std::uint32_t b, std::uint32_t e) {
-        sph_dfsph_kick_range(g ? sv : v, b, e, xi, yi, zi, Ki, h, h2, rmin, acc);
-      });
-      vx_[i] += c * acc[0];
-      vy_[i] += c * acc[1];
-      vz_[i] += c * acc[2];
-    }
+  const SphDfsphList l{nbeg_.data(), nend_.data(), nj_.data(), ngx_.data(), ngy_.data(), ngz_.data()};
+  const float c = dt * mass_ * k_.cubic_g, cb = p_.dfsph_wall == SphDfsphWall::akinci ? 1.f : 2.f;
+  const float* K = kick_.data();
+#pragma omp parallel for schedule(static) if (n > kSphParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float Ki = K[i];
+    if (Ki == 0.f && alpha_[i] == 0.f) continue;  // no own change, and no neighbour to take one from
+    float acc[3] = {cb * Ki * gbx_[i], cb * Ki * gby_[i], cb * Ki * gbz_[i]};
+    sph_dfsph_list_kick(l, i, K, acc);
+    vx_[i] += c * acc[0];
+    vy_[i] += c * acc[1];
+    vz_[i] += c * acc[2];
   }
 }
 
@@ -98,38 +133,27 @@ void SphSystem::dfsph_kick(float dt) {
 // with the Chebyshev weight wc: kappa_i = max(0, wc (kappa_Jacobi - kappa_prev) + kappa_prev) (Wang 2015).
 double SphSystem::dfsph_update(float dt, bool density, float wc) {
   const std::size_t n = n_;
-  const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, nullptr, nullptr};
-  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, mg = mass_ * k_.cubic_g, rho0 = p_.rest_density_kgpm3;
+  const SphDfsphList l{nbeg_.data(), nend_.data(), nj_.data(), ngx_.data(), ngy_.data(), ngz_.data()};
+  const float *VX = vx_.data(), *VY = vy_.data(), *VZ = vz_.data();
+  const float mg = mass_ * k_.cubic_g, rho0 = p_.rest_density_kgpm3;
   float* kap = density ? kappa_.data() : kappav_.data();
   const float w = p_.dfsph_relaxation / (dt * dt);
   const bool oneside = p_.dfsph_compression_only;
   float* prev = tkappa_.data();
-#pragma omp parallel if (n > kSphParallelMin)
-  {
-    const float* src[6] = {v.X, v.Y, v.Z, v.VX, v.VY, v.VZ};
-    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 6);
-    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), cur.scratch(3), cur.scratch(4),
-                     cur.scratch(5), nullptr,        nullptr,        nullptr};
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
-      const float vi[3] = {v.VX[i], v.VY[i], v.VZ[i]};
-      float s = vi[0] * gbx_[i] + vi[1] * gby_[i] + vi[2] * gbz_[i];
-      if (alpha_[i] != 0.f)
-        cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool, std::uint32_t b, std::uint32_t e) {
-          sph_dfsph_divergence_range(g ? sv : v, b, e, xi, yi, zi, vi, h, h2, rmin, s);
-        });
-      const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
-      const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho;
-      const float inc = (oneside ? std::max(res, 0.f) : res) * alpha_[i] * w;
-      const float kj = std::max(kap[i] + inc, 0.f);
-      const float k = wc == 1.f ? kj : std::max(wc * (kj - prev[i]) + prev[i], 0.f);
-      prev[i] = kap[i];
-      kick_[i] = (k - kap[i]) * irho_[i];
-      kap[i] = k;
-      // the residual of the complementarity p >= 0, rho* <= rho0, p (rho* - rho0) = 0: |res| where pushed
-      err_[i] = (k > 0.f && !oneside ? std::fabs(res) : std::max(res, 0.f)) / rho0;
-    }
+#pragma omp parallel for schedule(static) if (n > kSphParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    float s = VX[i] * gbx_[i] + VY[i] * gby_[i] + VZ[i] * gbz_[i];
+    if (alpha_[i] != 0.f) s += sph_dfsph_list_divergence(l, i, VX, VY, VZ);
+    const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
+    const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho;
+    const float inc = (oneside ? std::max(res, 0.f) : res) * alpha_[i] * w;
+    const float kj = std::max(kap[i] + inc, 0.f);
+    const float k = wc == 1.f ? kj : std::max(wc * (kj - prev[i]) + prev[i], 0.f);
+    prev[i] = kap[i];
+    kick_[i] = (k - kap[i]) * irho_[i];
+    kap[i] = k;
+    // the residual of the complementarity p >= 0, rho* <= rho0, p (rho* - rho0) = 0: |res| where pushed
+    err_[i] = (k > 0.f && !oneside ? std::fabs(res) : std::max(res, 0.f)) / rho0;
   }
   double sum = 0;  // serial: the same iteration count for any thread count
   for (std::size_t i = 0; i < n; ++i) sum += err_[i];
@@ -172,32 +196,21 @@ int SphSystem::dfsph_solve(float dt, bool density) {
 void SphSystem::dfsph_advection_forces() {
   const std::size_t n = n_;
   const SphView v{x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(), vz_.data(), nullptr, irho_.data(), nullptr};
-  const float h = h_, h2 = k_.h2;
-  const float cv = nu_ * p_.rest_density_kgpm3 * mass_ * k_.spiky_k;
+  const SphDfsphList l{nbeg_.data(), nend_.data(), nj_.data(), ngx_.data(), ngy_.data(), ngz_.data()};
+  const float h = h_, cv = nu_ * p_.rest_density_kgpm3 * mass_ * k_.spiky_k;
   const float gx = g_[0], gy = g_[1], gz = g_[2];
   float amax2 = 0.f, vmax2 = 0.f;
-#pragma omp parallel if (n > kSphParallelMin) reduction(max : amax2, vmax2)
-  {
-    const float* src[7] = {v.X, v.Y, v.Z, v.VX, v.VY, v.VZ, v.IR};
-    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 7);
-    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), cur.scratch(3), cur.scratch(4),
-                     cur.scratch(5), nullptr,        cur.scratch(6), nullptr};
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];
-      const float vi[3] = {v.VX[i], v.VY[i], v.VZ[i]};
-      float acc[3] = {0.f, 0.f, 0.f};
-      cur.visit(grid_.ix(xi), grid_.iy(yi), grid_.iz(zi), [&](bool g, bool, std::uint32_t b, std::uint32_t e) {
-        sph_dfsph_viscous_range(g ? sv : v, b, e, xi, yi, zi, vi, h, h2, acc);
-      });
-      const float vis = cv * v.IR[i];
-      const float ax = ax_[i] + gx + vis * acc[0], ay = ay_[i] + gy + vis * acc[1], az = az_[i] + gz + vis * acc[2];
-      ax_[i] = ax;
-      ay_[i] = ay;
-      az_[i] = az;
-      amax2 = std::max(amax2, ax * ax + ay * ay + az * az);
-      vmax2 = std::max(vmax2, vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]);
-    }
+#pragma omp parallel for schedule(static) if (n > kSphParallelMin) reduction(max : amax2, vmax2)
+  for (std::size_t i = 0; i < n; ++i) {
+    float acc[3] = {0.f, 0.f, 0.f};
+    sph_dfsph_list_viscous(l, i, v, h, acc);
+    const float vis = cv * v.IR[i];
+    const float ax = ax_[i] + gx + vis * acc[0], ay = ay_[i] + gy + vis * acc[1], az = az_[i] + gz + vis * acc[2];
+    ax_[i] = ax;
+    ay_[i] = ay;
+    az_[i] = az;
+    amax2 = std::max(amax2, ax * ax + ay * ay + az * az);
+    vmax2 = std::max(vmax2, v.VX[i] * v.VX[i] + v.VY[i] * v.VY[i] + v.VZ[i] * v.VZ[i]);
   }
   amax_ = std::sqrt(amax2);
   vmax_ = std::sqrt(vmax2);

@@ -43,13 +43,8 @@ void SphSystem::compute_density(bool fresh_moment) {
   const float q0 = std::max(h2 - contact_r2(), 0.f), q0c = q0 * q0 * q0;
 #pragma omp parallel if (n > kSphParallelMin)
   {
-    const float* src[3] = {v.X, v.Y, v.Z};
-    const float* bsrc[4] = {bv.X, bv.Y, bv.Z, bv.W};
-    SphCellGather::Cursor cur(grid_, gather_, omp_get_thread_num(), src, 3, bsrc, nb_ > 0 ? 4 : 0);
-    const SphView sv{cur.scratch(0), cur.scratch(1), cur.scratch(2), nullptr, nullptr,
-                     nullptr,        nullptr,        nullptr,        nullptr};
-    const SphView sbv{cur.scratch(3), cur.scratch(4), cur.scratch(5), nullptr, nullptr,
-                      nullptr,        nullptr,        nullptr,        nullptr, cur.scratch(6)};
+    SphCellGather::Cursor cur = sph_position_cursor(grid_, gather_, omp_get_thread_num(), v, bv, nb_ > 0);
+    const SphView sv = sph_gathered_fluid(cur), sbv = sph_gathered_boundary(cur);
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
       const float xi = v.X[i], yi = v.Y[i], zi = v.Z[i];

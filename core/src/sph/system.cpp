@@ -18,17 +18,25 @@ void SphSystem::allocate(std::size_t n) {
   for (auto* b : {&x_,    &y_,     &z_,    &vx_,    &vy_, &vz_, &ax_, &ay_,  &az_,  &rho_, &P_,    &Pc_,
                   &irho_, &lirho_, &corr_, &p_arr_, &tx_, &ty_, &tz_, &tvx_, &tvy_, &tvz_, &tcorr_})
     *b = AlignedBuffer<float>(n + 8);  // padded to whole vectors (masked lanes read the zero tail)
-  if (p_.method == SphMethod::dfsph)
+  const double occ = std::pow(double(p_.support_factor), 3);  // (h/dx)^3
+  if (p_.method == SphMethod::dfsph) {
     for (auto* b : {&alpha_, &kappa_, &kappav_, &kick_, &gbx_, &gby_, &gbz_, &err_, &tkappa_, &tkappav_})
       *b = AlignedBuffer<float>(n + 8);
+    nbeg_ = AlignedBuffer<std::uint32_t>(n + 8);
+    nend_ = AlignedBuffer<std::uint32_t>(n + 8);
+    // list slots per particle: 1.25 x the neighbours at rest, (4 pi / 3) (h/dx)^3, and the padding, whole vectors
+    const auto slots = static_cast<std::size_t>(8.0 * std::ceil((1.25 * 4.18879 * occ + 8.0) / 8.0));
+    dfsph_list_allocate((n + 8) * slots);
+  }
   id_.assign(n, 0);
   tid_.assign(n, 0);
   grid_ = SphGrid(p_.container_m, h_, n);
   place_boundary();
   // candidate scratch per thread: 27 cells at up to 4x the rest occupancy (h/dx)^3 (denser cells
   // take the direct path)
-  const double occ = std::pow(double(p_.support_factor), 3);
   gather_ = SphCellGather(static_cast<std::size_t>(std::min(double(std::max(n, nb_)) + 8.0, 27.0 * 4.0 * occ + 64.0)));
+  if (p_.method == SphMethod::dfsph)  // the DFSPH list's candidate flags, per thread with scratch
+    nflag_ = AlignedBuffer<std::uint32_t>(std::size_t(gather_.threads()) * (gather_.capacity() + 16));
 }
 
 // The boundary particles into the grid's static table, their arrays in that order.

@@ -9,7 +9,8 @@
 // with rho_f = max(rho_f, rho0), the density of p_f by the clamped equation of state (the summation
 // density of a particle at the free surface is low because its kernel is cut off, not the water)
 // and its density from the equation of state inverted (eq. 28): rho_b = rho0 (1 + p_b / B)^(1/gamma).
-// Sampling: the container walls and box obstacles on a lattice of spacing ~dx (per axis L / round(L / dx)),
+// Sampling: the container walls and box obstacles on a lattice of spacing ~dx (per axis L / round(L / dx));
+// a box's cells at a convex edge (corner) split into 2 x 2 (x 2) points of equal share of the cell;
 // cylinders and spheres on rings / Fibonacci spheres of spacing ~dx per layer, meshes by a regular
 // area sampling of every triangle (n^2 sub-triangle centroids, n = ceil(longest edge / dx)) offset
 // inward along the face normal by (k + 1/2) dx for layer k; a mesh face on a container wall is
@@ -80,8 +81,8 @@ int sph_boundary_layers(float h, float dx);
 
 /// Samples `layers` layers outside the container [0, L]^3 (edges and corners included).
 void sph_sample_container(const std::array<float, 3>& container_m, float dx, int layers, SphBoundarySample& out);
-/// Samples `layers` layers inside the obstacle's surface, within the container [0, L]^3 (a mesh face
-/// lying on a container wall is buried in it: not sampled, and not a surface the depth is measured from).
+/// Samples `layers` layers inside the obstacle's surface, within the container [0, L]^3 (a mesh or box
+/// face lying on a container wall is buried in it: not sampled, and not a surface the depth is measured from).
 void sph_sample_obstacle(const SphObstacle& o, const std::array<float, 3>& container_m, float dx, int layers,
                          SphBoundarySample& out);
 

@@ -46,10 +46,14 @@
 // (k_i / rho_i + k_j / rho_j) equals (l_i p_i / rho_i^2 + l_j p_j / rho_j^2) of the WCSPH force with
 // the gradient correction l (system.hpp, here from the cubic spline's first moment), so p is the
 // field whose corrected gradient the solve applies.
-// Pair sums below over one index range [b, e) of cell-sorted (or gathered) arrays, in the style of
-// forces.hpp (whole 8-float vectors, masked lanes, branch-free), x_ij = x_i - x_j, r = |x_ij|, q = r / h,
-// w(q), f(q) the cubic spline's value and gradient shapes (grad W_ij = -48/(pi h^5) f x_ij):
-//   factor      sum w, sum f x_ij, sum f^2 r^2, sum f r^2, boundary: sum W f (g . x_ji) x_ij
+// Neighbour list: the factor pass, once per step after the sort, stores each particle's fluid neighbours
+// within the support (index j and f(q) x_ij, grad W_ij = -48/(pi h^5) f x_ij) in SphDfsphList; the
+// passes of both solves and the viscous term stream it (no cell search, no square root, no kernel in the
+// iterations). x_ij = x_i - x_j, r = |x_ij|, q = r / h, w(q), f(q) the cubic spline's value and gradient
+// shapes. Sums below (whole 8-float vectors, branch-free, in the style of forces.hpp):
+//   boundary    over boundary candidates: sum W w, sum W f x_ib, sum W f r^2, sum W f (g . x_bi) x_ib
+//   list        the list of particle i from its candidates (flags, then the indices), then over it:
+//               sum w, sum f x_ij, sum f^2 r^2, sum f r^2 and the stored f x_ij
 //   divergence  sum f (v_i - v_j) . x_ij      (x -m 48/(pi h^5) = Drho/Dt)
 //   kick        sum (K_i + K_j) f x_ij        (x dt m 48/(pi h^5) = dv, K = kappa / rho)
 //   viscous     sum (v_j - v_i) (h - r) / rho_j   (as forces.hpp: the MCG03 viscosity Laplacian)
@@ -70,13 +74,12 @@ inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, flo
   f = sph_keep(inner, 2.f - 3.f * q) + sph_keep(outer, om * om * h * ri);
 }
 
-/// Factor sums of particle (xi, yi, zi) over fluid (kBoundary false) or boundary candidates (true,
-/// each weighted by W): acc[0] value sum sum w, acc[1..3] gradient sum sum f x_ij, acc[4] squared gradient
-/// sum sum f^2 r^2 (fluid only, the particle itself left out), acc[5] the first moment sum f r^2;
-/// boundary only: acc[6..8] the hydrostatic sum sum W f (g . x_ji) x_ij (g = gravity, m/s^2).
-template <bool kBoundary>
-[[gnu::noinline]] void sph_dfsph_factor_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi,
-                                              float zi, float h, float h2, float rmin, const float g[3], float acc[9]) {
+/// Boundary factor sums of particle (xi, yi, zi) over boundary candidates, each weighted by W (the mass
+/// ratio): acc[0] value sum sum W w, acc[1..3] gradient sum sum W f x_ib, acc[4] the first moment sum W f r^2,
+/// acc[5..7] the hydrostatic sum sum W f (g . x_bi) x_ib (g = gravity, m/s^2).
+[[gnu::noinline]] inline void sph_dfsph_boundary_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
+                                                       float yi, float zi, float h, float h2, float rmin,
+                                                       const float g[3], float acc[8]) {
   const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float* X = v.X;
   const float* Y = v.Y;
@@ -84,30 +87,113 @@ template <bool kBoundary>
   const float* W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   const float g0 = g[0], g1 = g[1], g2 = g[2];
-  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;
-#pragma omp simd reduction(+ : sw, gx, gy, gz, sq, sm, hx, hy, hz) aligned(X, Y, Z : 32)
+  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;
+#pragma omp simd reduction(+ : sw, gx, gy, gz, sm, hx, hy, hz) aligned(X, Y, Z, W : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
     const float dx = xi - X[j];
     const float dy = yi - Y[j];
     const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const bool in = (r2 < h2) & (j >= b) & (j < e);
-    const float wj = kBoundary ? W[j] : 1.f;
     float w, f;
-    sph_cubic_shapes(in, r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
-    sw += w * wj;
-    const float gr = f * wj;
+    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    sw += w * W[j];
+    const float gr = f * W[j];
     gx += gr * dx;
     gy += gr * dy;
     gz += gr * dz;
-    if constexpr (!kBoundary) sq += sph_keep(r2 > rmin2, f * f * r2);
     sm += gr * r2;
-    if constexpr (kBoundary) {
-      const float c = -gr * (g0 * dx + g1 * dy + g2 * dz);
-      hx += c * dx;
-      hy += c * dy;
-      hz += c * dz;
-    }
+    const float c = -gr * (g0 * dx + g1 * dy + g2 * dz);
+    hx += c * dx;
+    hy += c * dy;
+    hz += c * dz;
+  }
+  acc[0] += sw;
+  acc[1] += gx;
+  acc[2] += gy;
+  acc[3] += gz;
+  acc[4] += sm;
+  acc[5] += hx;
+  acc[6] += hy;
+  acc[7] += hz;
+}
+
+/// The DFSPH neighbour list of one step (SphSystem::dfsph_factors builds it with the factors, at the
+/// positions both solves of the step use): the fluid neighbours j of particle i with rmin < r_ij < h
+/// (i itself left out) in the slots [B[i], E[i]), 64-byte aligned and a multiple of 8 long (the tail
+/// padded with j = i and a zero gradient): J the neighbour's sorted index, GX, GY, GZ = f(q) x_ij, so
+/// grad W_ij = -48/(pi h^5) f x_ij (the cubic spline). The passes of the solves stream it (whole
+/// vectors, the neighbours' values by gather): no cell search, no square root, no kernel.
+struct SphDfsphList {
+  const std::uint32_t *B, *E, *J;
+  const float *GX, *GY, *GZ;
+};
+
+/// Appends the candidates j in [b, e) of the sorted positions with rmin2 < r^2 < h2 to J from slot k on
+/// (branch-free: every candidate is written to slot k, and k advances where it qualifies, so slot k
+/// must exist); counts the ones at r^2 <= rmin2 (i itself, coincident particles) in `near`.
+inline void sph_dfsph_list_append(const float* X, const float* Y, const float* Z, std::uint32_t b, std::uint32_t e,
+                                  float xi, float yi, float zi, float h2, float rmin2, std::uint32_t* J,
+                                  std::uint32_t& k, std::uint32_t& near) {
+  std::uint32_t kk = k, nn = near;
+  for (std::uint32_t j = b; j < e; ++j) {
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    J[kk] = j;
+    kk += static_cast<std::uint32_t>((r2 < h2) & (r2 > rmin2));
+    nn += static_cast<std::uint32_t>(r2 <= rmin2);
+  }
+  k = kk;
+  near = nn;
+}
+
+/// Flags the gathered candidates t in [0, e) (contiguous copies X, Y, Z, padded to whole vectors) with
+/// rmin2 < r^2 < h2 in F[t] (1 or 0) and counts the ones at r^2 <= rmin2 in `near`.
+[[gnu::noinline]] inline void sph_dfsph_list_flags(const float* X, const float* Y, const float* Z, std::uint32_t e,
+                                                   float xi, float yi, float zi, float h2, float rmin2,
+                                                   std::uint32_t* F, std::uint32_t& near) {
+  const std::uint32_t e0 = (e + 7u) & ~7u;
+  std::uint32_t nn = 0;
+#pragma omp simd reduction(+ : nn) aligned(X, Y, Z, F : 32)
+  for (std::uint32_t t = 0; t < e0; ++t) {
+    const float dx = xi - X[t];
+    const float dy = yi - Y[t];
+    const float dz = zi - Z[t];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    F[t] = static_cast<std::uint32_t>((r2 < h2) & (r2 > rmin2) & (t < e));
+    nn += static_cast<std::uint32_t>((r2 <= rmin2) & (t < e));
+  }
+  near += nn;
+}
+
+/// Over the list slots [b, e) of particle (xi, yi, zi) (J filled, padding j = i): stores G = f x_ij and
+/// adds the fluid factor sums to acc: acc[0] sum w, acc[1..3] sum f x_ij, acc[4] sum f^2 r^2, acc[5]
+/// sum f r^2 (the pairs at r <= rmin, padding included, count 0).
+[[gnu::noinline]] inline void sph_dfsph_list_factors(const float* X, const float* Y, const float* Z,
+                                                     const std::uint32_t* J, float* GX, float* GY, float* GZ,
+                                                     std::uint32_t b, std::uint32_t e, float xi, float yi, float zi,
+                                                     float h, float h2, float rmin, float acc[6]) {
+  const float rmin2 = rmin * rmin, ih = 1.f / h;
+  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sq = 0.f, sm = 0.f;
+#pragma omp simd reduction(+ : sw, gx, gy, gz, sq, sm) aligned(J, GX, GY, GZ : 32)
+  for (std::size_t k = b; k < e; ++k) {  // a 64-bit index: GCC 12 does not vectorise this loop over a 32-bit one
+    const std::uint32_t j = J[k];
+    const float dx = xi - X[j];
+    const float dy = yi - Y[j];
+    const float dz = zi - Z[j];
+    const float r2 = dx * dx + dy * dy + dz * dz;
+    float w, f;
+    sph_cubic_shapes((r2 < h2) & (r2 > rmin2), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    GX[k] = f * dx;
+    GY[k] = f * dy;
+    GZ[k] = f * dz;
+    sw += w;
+    gx += f * dx;
+    gy += f * dy;
+    gz += f * dz;
+    sq += f * f * r2;
+    sm += f * r2;
   }
   acc[0] += sw;
   acc[1] += gx;
@@ -115,90 +201,63 @@ template <bool kBoundary>
   acc[3] += gz;
   acc[4] += sq;
   acc[5] += sm;
-  acc[6] += hx;
-  acc[7] += hy;
-  acc[8] += hz;
 }
 
-/// Adds sum_j f(q) (v_i - v_j) . x_ij over fluid candidates to `sum`.
-[[gnu::noinline]] inline void sph_dfsph_divergence_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
-                                                         float yi, float zi, const float vi[3], float h, float h2,
-                                                         float rmin, float& sum) {
-  const float rmin2 = rmin * rmin, ih = 1.f / h;
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* VX = v.VX;
-  const float* VY = v.VY;
-  const float* VZ = v.VZ;
-  const float vxi = vi[0], vyi = vi[1], vzi = vi[2];
-  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+/// sum_j f(q) (v_i - v_j) . x_ij over particle i's list (x -m 48/(pi h^5) = Drho_i/Dt, BK15 eq. 6).
+[[gnu::noinline]] inline float sph_dfsph_list_divergence(const SphDfsphList& l, std::size_t i, const float* VX,
+                                                         const float* VY, const float* VZ) {
+  const std::uint32_t* J = l.J;
+  const float* GX = l.GX;
+  const float* GY = l.GY;
+  const float* GZ = l.GZ;
+  const float vxi = VX[i], vyi = VY[i], vzi = VZ[i];
   float s = 0.f;
-#pragma omp simd reduction(+ : s) aligned(X, Y, Z, VX, VY, VZ : 32)
-  for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
-    float w, f;
-    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
-    const float vr = (vxi - VX[j]) * dx + (vyi - VY[j]) * dy + (vzi - VZ[j]) * dz;
-    s += f * vr;
+#pragma omp simd reduction(+ : s) aligned(J, GX, GY, GZ : 32)
+  for (std::uint32_t k = l.B[i]; k < l.E[i]; ++k) {
+    const std::uint32_t j = J[k];
+    s += GX[k] * (vxi - VX[j]) + GY[k] * (vyi - VY[j]) + GZ[k] * (vzi - VZ[j]);
   }
-  sum += s;
+  return s;
 }
 
-/// Adds sum_j (K_i + K_j) f(q) x_ij over fluid candidates (K in v.PP) to acc[0..2].
-[[gnu::noinline]] inline void sph_dfsph_kick_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
-                                                   float yi, float zi, float Ki, float h, float h2, float rmin,
-                                                   float acc[3]) {
-  const float rmin2 = rmin * rmin, ih = 1.f / h;
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* K = v.PP;
-  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+/// Adds sum_j (K_i + K_j) f(q) x_ij over particle i's list to acc[0..2] (x dt m 48/(pi h^5) = the velocity
+/// change of BK15 eq. 16, K = the change of kappa / rho).
+[[gnu::noinline]] inline void sph_dfsph_list_kick(const SphDfsphList& l, std::size_t i, const float* K, float acc[3]) {
+  const std::uint32_t* J = l.J;
+  const float* GX = l.GX;
+  const float* GY = l.GY;
+  const float* GZ = l.GZ;
+  const float Ki = K[i];
   float ax = 0.f, ay = 0.f, az = 0.f;
-#pragma omp simd reduction(+ : ax, ay, az) aligned(X, Y, Z, K : 32)
-  for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
-    float w, f;
-    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
-    const float c = (Ki + K[j]) * f;
-    ax += c * dx;
-    ay += c * dy;
-    az += c * dz;
+#pragma omp simd reduction(+ : ax, ay, az) aligned(J, GX, GY, GZ : 32)
+  for (std::uint32_t k = l.B[i]; k < l.E[i]; ++k) {
+    const float c = Ki + K[J[k]];
+    ax += c * GX[k];
+    ay += c * GY[k];
+    az += c * GZ[k];
   }
   acc[0] += ax;
   acc[1] += ay;
   acc[2] += az;
 }
 
-/// Adds the viscous sum sum_j (v_j - v_i) (h - r) / rho_j (1/rho in v.IR) over fluid candidates to acc[0..2].
-[[gnu::noinline]] inline void sph_dfsph_viscous_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
-                                                      float yi, float zi, const float vi[3], float h, float h2,
-                                                      float acc[3]) {
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* VX = v.VX;
-  const float* VY = v.VY;
-  const float* VZ = v.VZ;
-  const float* IR = v.IR;
-  const float vxi = vi[0], vyi = vi[1], vzi = vi[2];
-  const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
+/// Adds the viscous sum sum_j (v_j - v_i) (h - r) / rho_j over particle i's list to acc[0..2] (v: positions,
+/// velocities, 1/rho in IR; as forces.hpp: the MCG03 viscosity Laplacian).
+[[gnu::noinline]] inline void sph_dfsph_list_viscous(const SphDfsphList& l, std::size_t i, const SphView& v, float h,
+                                                     float acc[3]) {
+  const std::uint32_t* J = l.J;
+  const float *X = v.X, *Y = v.Y, *Z = v.Z, *VX = v.VX, *VY = v.VY, *VZ = v.VZ, *IR = v.IR;
+  const float xi = X[i], yi = Y[i], zi = Z[i], vxi = VX[i], vyi = VY[i], vzi = VZ[i];
   float ax = 0.f, ay = 0.f, az = 0.f;
-#pragma omp simd reduction(+ : ax, ay, az) aligned(X, Y, Z, VX, VY, VZ, IR : 32)
-  for (std::uint32_t j = b0; j < e0; ++j) {
+#pragma omp simd reduction(+ : ax, ay, az) aligned(J : 32)
+  for (std::uint32_t k = l.B[i]; k < l.E[i]; ++k) {
+    const std::uint32_t j = J[k];
     const float dx = xi - X[j];
     const float dy = yi - Y[j];
     const float dz = zi - Z[j];
     const float r2 = dx * dx + dy * dy + dz * dz;
-    const float r = r2 * sph_rsqrt(r2 + 1e-30f);
-    const float f = sph_keep((r2 < h2) & (j >= b) & (j < e), (h - r) * IR[j]);
+    // padding (j = i): r2 = 0, v_j - v_i = 0
+    const float f = (h - r2 * sph_rsqrt(r2 + 1e-30f)) * IR[j];
     ax += f * (VX[j] - vxi);
     ay += f * (VY[j] - vyi);
     az += f * (VZ[j] - vzi);

@@ -23,6 +23,7 @@
 #include <cstdint>
 
 #include "huygens/sph/boundary.hpp"
+#include "huygens/sph/grid.hpp"
 
 namespace huygens {
 
@@ -50,6 +51,22 @@ struct SphView {
   const float* W = nullptr;
   const float *NX = nullptr, *NY = nullptr, *NZ = nullptr;
 };
+
+/// The cursor of a pass that reads positions only (SphCellGather): the fluid positions of v as arrays 0-2
+/// and, with `boundary`, the boundary positions and mass ratios of bv as arrays 3-6 (sph_gathered_boundary).
+inline SphCellGather::Cursor sph_position_cursor(const SphGrid& grid, SphCellGather& gather, int thread,
+                                                 const SphView& v, const SphView& bv, bool boundary) {
+  const float* src[7] = {v.X, v.Y, v.Z, bv.X, bv.Y, bv.Z, bv.W};
+  return SphCellGather::Cursor(grid, gather, thread, src, 3, src + 3, boundary ? 4 : 0);
+}
+/// The gathered fluid positions of an sph_position_cursor.
+inline SphView sph_gathered_fluid(const SphCellGather::Cursor& c) {
+  return {c.scratch(0), c.scratch(1), c.scratch(2), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
+}
+/// The gathered boundary positions and mass ratios of an sph_position_cursor.
+inline SphView sph_gathered_boundary(const SphCellGather::Cursor& c) {
+  return {c.scratch(3), c.scratch(4), c.scratch(5), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, c.scratch(6)};
+}
 
 /// Adds the density sum of particle (xi, yi, zi) to `sum` and, with kMoment, the first moment of
 /// the spiky gradient to `msum`; kBoundary: over boundary candidates, each weighted by W.

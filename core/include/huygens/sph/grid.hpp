@@ -4,7 +4,8 @@
 // (x fastest). Particles are reordered by cell with a counting sort every step, so the particles
 // of a cell are contiguous and the three x-neighbour cells of a row form ONE contiguous index
 // range: a particle's neighbours lie in 9 ranges (the 27 cells), scanned by flat vectorisable
-// loops. No per-particle neighbour lists are built. The static boundary particles (boundary.hpp)
+// loops. WCSPH builds no per-particle neighbour lists (DFSPH builds one per step for the
+// iterations of its solves, from these ranges: dfsph.hpp). The static boundary particles (boundary.hpp)
 // have a second start table over the same cells, sorted once (build_static); points outside the
 // container fall into the edge cells (cell coordinates are clamped). SphCellGather copies the 9
 // fluid ranges and the 9 boundary ranges of a cell once into per-thread contiguous scratch, so
@@ -99,6 +100,9 @@ class SphCellGather {
   SphCellGather() = default;
   /// Room for `capacity` candidates per array and thread, for every thread OpenMP may run.
   explicit SphCellGather(std::size_t capacity);
+  /// Candidates per array and thread, and the threads with scratch (higher thread numbers take the direct path).
+  std::size_t capacity() const { return cap_; }
+  int threads() const { return threads_; }
 
   /// One thread's walk over the cells of its particles (in sorted order, so each cell is
   /// gathered once per thread). `src` holds `arrays` fluid arrays in the grid's sorted order,

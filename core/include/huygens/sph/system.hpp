@@ -154,8 +154,10 @@ class SphSystem {
   /// The DFSPH step: factors, divergence-free solve, advection, constant-density solve, positions.
   double step_dfsph();
   /// rho_i, alpha_i, l_i, the boundary gradient sum gb_i and the walls' hydrostatic push (into ax_, ay_, az_)
-  /// at the current positions.
+  /// at the current positions, and the neighbour list of the step (grown first if it does not fit).
   void dfsph_factors();
+  /// One factor pass; false (and nothing usable) when the neighbour list overflowed its capacity.
+  bool dfsph_factors_pass();
   /// v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f x_ij + c K_i gb_i), K = kick_, c = 2 (1 with akinci walls).
   void dfsph_kick(float dt);
   /// One Jacobi update of kappa (density: true) or kappa^v from the predicted density or the
@@ -197,6 +199,13 @@ class SphSystem {
   // sorted with the particle), K = change of kappa / rho of the last update, the boundary gradient
   // sum gb, the error of the last update, the sort buffers of kappa and kappa^v
   AlignedBuffer<float> alpha_, kappa_, kappav_, kick_, gbx_, gby_, gbz_, err_, tkappa_, tkappav_;
+  // DFSPH neighbour list (dfsph.hpp SphDfsphList): slots [nbeg_[i], nend_[i]) of nj_ (index) and ngx_, ngy_,
+  // ngz_ (f x_ij); capacity nlist_ slots (allocate(): 56 per particle at h = 2 dx; doubled when a step overflows it);
+  // nflag_: the candidate flags, per thread
+  AlignedBuffer<std::uint32_t> nj_, nbeg_, nend_, nflag_;
+  AlignedBuffer<float> ngx_, ngy_, ngz_;
+  std::size_t nlist_ = 0;
+  void dfsph_list_allocate(std::size_t slots);
   int div_iter_ = 0, dens_iter_ = 0;
   std::int64_t total_iter_ = 0;
   double dt_prev_ = 0;
