@@ -32,7 +32,8 @@ void init_threads_once() {
 // 64-byte alignment (a cache line, an AVX-512 vector); size rounded up as aligned_alloc needs.
 // A buffer of 2 MiB or more is aligned to 2 MiB and asked for transparent huge pages (Linux,
 // where they are given on request only): a kernel that streams 21 planes at once (the LBM) then
-// misses the TLB once per 2 MiB of a plane instead of once per 4 KiB (docs/lbm.md, "Speed").
+// misses the TLB once per 2 MiB of a plane instead of once per 4 KiB (docs/lbm.md, "Speed"); the
+// size is rounded up to 2 MiB (at most 2 MiB more memory per such buffer).
 void* aligned_alloc64(std::size_t bytes) {
   constexpr std::size_t kHuge = std::size_t{2} << 20;
   if (bytes < kHuge) return std::aligned_alloc(64, (bytes + 63) / 64 * 64);
