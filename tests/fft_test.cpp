@@ -49,6 +49,20 @@ TEST(AlignedBuffer, IsAlignedZeroedAndMovable) {
   EXPECT_EQ(b.data(), nullptr);
 }
 
+// A buffer of 2 MiB or more starts on a 2 MiB boundary (so it can be backed by transparent huge
+// pages), is zeroed to its last element and stays movable.
+TEST(AlignedBuffer, LargeBufferIsAlignedToHugePages) {
+  const std::size_t n = (std::size_t{5} << 20) / sizeof(float) + 3;  // 5 MiB and 12 B
+  AlignedBuffer<float> a(n);
+  ASSERT_EQ(a.size(), n);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a.data()) % (std::uintptr_t{2} << 20), 0u);
+  EXPECT_EQ(a[0], 0.0f);
+  EXPECT_EQ(a[n - 1], 0.0f);
+  a[n - 1] = 2.0f;
+  AlignedBuffer<float> b(std::move(a));
+  EXPECT_EQ(b[n - 1], 2.0f);
+}
+
 // Forward then backward multiplies by N^2 (FFTW's inverse is unnormalised): the float round
 // trip returns the field to a few float epsilons (a radix-2 transform's error grows like
 // eps log2 N, so 1e-6 relative rms holds with margin at 64 x 128).

@@ -497,9 +497,10 @@ struct Collision {
 };
 
 // BGK collision (paper 002 eq. 1) of a cell's pulled populations f: moments (eq. 3-4) and the
-// equilibrium (eq. 2), both minus the shift, plus the force lambda_a h (e_a . a) / 3. Writes the
-// new depth h; `bad` counts h < h_min (also NaN).
-template <bool Cap = false>
+// equilibrium (eq. 2), both minus the shift, plus the force lambda_a h (e_a . a) / 3 (Force; with
+// a = 0 the force adds exact zeros: the force-free form gives the same floats, up to the sign of a
+// zero). Writes the new depth h; `bad` counts h < h_min (also NaN).
+template <bool Cap = false, bool Force = true>
 [[gnu::always_inline]] inline Cell9 collide(const Cell9& f, const Collision& k, float& h, float& bad) {
   const float f0 = f.f0, f1 = f.f1, f2 = f.f2, f3 = f.f3, f4 = f.f4, f5 = f.f5, f6 = f.f6, f7 = f.f7, f8 = f.f8;
   // moments of the shifted populations: dh = h - H exactly as precise as the wave
@@ -531,6 +532,9 @@ template <bool Cap = false>
   const float e5 = q5 + 0.25f * h3 * s5, e7 = q5 - 0.25f * h3 * s5;
   const float e6 = q6 + 0.25f * h3 * s6, e8 = q6 - 0.25f * h3 * s6;
   const float e0 = dh - (((e1 + e2) + (e3 + e4)) + ((e5 + e6) + (e7 + e8)));
+  if constexpr (!Force)
+    return {f0 + w * (e0 - f0), f1 + w * (e1 - f1), f2 + w * (e2 - f2), f3 + w * (e3 - f3), f4 + w * (e4 - f4),
+            f5 + w * (e5 - f5), f6 + w * (e6 - f6), f7 + w * (e7 - f7), f8 + w * (e8 - f8)};
   const float gx = h3 * k.ax, gy = h3 * k.ay;
   const float g5 = 0.25f * (gx + gy), g6 = 0.25f * (gy - gx);
   return {f0 + w * (e0 - f0),      f1 + w * (e1 - f1) + gx, f2 + w * (e2 - f2) + gy,
@@ -709,8 +713,9 @@ struct WdFace {
 }  // namespace
 
 // The fused pull stream-collide pass over fluid row spans (one pass: pull, bed term, collide,
-// store). Mode 0: flat bed; 1: well-balanced centred bed term; 2: naive bed term.
-template <int Mode>
+// store). Mode 0: flat bed; 1: well-balanced centred bed term; 2: naive bed term. Force: a
+// nonzero external acceleration (without it the force terms are left out of the collision).
+template <int Mode, bool Force>
 void LbmShallow::stream_collide(int& flagged) {
   const std::ptrdiff_t S = static_cast<std::ptrdiff_t>(stride_);
   const std::ptrdiff_t P = static_cast<std::ptrdiff_t>(plane_);
@@ -754,7 +759,7 @@ void LbmShallow::stream_collide(int& flagged) {
       if constexpr (Mode == 1) add_centred_bed(f, hold, z, c, S, k1, k5);
       if constexpr (Mode == 2) add_naive_bed(f, hold, z, c, S, k.g);
       float h;
-      const Cell9 o = collide(f, k, h, bad);
+      const Cell9 o = collide<false, Force>(f, k, h, bad);
       d0[c] = o.f0;
       d1[c] = o.f1;
       d2[c] = o.f2;
@@ -1150,14 +1155,25 @@ void LbmShallow::step() {
   dry_ = static_cast<std::size_t>(flagged);
 }
 
-// The all-wet pass: flat bed, well-balanced centred bed term or the naive one.
+// The all-wet pass: flat bed, well-balanced centred bed term or the naive one; with or without an
+// external force.
 void LbmShallow::all_wet_kernel(int& flagged) {
-  if (!has_bed_)
-    stream_collide<0>(flagged);
-  else if (p_.bed_force == LbmBedForce::centred)
-    stream_collide<1>(flagged);
-  else
-    stream_collide<2>(flagged);
+  const int mode = !has_bed_ ? 0 : p_.bed_force == LbmBedForce::centred ? 1 : 2;
+  const bool force = ax_ != 0.0f || ay_ != 0.0f;
+  switch (mode * 2 + (force ? 1 : 0)) {
+    case 0:
+      return stream_collide<0, false>(flagged);
+    case 1:
+      return stream_collide<0, true>(flagged);
+    case 2:
+      return stream_collide<1, false>(flagged);
+    case 3:
+      return stream_collide<1, true>(flagged);
+    case 4:
+      return stream_collide<2, false>(flagged);
+    default:
+      return stream_collide<2, true>(flagged);
+  }
 }
 
 void LbmShallow::unshift() {

@@ -265,7 +265,7 @@ class LbmShallow {
   void agree(int& flagged, int& bad);
   void fill_ghosts(bool wet_dry);
   void set_ghost_depths();
-  template <int Mode>
+  template <int Mode, bool Force>
   void stream_collide(int& flagged);
   struct WetDryView;
   WetDryView wet_dry_view(const float* flags) const;
