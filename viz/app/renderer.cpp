@@ -784,11 +784,16 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
     glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
     glUniform1i(ground_prog_.loc("u_terrain"), 0);
     glBindVertexArray(ground_vao_);
+    // the deck lies at the rest level and reaches under the water's outline: pushed back in depth
+    // so that the water there wins the depth test instead of alternating with it (z-fighting)
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(2.0f, 2.0f);
     if (s.pool_deck)
       glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,
                    s.deep_water ? ground_vertex_count_ - 12 : ground_vertex_count_ - 6);
     else
       glDrawArrays(GL_TRIANGLES, 0, 6);
+    glDisable(GL_POLYGON_OFFSET_FILL);
   }
   lap(times.ground, times.cpu.ground);
   tone_map(s, target);
