@@ -171,10 +171,11 @@ void bench_lbm(Context& ctx) {
   }
   omp_set_num_threads(ctx.threads.back());
   ctx.report("lbm",
-             "fused stream-collide (flat: 76 B/cell, with bed term: 84 B/cell) vs a copy of the same bytes per cell "
-             "(9 planes + bed read, 9 written; with bed term one plane more each way), same run, timed in alternating "
-             "pairs: MLUPS from the median wall times, the ratios the medians of the pairs' ratios of wall and of "
-             "process CPU time",
+             fmt("fused stream-collide (flat: 76 B/cell, with bed term: 84 B/cell; kernel instruction set: %s) vs a "
+                 "copy of the same bytes per cell (9 planes + bed read, 9 written; with bed term one plane more each "
+                 "way), same run, timed in alternating pairs: MLUPS from the median wall times, the ratios the medians "
+                 "of the pairs' ratios of wall and of process CPU time",
+                 lbm_kernel_isa()),
              speed);
 
   // 2) Run time against error: Stoker dam break h_L/h_R = 2, L1 relative depth error.

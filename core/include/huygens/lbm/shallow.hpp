@@ -162,6 +162,14 @@ LbmLattice lbm_check(const LbmParams& p, const LbmFields& init);
 /// a carry plane (one float per lattice cell) for the wet/dry pass's mass balance (docs/lbm.md).
 bool lbm_starts_dry(const LbmParams& p, const LbmFields& init);
 
+/// The instruction set the all-wet LBM kernel runs with: "build's", or, in an x86-64 build below
+/// x86-64-v4 (GCC), "x86-64-v4 copy ..." when this CPU has AVX-512 (a second copy of the kernel,
+/// chosen at run time; bitwise the same results).
+const char* lbm_kernel_isa();
+/// Lets the all-wet kernel use its AVX-512 copy when the CPU has one (default true); false runs
+/// the build's copy (tests compare the two).
+void lbm_allow_wide_kernel(bool allowed);
+
 /// How a run is split over MPI ranks (comm.hpp, docs/scale.md): rank `rank` of `ranks` holds the
 /// rows row_slab(rows, ranks, rank) and keeps halo rows of its neighbours (one row of populations,
 /// two of depth; two of populations in a wet/dry step, for the MUSCL slopes) refreshed every step
