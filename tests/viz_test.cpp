@@ -17,6 +17,7 @@
 #include <iterator>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -1099,4 +1100,31 @@ TEST(VizDye, UniformFlowShiftsThePatternAndTheChannelCarriesVelocity) {
   ASSERT_TRUE(runner.frames().velocity(vel));
   EXPECT_NEAR(vel[2 * (80 * 320 + 2)], 0.297, 0.03) << "u at the inflow";
   runner.stop();
+}
+
+TEST(VizCamera, FollowedShipNearAnEdgeKeepsTheViewOnTheWater) {
+  // A 100 m region seen from 56 m (half height of the view at the target: 56 tan(22.5 deg) =
+  // 23.2 m): the target stays that far inside the region, and the ship within that of the target.
+  SceneView view;
+  view.grid.rows = view.grid.cols = 513;
+  view.grid.dx = 100.0 / 512.0;
+  OrbitCamera cam;
+  cam.distance = 56.0;
+  const double half = cam.distance * std::tan(0.5 * cam.fov_y);
+  ShipPose corner;
+  corner.x = 2.0;
+  corner.y = 97.0;
+  corner.heading = 0.0;
+  follow_ship(view, corner, cam);
+  EXPECT_NEAR(cam.target.x, half, 1e-9);
+  EXPECT_NEAR(cam.target.y, 100.0 - half, 1e-9);
+  EXPECT_LE(std::abs(corner.x - cam.target.x), half);
+  EXPECT_LE(std::abs(corner.y - cam.target.y), half);
+  ShipPose middle;
+  middle.x = 60.0;
+  middle.y = 50.0;
+  middle.heading = 0.5 * std::numbers::pi;  // towards +y: the target 0.35 d behind it
+  follow_ship(view, middle, cam);
+  EXPECT_NEAR(cam.target.x, 60.0, 1e-9);
+  EXPECT_NEAR(cam.target.y, 50.0 - 0.35 * cam.distance, 1e-9);
 }

@@ -128,12 +128,19 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
 }
 
 void follow_ship(const SceneView& view, const ShipPose& ship, OrbitCamera& camera) {
-  // the target behind the ship, kept on the simulated water (a ship near the edge stays in view
-  // and the middle of the window stays on the water)
+  // the target behind the ship, kept at least the view's half height at the target,
+  // d tan(fov_y / 2), inside the simulated water (at most its middle): near an edge the view
+  // stays on the waves rather than on the flat water beyond, and the ship, within that margin
+  // of the target, stays in view
   const double back = kFollowBack * camera.distance;
   const GridPlacement& g = view.grid;
-  const double x = std::clamp(ship.x - back * std::cos(ship.heading), g.x(0), g.x(g.cols - 1));
-  const double y = std::clamp(ship.y - back * std::sin(ship.heading), g.y(0), g.y(g.rows - 1));
+  const double half = camera.distance * std::tan(0.5 * camera.fov_y);
+  auto keep = [&](double v, double lo, double hi) {
+    const double m = std::min(half, 0.5 * (hi - lo));
+    return std::clamp(v, lo + m, hi - m);
+  };
+  const double x = keep(ship.x - back * std::cos(ship.heading), g.x(0), g.x(g.cols - 1));
+  const double y = keep(ship.y - back * std::sin(ship.heading), g.y(0), g.y(g.rows - 1));
   camera.target = glm::dvec3(x, y, 0.0);
 }
 
