@@ -9,6 +9,7 @@
 
 #include "huygens/common/finite.hpp"
 #include "huygens/huygens/cutoff.hpp"
+#include "huygens/huygens/rotation.hpp"
 
 namespace huygens {
 
@@ -99,24 +100,10 @@ void HuygensPropagator::build_tables() {
       const double k = std::hypot(kx, ky);
       const double w = omega(p_.water, k);
       const std::size_t i = static_cast<std::size_t>(r) * q + c;
-      // the phase factor exp(i phi), phi = -omega dt, reduced to [-pi, pi]
-      double phi = std::remainder(-w * p_.dt_s, 2.0 * kPi);
-      if (p_.rotation == Rotation::complex) {
-        rot_a_[i] = static_cast<float>(std::cos(phi) * rot_scale);
-        rot_b_[i] = static_cast<float>(std::sin(phi) * rot_scale);
-      } else {
-        // a rotation by pi is an exact sign flip: lift only |phi| <= pi/2, where |tan(phi/2)| <= 1
-        double sign = 1.0;
-        if (phi > kPi / 2) phi -= kPi, sign = -1.0;
-        if (phi < -kPi / 2) phi += kPi, sign = -1.0;
-        const float t = static_cast<float>(std::tan(0.5 * phi));
-        // the lifting's angle satisfies cos(angle) = 1 - s t exactly: choose s for the rounded t
-        const double sh = std::sin(0.5 * phi);
-        const float s = t == 0.0f ? 0.0f : static_cast<float>(2.0 * sh * sh / static_cast<double>(t));
-        rot_a_[i] = t;
-        rot_b_[i] = s;
-        rot_c_[i] = static_cast<float>(sign * rot_scale);
-      }
+      const RotationEntry e = rotation_entry(p_.rotation, w * p_.dt_s, rot_scale);
+      rot_a_[i] = e.a;
+      rot_b_[i] = e.b;
+      if (p_.rotation == Rotation::lifting) rot_c_[i] = e.c;
       // height packing: P = i (alpha Z^(k) + beta conj Z^(-k)), 1/N^2 folded in
       if (alpha_.size() == 0) {
         // external height: no packing tables
@@ -263,54 +250,14 @@ void HuygensPropagator::propagate() {
     // spectral rotation into Z (then IFFT), or in place on Z^ without the spatial round trip
     const float* s = reinterpret_cast<const float*>(s_.data());
     float* z = reinterpret_cast<float*>(spatial_ ? z_.data() : s_.data());
-    const float* ta = rot_a_.data();
-    const float* tb = rot_b_.data();
-    const int h = n / 2, q = h + 1;
-    if (p_.rotation == Rotation::lifting) {
-      const float* tc = rot_c_.data();
+    const float *ta = rot_a_.data(), *tb = rot_b_.data(), *tc = rot_c_.data();
+    const int q = n / 2 + 1;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
-      for (int r = 0; r < n; ++r) {
-        // quadrant tables: columns 0..N/2 read forward, N/2+1..N-1 read backward
-        const std::size_t qo = static_cast<std::size_t>(r <= h ? r : n - r) * q;
-        const float *a = ta + qo, *b = tb + qo, *sg = tc + qo;
-        const float* sr = s + 2 * static_cast<std::size_t>(r) * n;
-        float* zr = z + 2 * static_cast<std::size_t>(r) * n;
-        // three shears of determinant 1: x -= t y; y += s x; x -= t y
-#pragma omp simd
-        for (int c = 0; c <= h; ++c) {
-          float x = sg[c] * sr[2 * c], y = sg[c] * sr[2 * c + 1];
-          x -= a[c] * y;
-          y += b[c] * x;
-          x -= a[c] * y;
-          zr[2 * c] = x;
-          zr[2 * c + 1] = y;
-        }
-#pragma omp simd
-        for (int c = h + 1; c < n; ++c) {
-          const int j = n - c;
-          float x = sg[j] * sr[2 * c], y = sg[j] * sr[2 * c + 1];
-          x -= a[j] * y;
-          y += b[j] * x;
-          x -= a[j] * y;
-          zr[2 * c] = x;
-          zr[2 * c + 1] = y;
-        }
-      }
-    } else {
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-      for (int r = 0; r < n; ++r) {
-        const std::size_t qo = static_cast<std::size_t>(r <= h ? r : n - r) * q;
-        const float *a = ta + qo, *b = tb + qo;
-        const float* sr = s + 2 * static_cast<std::size_t>(r) * n;
-        float* zr = z + 2 * static_cast<std::size_t>(r) * n;
-#pragma omp simd
-        for (int c = 0; c < n; ++c) {
-          const int j = c <= h ? c : n - c;
-          const float x = sr[2 * c], y = sr[2 * c + 1];
-          zr[2 * c] = a[j] * x - b[j] * y;
-          zr[2 * c + 1] = a[j] * y + b[j] * x;
-        }
-      }
+    for (int r = 0; r < n; ++r) {
+      // quadrant tables: row r reads table row min(r, N - r)
+      const std::size_t qo = static_cast<std::size_t>(r <= n / 2 ? r : n - r) * q;
+      rotate_row(p_.rotation, ta + qo, tb + qo, tc == nullptr ? nullptr : tc + qo,
+                 s + 2 * static_cast<std::size_t>(r) * n, z + 2 * static_cast<std::size_t>(r) * n, n);
     }
     if (spatial_) {
       const auto t0 = std::chrono::steady_clock::now();

@@ -12,6 +12,7 @@
 
 #include "huygens/common/finite.hpp"
 #include "huygens/huygens/cutoff.hpp"
+#include "huygens/huygens/rotation.hpp"
 #include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens {
@@ -123,19 +124,10 @@ void HuygensSlabSolver::build_tables() {
       const double k = std::hypot(fft_wavenumber(c, n, p.length_m), fft_wavenumber(r, n, p.length_m));
       const double w = omega(p.water, k);
       const std::size_t i = static_cast<std::size_t>(r) * q + c;
-      double phi = std::remainder(-w * p.dt_s, 2.0 * kPi);
-      double sign = 1.0;  // a rotation by pi is an exact sign flip; lift |phi| <= pi/2
-      if (phi > kPi / 2) phi -= kPi, sign = -1.0;
-      if (phi < -kPi / 2) phi += kPi, sign = -1.0;
-      const float t = static_cast<float>(std::tan(0.5 * phi));
-      const double sh = std::sin(0.5 * phi);
-      rot_a_[i] = t;
-      rot_b_[i] = t == 0.0f ? 0.0f : static_cast<float>(2.0 * sh * sh / static_cast<double>(t));
-      rot_c_[i] = static_cast<float>(sign * rot_scale);
-      if (p.rotation == Rotation::complex) {
-        rot_a_[i] = static_cast<float>(std::cos(-w * p.dt_s) * rot_scale);
-        rot_b_[i] = static_cast<float>(std::sin(-w * p.dt_s) * rot_scale);
-      }
+      const RotationEntry e = rotation_entry(p.rotation, w * p.dt_s, rot_scale);
+      rot_a_[i] = e.a;
+      rot_b_[i] = e.b;
+      rot_c_[i] = e.c;
       kk_[i] = static_cast<float>(k);
       kw_[i] = k > 0 && w > 0 ? static_cast<float>(k / w) : 0.0f;
       sq_[i] = static_cast<float>(std::sqrt(0.5 * k));
@@ -267,30 +259,12 @@ void HuygensSlabSolver::check(int stage, std::span<const cfloat> v) {
 
 void HuygensSlabSolver::rotate(const float* s, float* z) {
   // HuygensPropagator::propagate's rotation on the local kx rows (quadrant tables symmetric)
-  const int n = g_.n, h = n / 2, q = h + 1;
-  const bool lifting = scene_.params.rotation == Rotation::lifting;
+  const int n = g_.n, q = n / 2 + 1;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::ptrdiff_t lr = 0; lr < g_.krows; ++lr) {
     const std::size_t qo = static_cast<std::size_t>(quad(static_cast<int>(g_.krow0 + lr), n)) * q;
-    const float *ta = rot_a_.data() + qo, *tb = rot_b_.data() + qo, *sg = rot_c_.data() + qo;
-    const float* sr = s + 2 * static_cast<std::size_t>(lr) * n;
-    float* zr = z + 2 * static_cast<std::size_t>(lr) * n;
-#pragma omp simd
-    for (int c = 0; c < n; ++c) {
-      const int j = c <= h ? c : n - c;
-      if (lifting) {  // three shears of determinant 1: x -= t y; y += s x; x -= t y
-        float x = sg[j] * sr[2 * c], y = sg[j] * sr[2 * c + 1];
-        x -= ta[j] * y;
-        y += tb[j] * x;
-        x -= ta[j] * y;
-        zr[2 * c] = x;
-        zr[2 * c + 1] = y;
-      } else {
-        const float x = sr[2 * c], y = sr[2 * c + 1];
-        zr[2 * c] = ta[j] * x - tb[j] * y;
-        zr[2 * c + 1] = ta[j] * y + tb[j] * x;
-      }
-    }
+    rotate_row(scene_.params.rotation, rot_a_.data() + qo, rot_b_.data() + qo, rot_c_.data() + qo,
+               s + 2 * static_cast<std::size_t>(lr) * n, z + 2 * static_cast<std::size_t>(lr) * n, n);
   }
 }
 

@@ -19,11 +19,9 @@
 #include "huygens/common/dispersion.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/common/stats.hpp"
+#include "huygens/huygens/rotation.hpp"
 
 namespace huygens {
-
-/// How the per-mode phase factor exp(-i omega dt) is applied.
-enum class Rotation { lifting, complex };
 
 /// Absorbing margin profile.
 enum class Absorber {
