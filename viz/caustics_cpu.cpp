@@ -571,6 +571,19 @@ static double edge_window(double t) {
   return u * u * (3 - 2 * u);
 }
 
+// An n x n field over [0, L]^2 (spacing L / (n - 1)) with the elevation eta(x, y) (m) at its points.
+template <class Eta>
+SyntheticField sample_field(int n, double L, double depth, Eta eta) {
+  SyntheticField f;
+  f.n = n;
+  f.dx = float(L / (n - 1));
+  f.depth = float(depth);
+  f.eta.resize(std::size_t(n) * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) f.eta[std::size_t(i) * n + j] = float(eta(j * L / (n - 1), i * L / (n - 1)));
+  return f;
+}
+
 // wind-like sea: a sum of sines with wave vectors on the periodic lattice of the domain,
 // amplitudes scaled so that sum (1 - 1/n) D A_k k^2 = strength (the largest possible local
 // compression of the ground map); `window` multiplies by a smooth window that is zero in the
@@ -585,21 +598,11 @@ SyntheticField synthetic_wind_sea(int n, double L, double depth, double strength
   for (const auto& c : comps)
     sum += c.a * (2 * std::numbers::pi / L) * (2 * std::numbers::pi / L) * (c.ix * c.ix + c.iy * c.iy);
   const double scale = strength / (focus_factor(depth, 1.333) * sum);
-  SyntheticField f;
-  f.n = n;
-  f.dx = float(L / (n - 1));
-  f.depth = float(depth);
-  f.eta.resize(std::size_t(n) * n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double x = j * L / (n - 1), y = i * L / (n - 1);
-      double e = 0;
-      for (const auto& c : comps)
-        e += scale * c.a * std::sin(2 * std::numbers::pi / L * (c.ix * x + c.iy * y) + c.phase);
-      if (window) e *= edge_window(x / L) * edge_window(y / L);
-      f.eta[std::size_t(i) * n + j] = float(e);
-    }
-  return f;
+  return sample_field(n, L, depth, [&](double x, double y) {
+    double e = 0;
+    for (const auto& c : comps) e += scale * c.a * std::sin(2 * std::numbers::pi / L * (c.ix * x + c.iy * y) + c.phase);
+    return window ? e * edge_window(x / L) * edge_window(y / L) : e;
+  });
 }
 
 // ring wave: A J0(k r) exp(-r^2 / (2 s^2)) about the centre; at the centre the Hessian is
@@ -607,17 +610,10 @@ SyntheticField synthetic_wind_sea(int n, double L, double depth, double strength
 SyntheticField synthetic_ring_wave(int n, double L, double depth, double strength) {
   const double k = 2 * std::numbers::pi / (0.15 * L), s = 0.2 * L;
   const double A = strength / (focus_factor(depth, 1.333) * k * k / 2);
-  SyntheticField f;
-  f.n = n;
-  f.dx = float(L / (n - 1));
-  f.depth = float(depth);
-  f.eta.resize(std::size_t(n) * n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double x = j * L / (n - 1) - L / 2, y = i * L / (n - 1) - L / 2, r = std::hypot(x, y);
-      f.eta[std::size_t(i) * n + j] = float(A * std::cyl_bessel_j(0.0, k * r) * std::exp(-r * r / (2 * s * s)));
-    }
-  return f;
+  return sample_field(n, L, depth, [&](double x, double y) {
+    const double r = std::hypot(x - L / 2, y - L / 2);
+    return A * std::cyl_bessel_j(0.0, k * r) * std::exp(-r * r / (2 * s * s));
+  });
 }
 
 }  // namespace huygens::viz
