@@ -190,13 +190,14 @@ TEST(HuygensScene, OldKeysAreRefusedNamingTheNewOne) {
   }
 }
 
-// The real program: a bad scene file gives exit code 2 and the JSON path on stderr.
-TEST(HuygensScene, ProgramExitsTwoAndNamesThePath) {
+namespace {
+// The real program on a scene file with this grid: exit code 2 and the JSON path on stderr.
+void expect_program_exits_two_naming(const std::string& name, const std::string& grid, const std::string& path) {
   const std::string dir = ::testing::TempDir();
-  const std::string scene = dir + "/bad_margin.json", out = dir + "/bad_margin.out";
+  const std::string scene = dir + "/" + name + ".json", out = dir + "/" + name + ".out";
   {
     std::ofstream f(scene);
-    f << huygens_scene(R"({"n": 64, "length_m": 2.0, "margin": 40})");
+    f << huygens_scene(grid);
   }
   const std::string cmd = std::string(HUYGENS_CLI) + " run " + scene + " --steps 1 > " + out + " 2>&1";
   const int status = std::system(cmd.c_str());
@@ -204,7 +205,12 @@ TEST(HuygensScene, ProgramExitsTwoAndNamesThePath) {
   EXPECT_EQ(WEXITSTATUS(status), 2);
   std::ifstream f(out);
   const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("$.grid.margin"), std::string::npos) << text;
+  EXPECT_NE(text.find(path), std::string::npos) << text;
+}
+}  // namespace
+
+TEST(HuygensScene, ProgramExitsTwoAndNamesThePath) {
+  expect_program_exits_two_naming("bad_margin", R"({"n": 64, "length_m": 2.0, "margin": 40})", "$.grid.margin");
 }
 
 // ---- numbers the parser or a getter cannot hold: a SceneError with the path, never a crash ----
@@ -291,17 +297,5 @@ TEST(JsonIn, LoadSceneRefusesADirectory) {
 
 // The real program on a number that overflows a double: exit 2 and the path, no abort.
 TEST(HuygensScene, ProgramExitsTwoOnANumberOverflow) {
-  const std::string dir = ::testing::TempDir();
-  const std::string scene = dir + "/overflow.json", out = dir + "/overflow.out";
-  {
-    std::ofstream f(scene);
-    f << huygens_scene(R"({"n": 64, "length_m": 1e400, "margin": 8})");
-  }
-  const std::string cmd = std::string(HUYGENS_CLI) + " run " + scene + " --steps 1 > " + out + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 2);
-  std::ifstream f(out);
-  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("$.grid.length_m"), std::string::npos) << text;
+  expect_program_exits_two_naming("overflow", R"({"n": 64, "length_m": 1e400, "margin": 8})", "$.grid.length_m");
 }
