@@ -142,24 +142,23 @@ std::uint64_t HuygensPropagator::reserve_sources() {
 
 // ---- sources --------------------------------------------------------------------------------
 
+void gaussian_axis_factors(cfloat* f, int n, double length_m, double x0_m, double sigma_m, double scale) {
+  for (int i = 0; i < n; ++i) {
+    const double k = fft_wavenumber(i, n, length_m);
+    const double g = scale * std::exp(-0.5 * k * k * sigma_m * sigma_m);
+    const double ph = -k * x0_m;
+    f[i] = i == n / 2 ? cfloat(static_cast<float>(g * std::cos(ph)), 0.0f)
+                      : cfloat(static_cast<float>(g * std::cos(ph)), static_cast<float>(g * std::sin(ph)));
+  }
+}
+
 void HuygensPropagator::add_gaussian(double x_m, double y_m, double sigma_m, double amplitude_m, double age_s) {
   reserve_sources();  // allocates only on first use (see the header)
   const int n = p_.n;
   const double d = dx();
   const double amp = 2.0 * kPi * sigma_m * sigma_m * amplitude_m / (d * d);
-  // separable factors exp(-k_x^2 sigma^2/2) e^{-i k_x x0}; the Nyquist index keeps only the
-  // real part so that the spectrum stays Hermitian (E real)
-  auto axis = [&](cfloat* f, double x0, double scale) {
-    for (int i = 0; i < n; ++i) {
-      const double k = wavenumber(i);
-      const double g = scale * std::exp(-0.5 * k * k * sigma_m * sigma_m);
-      const double ph = -k * x0;
-      f[i] = i == n / 2 ? cfloat(static_cast<float>(g * std::cos(ph)), 0.0f)
-                        : cfloat(static_cast<float>(g * std::cos(ph)), static_cast<float>(g * std::sin(ph)));
-    }
-  };
-  axis(src_x_.data(), x_m, 1.0);
-  axis(src_y_.data(), y_m, amp);
+  gaussian_axis_factors(src_x_.data(), n, p_.length_m, x_m, sigma_m, 1.0);
+  gaussian_axis_factors(src_y_.data(), n, p_.length_m, y_m, sigma_m, amp);
   const float* fx = reinterpret_cast<const float*>(src_x_.data());
   const float* fy = reinterpret_cast<const float*>(src_y_.data());
   const float* w_over_k = src_.data();

@@ -196,17 +196,8 @@ void HuygensSlabSolver::add_gaussian(double x_m, double y_m, double sigma_m, dou
   const int n = p.n;
   const double d = p.length_m / n;
   const double amp = 2.0 * kPi * sigma_m * sigma_m * amplitude_m / (d * d);
-  auto axis = [&](cfloat* f, double x0, double scale) {
-    for (int i = 0; i < n; ++i) {
-      const double k = fft_wavenumber(i, n, p.length_m);
-      const double gg = scale * std::exp(-0.5 * k * k * sigma_m * sigma_m);
-      const double ph = -k * x0;
-      f[i] = i == n / 2 ? cfloat(static_cast<float>(gg * std::cos(ph)), 0.0f)
-                        : cfloat(static_cast<float>(gg * std::cos(ph)), static_cast<float>(gg * std::sin(ph)));
-    }
-  };
-  axis(src_x_.data(), x_m, 1.0);
-  axis(src_y_.data(), y_m, amp);
+  gaussian_axis_factors(src_x_.data(), n, p.length_m, x_m, sigma_m, 1.0);
+  gaussian_axis_factors(src_y_.data(), n, p.length_m, y_m, sigma_m, amp);
   const float* fr = reinterpret_cast<const float*>((g_.transposed ? src_x_ : src_y_).data());  // row factor
   const float* fc = reinterpret_cast<const float*>((g_.transposed ? src_y_ : src_x_).data());  // column factor
   float* s = reinterpret_cast<float*>(s_.data());

@@ -71,6 +71,11 @@ struct HuygensParams {
 /// Human-readable reason why `p` cannot be used, or empty when it can.
 std::string huygens_params_error(const HuygensParams& p);
 
+/// One axis of a Gaussian elevation's spectrum (separable): f[i] = scale exp(-k_i^2 sigma^2 / 2)
+/// e^{-i k_i x0} for the N FFT wavenumbers k_i of a side L (m); at the Nyquist index only the real
+/// part, so that the spectrum of the real elevation stays Hermitian.
+void gaussian_axis_factors(cfloat* f, int n, double length_m, double x0_m, double sigma_m, double scale);
+
 class HuygensPropagator {
  public:
   /// Allocates every buffer and table and makes the three FFTW plans. Throws
