@@ -25,6 +25,18 @@ constexpr double kG = 9.81;
 // Viscosity that gives relaxation time tau for cell dx and step dt.
 double nu_for_tau(double tau, double dx, double dt) { return (tau - 0.5) * dx * dx / (3.0 * dt); }
 
+// A rows x cols lattice of cells of dx (m), dt for the Courant number (sqrt(g depth) dt / dx) and
+// tau = 0.6.
+LbmParams lattice(int rows, int cols, double dx_m, double courant, double depth_m) {
+  LbmParams p;
+  p.cols = cols;
+  p.rows = rows;
+  p.cell_m = dx_m;
+  p.dt_s = courant * dx_m / std::sqrt(kG * depth_m);
+  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  return p;
+}
+
 LbmFields fields(int rows, int cols) {
   LbmFields f;
   const std::size_t n = static_cast<std::size_t>(rows) * cols;
@@ -83,12 +95,7 @@ LbmDamBreakResult lbm_dam_break_1d(double ratio, int cells, double tau, double c
 LbmLakeResult lbm_lake_at_rest(std::int64_t steps, LbmBedForce force) {
   const int cols = 250, rows = 4;
   const double eta = 0.7;
-  LbmParams p;
-  p.cols = cols;
-  p.rows = rows;
-  p.cell_m = 25.0 / cols;
-  p.dt_s = 0.4 * p.cell_m / std::sqrt(kG * eta);
-  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  LbmParams p = lattice(rows, cols, 25.0 / cols, 0.4, eta);
   p.bed_force = force;
   LbmFields f = fields(rows, cols);
   for (int r = 0; r < rows; ++r)
@@ -112,12 +119,7 @@ LbmLakeResult lbm_lake_at_rest(std::int64_t steps, LbmBedForce force) {
 }
 
 double lbm_mass_drift(int rows, int cols, std::int64_t steps) {
-  LbmParams p;
-  p.cols = cols;
-  p.rows = rows;
-  p.cell_m = 1.0;
-  p.dt_s = 0.4 / std::sqrt(kG * 1.2);
-  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  LbmParams p = lattice(rows, cols, 1.0, 0.4, 1.2);
   LbmFields f = fields(rows, cols);
   const double w = std::max(2.0, cols / 6.0);
   for (int r = 0; r < rows; ++r)
@@ -265,11 +267,7 @@ LbmThackerResult lbm_thacker(int cells, double periods, double tau) {
 
 LbmIslandsResult lbm_islands_at_rest(std::int64_t steps) {
   const int n = 64;
-  LbmParams p;
-  p.cols = p.rows = n;
-  p.cell_m = 1.0;
-  p.dt_s = 0.4 / std::sqrt(kG * 1.0);
-  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  LbmParams p = lattice(n, n, 1.0, 0.4, 1.0);
   LbmFields f = fields(n, n);
   LbmIslandsResult res;
   for (int r = 0; r < n; ++r)
@@ -301,12 +299,7 @@ LbmIslandsResult lbm_islands_at_rest(std::int64_t steps) {
 }
 
 LbmWetDryMassResult lbm_wet_dry_mass(int rows, int cols, std::int64_t steps) {
-  LbmParams p;
-  p.cols = cols;
-  p.rows = rows;
-  p.cell_m = 1.0;
-  p.dt_s = 0.35 / std::sqrt(kG * 1.0);
-  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  LbmParams p = lattice(rows, cols, 1.0, 0.35, 1.0);
   LbmFields f = fields(rows, cols);
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
@@ -382,12 +375,7 @@ LbmPartialDamResult lbm_partial_dam(double ratio, std::int64_t steps) {
 
 double lbm_wave_speed_ratio(int cells) {
   const double h0 = 1.0, amp = 1e-4, c0 = std::sqrt(kG * h0), sigma = 20.0;
-  LbmParams p;
-  p.cols = cells;
-  p.rows = 1;
-  p.cell_m = 1.0;
-  p.dt_s = 0.4 * p.cell_m / c0;
-  p.viscosity_m2s = nu_for_tau(0.6, p.cell_m, p.dt_s);
+  LbmParams p = lattice(1, cells, 1.0, 0.4, h0);
   p.bottom = p.top = LbmSide::periodic;
   LbmFields f = fields(1, cells);
   const double xc = 0.5 * cells;
