@@ -90,10 +90,7 @@ inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, flo
   float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;
 #pragma omp simd reduction(+ : sw, gx, gy, gz, sm, hx, hy, hz) aligned(X, Y, Z, W : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
     float w, f;
     sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
     sw += w * W[j];
@@ -136,10 +133,7 @@ inline void sph_dfsph_list_append(const float* X, const float* Y, const float* Z
                                   std::uint32_t& k, std::uint32_t& near) {
   std::uint32_t kk = k, nn = near;
   for (std::uint32_t j = b; j < e; ++j) {
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
     J[kk] = j;
     kk += static_cast<std::uint32_t>((r2 < h2) & (r2 > rmin2));
     nn += static_cast<std::uint32_t>(r2 <= rmin2);
@@ -157,10 +151,7 @@ inline void sph_dfsph_list_append(const float* X, const float* Y, const float* Z
   std::uint32_t nn = 0;
 #pragma omp simd reduction(+ : nn) aligned(X, Y, Z, F : 32)
   for (std::uint32_t t = 0; t < e0; ++t) {
-    const float dx = xi - X[t];
-    const float dy = yi - Y[t];
-    const float dz = zi - Z[t];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, t, xi, yi, zi);
     F[t] = static_cast<std::uint32_t>((r2 < h2) & (r2 > rmin2) & (t < e));
     nn += static_cast<std::uint32_t>((r2 <= rmin2) & (t < e));
   }
@@ -179,10 +170,7 @@ inline void sph_dfsph_list_append(const float* X, const float* Y, const float* Z
 #pragma omp simd reduction(+ : sw, gx, gy, gz, sq, sm) aligned(J, GX, GY, GZ : 32)
   for (std::size_t k = b; k < e; ++k) {  // a 64-bit index: GCC 12 does not vectorise this loop over a 32-bit one
     const std::uint32_t j = J[k];
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
     float w, f;
     sph_cubic_shapes((r2 < h2) & (r2 > rmin2), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
     GX[k] = f * dx;
@@ -252,10 +240,7 @@ inline void sph_dfsph_list_append(const float* X, const float* Y, const float* Z
 #pragma omp simd reduction(+ : ax, ay, az) aligned(J : 32)
   for (std::uint32_t k = l.B[i]; k < l.E[i]; ++k) {
     const std::uint32_t j = J[k];
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
     // padding (j = i): r2 = 0, v_j - v_i = 0
     const float f = (h - r2 * sph_rsqrt(r2 + 1e-30f)) * IR[j];
     ax += f * (VX[j] - vxi);

@@ -20,6 +20,7 @@
 // a function of its own whose object code scripts/simd_report.py checks (test simd_object_code).
 #include <algorithm>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 
 #include "huygens/sph/boundary.hpp"
@@ -41,6 +42,16 @@ inline float sph_rsqrt(float x) {
 /// becomes 0 where keep is false.
 inline float sph_keep(bool keep, float x) {
   return std::bit_cast<float>(std::bit_cast<std::uint32_t>(x) & (0u - static_cast<std::uint32_t>(keep)));
+}
+
+/// The offset x_i - x_j of candidate j from (xi, yi, zi) (m) and its squared length r^2 (m^2).
+struct SphOffset {
+  float dx, dy, dz, r2;
+};
+[[gnu::always_inline]] inline SphOffset sph_offset(const float* X, const float* Y, const float* Z, std::size_t j,
+                                                   float xi, float yi, float zi) {
+  const float dx = xi - X[j], dy = yi - Y[j], dz = zi - Z[j];
+  return {dx, dy, dz, dx * dx + dy * dy + dz * dz};
 }
 
 /// The particle arrays a pair sum reads (cell-sorted, 64-byte aligned): positions (m), velocities
@@ -81,10 +92,7 @@ template <bool kBoundary, bool kMoment>
   float s6 = 0.f, sm = 0.f;
 #pragma omp simd reduction(+ : s6, sm) aligned(X, Y, Z : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
     const bool in = (r2 < h2) & (j >= b) & (j < e);
     const float q = sph_keep(in, h2 - r2);
     // the selected cube is added: the and between product and sum keeps them two roundings (no
@@ -130,10 +138,7 @@ template <bool kBoundary>
   float fpx = 0.f, fpy = 0.f, fpz = 0.f, fvx = 0.f, fvy = 0.f, fvz = 0.f, sm = 0.f;
 #pragma omp simd reduction(+ : fpx, fpy, fpz, fvx, fvy, fvz, sm) aligned(X, Y, Z, PP : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
     const float ri = sph_rsqrt(std::max(r2, rmin2));  // 1 / r
     const float r = r2 * ri;
     const float hr = sph_keep((r2 < h2) & (j >= b) & (j < e), h - r);
@@ -184,10 +189,7 @@ template <bool kBoundary>
   float sc = 0.f;
 #pragma omp simd reduction(+ : sc) aligned(X, Y, Z : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = xi - X[j];
-    const float dy = yi - Y[j];
-    const float dz = zi - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
     const bool in = (r2 < h2) & (j >= b) & (j < e);
     const float q = sph_keep(in, h2 - r2);
     sc += sph_keep(in, std::max(q * q * q - q0c, 0.f) * W[j]);
@@ -214,10 +216,7 @@ template <bool kBoundary>
   float sw = 0.f, sp = 0.f, sx = 0.f, sy = 0.f, sz = 0.f, sl = 0.f;
 #pragma omp simd reduction(+ : sw, sp, sx, sy, sz, sl) aligned(X, Y, Z, P, R, L : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
-    const float dx = xb - X[j];
-    const float dy = yb - Y[j];
-    const float dz = zb - Z[j];
-    const float r2 = dx * dx + dy * dy + dz * dz;
+    const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xb, yb, zb);
     const bool in = (r2 < h2) & (j >= b) & (j < e);
     const float q = sph_keep(in, h2 - r2);
     const float w = sph_keep(in, q * q * q);
