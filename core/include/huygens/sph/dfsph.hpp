@@ -81,10 +81,7 @@ inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, flo
                                                        float yi, float zi, float h, float h2, float rmin,
                                                        const float g[3], float acc[8]) {
   const float rmin2 = rmin * rmin, ih = 1.f / h;
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* W = v.W;
+  const float *X = v.X, *Y = v.Y, *Z = v.Z, *W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   const float g0 = g[0], g1 = g[1], g2 = g[2];
   float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;

@@ -84,10 +84,7 @@ inline SphView sph_gathered_boundary(const SphCellGather::Cursor& c) {
 template <bool kBoundary, bool kMoment>
 [[gnu::noinline]] void sph_poly6_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi, float zi,
                                        float h, float h2, float& sum, float& msum) {
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* W = v.W;
+  const float *X = v.X, *Y = v.Y, *Z = v.Z, *W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   float s6 = 0.f, sm = 0.f;
 #pragma omp simd reduction(+ : s6, sm) aligned(X, Y, Z : 32)
@@ -121,18 +118,8 @@ template <bool kBoundary>
                                        const float vi[3], float Pi, float h, float h2, float rmin, float pik, float pbk,
                                        float acc[7]) {
   const float rmin2 = rmin * rmin, eta2 = 0.01f * h2;
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* VX = v.VX;
-  const float* VY = v.VY;
-  const float* VZ = v.VZ;
-  const float* PP = v.PP;
-  const float* IR = v.IR;
-  const float* W = v.W;
-  const float* NX = v.NX;
-  const float* NY = v.NY;
-  const float* NZ = v.NZ;
+  const float *X = v.X, *Y = v.Y, *Z = v.Z, *VX = v.VX, *VY = v.VY, *VZ = v.VZ, *PP = v.PP, *IR = v.IR, *W = v.W,
+              *NX = v.NX, *NY = v.NY, *NZ = v.NZ;
   const float vxi = vi[0], vyi = vi[1], vzi = vi[2];
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   float fpx = 0.f, fpy = 0.f, fpz = 0.f, fvx = 0.f, fvy = 0.f, fvz = 0.f, sm = 0.f;
@@ -181,10 +168,7 @@ template <bool kBoundary>
 /// contact (SphSystem::compute_density: the contact density).
 [[gnu::noinline]] inline void sph_contact_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi, float yi,
                                                 float zi, float h2, float q0c, float& csum) {
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* W = v.W;
+  const float *X = v.X, *Y = v.Y, *Z = v.Z, *W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   float sc = 0.f;
 #pragma omp simd reduction(+ : sc) aligned(X, Y, Z : 32)
@@ -206,12 +190,7 @@ template <bool kBoundary>
 /// surface puts below rho0 (a lone particle on a floor: 0.38 rho0).
 [[gnu::noinline]] inline void sph_wall_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xb, float yb,
                                              float zb, float h2, float s[6], float rho_min = 0.f) {
-  const float* X = v.X;
-  const float* Y = v.Y;
-  const float* Z = v.Z;
-  const float* P = v.PP;
-  const float* R = v.IR;
-  const float* L = v.LR;
+  const float *X = v.X, *Y = v.Y, *Z = v.Z, *P = v.PP, *R = v.IR, *L = v.LR;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   float sw = 0.f, sp = 0.f, sx = 0.f, sy = 0.f, sz = 0.f, sl = 0.f;
 #pragma omp simd reduction(+ : sw, sp, sx, sy, sz, sl) aligned(X, Y, Z, P, R, L : 32)
