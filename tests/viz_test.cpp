@@ -377,11 +377,13 @@ TEST_F(VizRender, GoldenImagesOfTheShippedScenes) {
   const std::pair<const char*, double> shots[] = {
       {"default", 1.0},       {"ring", 1.0},      {"ocean", 1.0},   {"kelvin", 1.0}, {"pond", 1.0},     {"pool", 0.1},
       {"sph_dam_break", 0.1}, {"dam_break", 1.0}, {"channel", 1.0}, {"flood", 1.0},  {"sph_wedge", 0.1}};
-  for (const auto& e : std::filesystem::directory_iterator(huygens::test::scenes_dir()))
-    if (e.path().extension() == ".json")
+  for (const auto& e : std::filesystem::directory_iterator(huygens::test::scenes_dir())) {
+    if (e.path().extension() == ".json") {
       EXPECT_TRUE(std::any_of(std::begin(shots), std::end(shots),
                               [&](const auto& shot) { return e.path().stem() == shot.first; }))
           << e.path() << " is shipped without a golden image";
+    }
+  }
   for (const auto& [name, t] : shots) {
     const std::filesystem::path scene =
         std::filesystem::path(huygens::test::scenes_dir()) / (std::string(name) + ".json");
@@ -1127,4 +1129,24 @@ TEST(VizCamera, FollowedShipNearAnEdgeKeepsTheViewOnTheWater) {
   follow_ship(view, middle, cam);
   EXPECT_NEAR(cam.target.x, 60.0, 1e-9);
   EXPECT_NEAR(cam.target.y, 50.0 - 0.35 * cam.distance, 1e-9);
+}
+
+TEST(VizLook, SphLabTankWaterShowsThePoolsColourAtItsRestDepth) {
+  // A tank 0.1 m deep at rest: its water transmits exp(-a_eff 0.1 m) per channel, what the pool
+  // look's 3 m of clear water transmit, exp(-a 3 m). A pool look and SPH water over 3 m deep keep a.
+  const RenderSettings clear;
+  OrbitCamera cam;
+  SceneView view;
+  view.grid.rows = view.grid.cols = 65;
+  view.grid.dx = 0.01;
+  view.look = Look::sph;
+  view.height_offset = 0.1;
+  const RenderSettings lab = look_settings(view, RenderRequest{}, cam);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(std::exp(-lab.absorb_rgb[c] * 0.1), std::exp(-clear.absorb_rgb[c] * SceneView::kDeepGround), 1e-6);
+  view.height_offset = 5.0;
+  EXPECT_EQ(look_settings(view, RenderRequest{}, cam).absorb_rgb, clear.absorb_rgb);
+  view.look = Look::pool;
+  view.height_offset = 0.1;
+  EXPECT_EQ(look_settings(view, RenderRequest{}, cam).absorb_rgb, clear.absorb_rgb);
 }

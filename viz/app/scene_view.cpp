@@ -174,6 +174,12 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
     case Look::sph:
       s.pool_deck = !view.slab;             // a slab is seen from the side: its profile, not a pool
       s.hide_dry = view.look == Look::sph;  // where the particles left, the floor is dry
+      if (view.look == Look::sph && view.height_offset > 0.0) {
+        // a lab tank's water dyed as a lab does: centimetres of clear water barely tint the floor,
+        // so the absorption is scaled to show the water at rest in the colour of the pool look's
+        // 3 m: a_rgb kDeepGround / rest level (at least a_rgb)
+        s.absorb_rgb *= static_cast<float>(std::max(1.0, SceneView::kDeepGround / view.height_offset));
+      }
       if (view.slab) {
         // seen from the side: a plain floor (tiles 8 across the slab's thin side are stripes)
         // and no caustics (the floor under a slab is seen edge-on)
