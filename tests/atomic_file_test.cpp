@@ -3,8 +3,8 @@
 // write() fail with EFBIG exactly as a full disk makes it fail with ENOSPC.
 #include "huygens/common/atomic_file.hpp"
 
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>

@@ -56,7 +56,7 @@ void AtomicFile::commit() {
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) throw IoError(path_, std::strerror(errno));  // delayed write errors (NFS)
-  if (tmp_.empty()) return;  // written in place (a device or a pipe)
+  if (tmp_.empty()) return;                                          // written in place (a device or a pipe)
   if (std::rename(tmp_.c_str(), target_.c_str()) != 0) throw IoError(path_, std::strerror(errno));
   tmp_.clear();
 }
