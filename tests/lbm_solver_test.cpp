@@ -248,6 +248,32 @@ TEST(LbmScene, ObstacleBoundaryAndTimeErrorsNameTheirPath) {
   });
 }
 
+// A shape that holds no cell does nothing: these ran to exit 0 without it (a rect with x1 < x0, an
+// obstacle outside the grid, a region beyond it).
+TEST(LbmScene, AnObstacleOrRegionHoldingNoCellIsRefused) {
+  expect_paths({
+      {"inverted rect",
+       [](json& j) {
+         j["lbm"]["obstacles"].push_back(
+             {{"type", "rect"}, {"x0_m", 6.0}, {"x1_m", 5.0}, {"y0_m", 0.0}, {"y1_m", 4.0}});
+       },
+       "$.lbm.obstacles[1]"},
+      {"rect outside the grid",
+       [](json& j) {
+         j["lbm"]["obstacles"][0] = {{"type", "rect"}, {"x0_m", 50.0}, {"x1_m", 60.0}, {"y0_m", 0.0}, {"y1_m", 4.0}};
+       },
+       "$.lbm.obstacles[0]"},
+      {"circle outside the grid", [](json& j) { j["lbm"]["obstacles"][0]["x_m"] = -100.0; }, "$.lbm.obstacles[0]"},
+      {"circle of radius 0", [](json& j) { j["lbm"]["obstacles"][0]["radius_m"] = 0.0; }, "$.lbm.obstacles[0]"},
+      {"region beyond the grid",
+       [](json& j) {
+         j["lbm"]["initial"]["regions"][0]["x0_m"] = 30.0;
+         j["lbm"]["initial"]["regions"][0]["x1_m"] = 40.0;
+       },
+       "$.lbm.initial.regions[0]"},
+  });
+}
+
 TEST(LbmScene, ParseResolvesTimeStepViscosityAndFields) {
   const LbmScene s = parse_lbm_scene(parse_scene_text(kBase));
   const LbmParams& p = s.params;
