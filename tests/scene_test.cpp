@@ -305,3 +305,16 @@ TEST(HuygensScene, ProgramExitsTwoOnANumberOverflow) {
   const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("$.grid.length_m"), std::string::npos) << text;
 }
+
+// A key repeated in one object: nlohmann kept the later value silently ("n": 512, "n": 64 ran at 64).
+TEST(JsonIn, ARepeatedKeyIsRefusedNamingItsPath) {
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 512, "n": 64, "length_m": 1, "margin": 8})")), "$.grid.n");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "solver": "sph"})"), "$.solver");
+  const std::string m = message_or_none(huygens_scene("", R"(, "drops": [{"t_s": 0.1, "x_m": 1, "x_m": 2}])"));
+  EXPECT_NE(m.find("$.drops[0].x_m"), std::string::npos) << m;
+  EXPECT_NE(m.find("twice"), std::string::npos) << m;
+  // the same key in different objects is not a repeat
+  EXPECT_EQ(error_path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1],
+      "fluid": [{"min_m": [0, 0, 0], "max_m": [0.1, 0.1, 0.05]}, {"min_m": [0, 0, 0.06], "max_m": [0.1, 0.1, 0.08]}]}})"),
+            "<no error>");
+}

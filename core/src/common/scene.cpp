@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -176,10 +177,16 @@ class PathTracker {
   bool operator()(int, json::parse_event_t event, json& parsed) {
     using E = json::parse_event_t;
     if (event == E::object_start || event == E::array_start) {
-      frames_.push_back({event == E::array_start, false, {}, 0});
+      frames_.push_back({event == E::array_start, false, {}, 0, {}});
     } else if (event == E::key) {
-      frames_.back().key = parsed.get<std::string>();
-      frames_.back().has_key = true;
+      Frame& f = frames_.back();
+      f.key = parsed.get<std::string>();
+      f.has_key = true;
+      // RFC 8259 leaves repeated names to the parser; nlohmann keeps the last, silently
+      if (!f.keys.insert(f.key).second)
+        throw SceneError(path(),
+                         "the key appears twice in its object (the later value would silently replace the "
+                         "earlier one)");
     } else {
       // a value ends: a scalar (value) or a container (object_end, array_end)
       if (event != E::value) frames_.pop_back();
@@ -204,6 +211,7 @@ class PathTracker {
     bool has_key;
     std::string key;
     std::size_t index;
+    std::set<std::string> keys;  // the object's keys so far
   };
   std::vector<Frame> frames_;
 };
