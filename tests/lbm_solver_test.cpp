@@ -162,6 +162,11 @@ void expect_paths(const std::vector<BadScene>& cases) {
 TEST(LbmScene, GridAndWaterErrorsNameTheirPath) {
   expect_paths({
       {"grid missing", [](json& j) { j["lbm"].erase("grid"); }, "$.lbm.grid"},
+      {"description not a string",
+       [](json& j) {
+         j["description"] = {{"a", 1}};
+       },
+       "$.description"},
       {"cell size missing", [](json& j) { j["lbm"]["grid"].erase("cell_m"); }, "$.lbm.grid.cell_m"},
       {"no columns", [](json& j) { j["lbm"]["grid"]["cols"] = 0; }, "$.lbm.grid.cols"},
       {"unsuffixed cell", [](json& j) { j["lbm"]["grid"]["cell"] = 0.5; }, "$.lbm.grid.cell"},

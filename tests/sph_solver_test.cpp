@@ -142,6 +142,11 @@ TEST(SphScene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(path_of(with(R"(, "artificial_viscosity": 0.001)")), "$.sph.artificial_viscosity");
   EXPECT_EQ(path_of(with(R"(, "sound_speed_mps": 1.0)")), "$.sph.sound_speed_mps");
   EXPECT_EQ(path_of(with("")), "<no error>");
+  // the description is a string, as in the other solvers' scenes (an array nested 10 deep ran)
+  EXPECT_EQ(
+      path_of(R"({"solver": "sph", "description": [[1]], "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1], )" +
+              kOkFluid + "}}"),
+      "$.description");
 }
 
 // A scene that would run with no water, or with an obstacle that is not there, is refused: these ran

@@ -461,6 +461,7 @@ MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks, bool carry) {
 LbmScene parse_lbm_scene(const Scene& scene) {
   const JsonIn root = scene.root();
   root.allow_only({"solver", "lbm", "description", "render"});
+  root.string("description", "");  // a string, as in the Huygens scene
   const JsonIn lb = root.object("lbm");
   LbmScene s;
   s.render = parse_render_request(root);

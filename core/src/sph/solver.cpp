@@ -412,6 +412,7 @@ double boundary_estimate(const SphParams& p) {
 SphScene parse_sph_scene(const Scene& scene) {
   const JsonIn root = scene.root();
   root.allow_only({"solver", "sph", "description"});
+  root.string("description", "");  // a string, as in the Huygens scene
   const JsonIn s = root.object("sph");
   s.reject_renamed({{"viscosity_m2ps", "viscosity_m2s"}});
   s.allow_only({"method", "spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
