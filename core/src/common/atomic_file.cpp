@@ -72,6 +72,13 @@ void check_output_file(const std::string& path) {
   if (path.empty()) throw IoError("\"\"", "an empty file name");
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw IoError(path, "it is a folder");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    // a device or a pipe: opened only for the real write (opening and closing a FIFO here would
+    // end its reader's input before the run)
+    if (::access(path.c_str(), W_OK) != 0) throw IoError(path, std::strerror(errno));
+    return;
+  }
   // the real test: the temporary the write will use can be created (folder exists, writable,
   // file system not read-only), then it is removed again
   AtomicFile probe(path);
