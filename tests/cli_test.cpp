@@ -237,6 +237,16 @@ TEST(Cli, TheViewersCommandLineIsCheckedToo) {
     EXPECT_EQ(WEXITSTATUS(status), 2) << bad << ": " << slurp(out);
     EXPECT_EQ(slurp(out).rfind("huygens-viz: ", 0), 0u) << bad << ": " << slurp(out);
   }
+  // the screenshot must not replace the scene it renders (it did, with exit code 0)
+  const fs::path sc = scene(d);
+  const std::string text = slurp(sc);
+  const std::string out = (d / "output.txt").string();
+  const int status = std::system(("'" + std::string(HUYGENS_VIZ) + "' '" + sc.string() + "' --headless --screenshot '" +
+                                  sc.string() + "' > '" + out + "' 2>&1")
+                                     .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2) << slurp(out);
+  EXPECT_EQ(slurp(sc), text);
 }
 #endif
 
