@@ -289,6 +289,27 @@ TEST(JsonIn, LoadSceneRefusesADirectory) {
   }
 }
 
+// An input with no size (/dev/zero) was read until memory ran out (2 GiB under a 3 GiB ulimit -v,
+// then a syntax error); it is refused after 64 MiB, as a mesh file of a scene is.
+TEST(JsonIn, AnEndlessSceneOrMeshFileIsRefusedAfter64MiB) {
+  try {
+    load_scene("/dev/zero");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("larger than 64 MiB"), std::string::npos) << e.what();
+  }
+  Scene s = parse_scene_text(R"({"solver": "sph"})");
+  s.dir = "/dev";
+  try {
+    read_scene_file(s, "zero");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("larger than 64 MiB"), std::string::npos) << e.what();
+  }
+  s.dir = ::testing::TempDir();
+  EXPECT_THROW(read_scene_file(s, "."), std::runtime_error);  // a directory
+}
+
 // The real program on a number that overflows a double: exit 2 and the path, no abort.
 TEST(HuygensScene, ProgramExitsTwoOnANumberOverflow) {
   const std::string dir = ::testing::TempDir();
