@@ -15,9 +15,6 @@
 
 namespace huygens {
 
-namespace {
-
-// A file `huygens run` writes into a dump folder (or its temporary).
 bool is_run_file(const std::filesystem::path& p) {
   const std::string name = p.filename().string();
   auto ends = [&](const std::string& s) {
@@ -25,6 +22,8 @@ bool is_run_file(const std::filesystem::path& p) {
   };
   return name == "meta.json" || name == "meta.json.tmp" || ends(".npy") || ends(".npy.tmp");
 }
+
+namespace {
 
 #ifdef HUYGENS_HAVE_MPI
 // The reason of a failed MPI call, or "" when it succeeded.

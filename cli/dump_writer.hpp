@@ -1,6 +1,7 @@
 #pragma once
 // The dump folder of `huygens run`: DIR/<field>_NNNNNN[_J].npy per dumped step and DIR/meta.json,
 // rewritten after every dump so it always lists exactly the complete dumps (docs/robustness.md).
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -8,6 +9,9 @@
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens {
+
+/// A file `huygens run` writes into a dump folder (meta.json, *.npy) or its temporary.
+bool is_run_file(const std::filesystem::path& p);
 
 class DumpWriter {
  public:

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -226,6 +227,22 @@ void report(const RunArgs& a, Solver& solver, double wall, int rc) {
 
 }  // namespace
 
+// --stats-json must not name the scene file or a file the dump writes (meta.json, *.npy in DIR): it
+// replaced them when the run ended, with exit code 0 (a scene turned into stats, a dump's meta.json
+// that was not one).
+void check_outputs_apart(const RunArgs& a) {
+  namespace fs = std::filesystem;
+  if (a.stats_file.empty()) return;
+  std::error_code ec;
+  if (fs::equivalent(a.stats_file, a.scene_file, ec))
+    throw UsageError("--stats-json " + a.stats_file + " is the scene file; name another file");
+  if (a.dump_dir.empty() || !is_run_file(a.stats_file)) return;
+  const fs::path stats_dir = fs::weakly_canonical(fs::absolute(a.stats_file).parent_path(), ec);
+  if (!ec && stats_dir == fs::weakly_canonical(fs::absolute(a.dump_dir), ec) && !ec)
+    throw UsageError("--stats-json " + a.stats_file + " is a file the dump writes in " + a.dump_dir +
+                     " (meta.json, *.npy); name another file");
+}
+
 int cmd_run(int argc, char** argv) {
   RunArgs a;
   if (!parse_run_args(argc, argv, a)) {
@@ -241,6 +258,7 @@ int cmd_run(int argc, char** argv) {
     }
   }
   // every output target is checked before the run, not after it
+  check_outputs_apart(a);
   if (!a.stats_file.empty() && comm::root()) check_output_file(a.stats_file);  // rank 0 writes it
   if (!a.dump_dir.empty()) DumpWriter::prepare(a.dump_dir, a.overwrite);
   stop_request::install();

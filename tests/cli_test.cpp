@@ -101,6 +101,27 @@ TEST(Cli, OutputTargetsAreCheckedBeforeTheRun) {
   EXPECT_FALSE(fs::exists(d / "missing"));
 }
 
+// --stats-json naming the scene or a file of the dump replaced it after the run, with exit code 0.
+TEST(Cli, StatsJsonMustNotReplaceTheSceneOrADumpFile) {
+  const fs::path d = work_dir("apart");
+  scene(d);
+  const std::string text = slurp(d / "scene.json");
+  fs::create_directories(d / "out");
+  for (const char* bad :
+       {"--stats-json scene.json", "--stats-json ./scene.json", "--dump out --stats-json out/meta.json",
+        "--dump out --stats-json out/../out/eta_000002.npy"}) {
+    const Result r = run(d, std::string("run scene.json --steps 2 --fast-plans ") + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--stats-json"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("steps to t"), std::string::npos) << "the run must not start: " << r.output;
+  }
+  EXPECT_EQ(slurp(d / "scene.json"), text);
+  EXPECT_TRUE(fs::is_empty(d / "out"));
+  // beside the dumps under another name is fine
+  EXPECT_EQ(run(d, "run scene.json --steps 2 --fast-plans --dump out --stats-json out/stats.json").code, 0);
+  EXPECT_TRUE(fs::exists(d / "out" / "stats.json"));
+}
+
 TEST(Cli, ADumpFolderOfAnotherRunIsRefusedUnlessOverwrite) {
   const fs::path d = work_dir("reuse");
   scene(d);
@@ -216,6 +237,16 @@ TEST(Cli, TheViewersCommandLineIsCheckedToo) {
     EXPECT_EQ(WEXITSTATUS(status), 2) << bad << ": " << slurp(out);
     EXPECT_EQ(slurp(out).rfind("huygens-viz: ", 0), 0u) << bad << ": " << slurp(out);
   }
+  // the screenshot must not replace the scene it renders (it did, with exit code 0)
+  const fs::path sc = scene(d);
+  const std::string text = slurp(sc);
+  const std::string out = (d / "output.txt").string();
+  const int status = std::system(("'" + std::string(HUYGENS_VIZ) + "' '" + sc.string() + "' --headless --screenshot '" +
+                                  sc.string() + "' > '" + out + "' 2>&1")
+                                     .c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2) << slurp(out);
+  EXPECT_EQ(slurp(sc), text);
 }
 #endif
 

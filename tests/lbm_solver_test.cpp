@@ -162,6 +162,11 @@ void expect_paths(const std::vector<BadScene>& cases) {
 TEST(LbmScene, GridAndWaterErrorsNameTheirPath) {
   expect_paths({
       {"grid missing", [](json& j) { j["lbm"].erase("grid"); }, "$.lbm.grid"},
+      {"description not a string",
+       [](json& j) {
+         j["description"] = {{"a", 1}};
+       },
+       "$.description"},
       {"cell size missing", [](json& j) { j["lbm"]["grid"].erase("cell_m"); }, "$.lbm.grid.cell_m"},
       {"no columns", [](json& j) { j["lbm"]["grid"]["cols"] = 0; }, "$.lbm.grid.cols"},
       {"unsuffixed cell", [](json& j) { j["lbm"]["grid"]["cell"] = 0.5; }, "$.lbm.grid.cell"},
@@ -245,6 +250,32 @@ TEST(LbmScene, ObstacleBoundaryAndTimeErrorsNameTheirPath) {
        },
        "$.lbm.obstacles"},
       {"dry threshold above the water", [](json& j) { j["lbm"]["water"]["min_depth_m"] = 2.0; }, "$.lbm.initial"},
+  });
+}
+
+// A shape that holds no cell does nothing: these ran to exit 0 without it (a rect with x1 < x0, an
+// obstacle outside the grid, a region beyond it).
+TEST(LbmScene, AnObstacleOrRegionHoldingNoCellIsRefused) {
+  expect_paths({
+      {"inverted rect",
+       [](json& j) {
+         j["lbm"]["obstacles"].push_back(
+             {{"type", "rect"}, {"x0_m", 6.0}, {"x1_m", 5.0}, {"y0_m", 0.0}, {"y1_m", 4.0}});
+       },
+       "$.lbm.obstacles[1]"},
+      {"rect outside the grid",
+       [](json& j) {
+         j["lbm"]["obstacles"][0] = {{"type", "rect"}, {"x0_m", 50.0}, {"x1_m", 60.0}, {"y0_m", 0.0}, {"y1_m", 4.0}};
+       },
+       "$.lbm.obstacles[0]"},
+      {"circle outside the grid", [](json& j) { j["lbm"]["obstacles"][0]["x_m"] = -100.0; }, "$.lbm.obstacles[0]"},
+      {"circle of radius 0", [](json& j) { j["lbm"]["obstacles"][0]["radius_m"] = 0.0; }, "$.lbm.obstacles[0]"},
+      {"region beyond the grid",
+       [](json& j) {
+         j["lbm"]["initial"]["regions"][0]["x0_m"] = 30.0;
+         j["lbm"]["initial"]["regions"][0]["x1_m"] = 40.0;
+       },
+       "$.lbm.initial.regions[0]"},
   });
 }
 

@@ -295,7 +295,41 @@ TEST(JsonIn, LoadSceneRefusesADirectory) {
   }
 }
 
+// An input with no size (/dev/zero) was read until memory ran out (2 GiB under a 3 GiB ulimit -v,
+// then a syntax error); it is refused after 64 MiB, as a mesh file of a scene is.
+TEST(JsonIn, AnEndlessSceneOrMeshFileIsRefusedAfter64MiB) {
+  try {
+    load_scene("/dev/zero");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("larger than 64 MiB"), std::string::npos) << e.what();
+  }
+  Scene s = parse_scene_text(R"({"solver": "sph"})");
+  s.dir = "/dev";
+  try {
+    read_scene_file(s, "zero");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("larger than 64 MiB"), std::string::npos) << e.what();
+  }
+  s.dir = ::testing::TempDir();
+  EXPECT_THROW(read_scene_file(s, "."), std::runtime_error);  // a directory
+}
+
 // The real program on a number that overflows a double: exit 2 and the path, no abort.
 TEST(HuygensScene, ProgramExitsTwoOnANumberOverflow) {
   expect_program_exits_two_naming("overflow", R"({"n": 64, "length_m": 1e400, "margin": 8})", "$.grid.length_m");
+}
+
+// A key repeated in one object: nlohmann kept the later value silently ("n": 512, "n": 64 ran at 64).
+TEST(JsonIn, ARepeatedKeyIsRefusedNamingItsPath) {
+  EXPECT_EQ(error_path_of(huygens_scene(R"({"n": 512, "n": 64, "length_m": 1, "margin": 8})")), "$.grid.n");
+  EXPECT_EQ(error_path_of(R"({"solver": "huygens", "solver": "sph"})"), "$.solver");
+  const std::string m = message_or_none(huygens_scene("", R"(, "drops": [{"t_s": 0.1, "x_m": 1, "x_m": 2}])"));
+  EXPECT_NE(m.find("$.drops[0].x_m"), std::string::npos) << m;
+  EXPECT_NE(m.find("twice"), std::string::npos) << m;
+  // the same key in different objects is not a repeat
+  EXPECT_EQ(error_path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1],
+      "fluid": [{"min_m": [0, 0, 0], "max_m": [0.1, 0.1, 0.05]}, {"min_m": [0, 0, 0.06], "max_m": [0.1, 0.1, 0.08]}]}})"),
+            "<no error>");
 }

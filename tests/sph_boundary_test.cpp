@@ -461,4 +461,12 @@ TEST(SphBoundary, BadObjNamesTheFileAndLine) {
   EXPECT_EQ(message("# nothing\n"), "hull.obj: no faces");
   EXPECT_EQ(message("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").find("hull.obj: the mesh is not closed"), 0u);
   EXPECT_THROW(sph_read_obj("/nonexistent/hull.obj"), std::runtime_error);
+  // closed but flat (a tetrahedron squashed into its base plane): no volume, no boundary particle
+  // (it was accepted and the obstacle silently absent)
+  const std::string tet = "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  EXPECT_EQ(message("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n" + tet),
+            "hull.obj: the mesh encloses no volume (its vertices are flat or on a line)");
+  EXPECT_EQ(message("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 1\n" + tet),
+            "hull.obj: the mesh encloses no volume (its vertices are flat or on a line)");
+  EXPECT_EQ(message("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0.01\n" + tet), "no error");  // thin, not flat
 }

@@ -142,6 +142,37 @@ TEST(SphScene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(path_of(with(R"(, "artificial_viscosity": 0.001)")), "$.sph.artificial_viscosity");
   EXPECT_EQ(path_of(with(R"(, "sound_speed_mps": 1.0)")), "$.sph.sound_speed_mps");
   EXPECT_EQ(path_of(with("")), "<no error>");
+  // the description is a string, as in the other solvers' scenes (an array nested 10 deep ran)
+  EXPECT_EQ(
+      path_of(R"({"solver": "sph", "description": [[1]], "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1], )" +
+              kOkFluid + "}}"),
+      "$.description");
+}
+
+// A scene that would run with no water, or with an obstacle that is not there, is refused: these ran
+// to exit 0 with empty heightfields (fluid inside an obstacle, fluid thinner than the spacing) or
+// without the obstacle (one outside the container).
+TEST(SphScene, NoWaterOrAnObstacleOutsideTheContainerIsRefused) {
+  const std::string fluid_in_box = R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1],
+      "fluid": [ { "min_m": [0.02, 0.02, 0], "max_m": [0.05, 0.05, 0.05] } ],
+      "obstacles": [ {"type": "box", "min_m": [0, 0, 0], "max_m": [0.08, 0.08, 0.08]} ]}})";
+  const SceneError e = error_of(fluid_in_box);
+  EXPECT_EQ(e.path(), "$.sph.fluid");
+  EXPECT_NE(std::string(e.what()).find("no particle"), std::string::npos) << e.what();
+  EXPECT_EQ(path_of(R"({"solver": "sph", "sph": {"spacing_m": 0.01, "container_m": [0.1, 0.1, 0.1],
+      "fluid": [ { "min_m": [0, 0, 0], "max_m": [0.1, 0.1, 0.004] } ]}})"),
+            "$.sph.fluid");
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "box", "min_m": [5, 5, 5], "max_m": [6, 6, 6]} ])")),
+            "$.sph.obstacles[0]");
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "sphere", "centre_m": [0.05, 0.05, -1], "radius_m": 0.5} ])")),
+            "$.sph.obstacles[0]");
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "box", "min_m": [0.02, 0.02, 0], "max_m": [0.03, 0.03, 0.01]},
+      {"type": "cylinder", "centre_m": [-1, 0.05], "radius_m": 0.1, "z1_m": 0.1} ])")),
+            "$.sph.obstacles[1]");
+  // touching or overlapping the container is fine (a wedge on the floor, a cylinder through the lid)
+  EXPECT_EQ(path_of(with(R"(, "obstacles": [ {"type": "cylinder", "centre_m": [0.05, 0.05], "radius_m": 0.01,
+      "z0_m": -1, "z1_m": 2} ])")),
+            "<no error>");
 }
 
 // A mesh obstacle's OBJ is read relative to the scene file; a bad one names the file and line.

@@ -148,6 +148,9 @@ int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& set
     return 2;
   }
   check_output_file(o.screenshot);  // before the render, not after it
+  std::error_code ec;
+  if (!o.scene.empty() && std::filesystem::equivalent(o.screenshot, o.scene, ec))
+    throw UsageError("--screenshot " + o.screenshot + " is the scene file; name another file");
   gl::HeadlessContext ctx;
   HeadlessOptions opt;
   opt.frames = o.frames;

@@ -1,6 +1,7 @@
 #include "huygens/common/atomic_file.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,7 +14,23 @@ namespace huygens {
 IoError::IoError(const std::string& path, const std::string& reason)
     : std::runtime_error("cannot write " + path + ": " + reason), path_(path) {}
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), tmp_(path_ + ".tmp") {
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  struct stat st {};
+  if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
+    // a device, pipe or socket (/dev/null, /dev/stdout, a FIFO) is written in place: a rename would
+    // replace the node by a regular file. O_NONBLOCK only for the open: a FIFO without a reader
+    // fails with ENXIO instead of waiting for one.
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC | O_NONBLOCK);
+    if (fd_ < 0) throw IoError(path_, std::strerror(errno));
+    ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK);
+    return;  // no temporary: commit() only closes
+  }
+  // through a symbolic link: the temporary goes beside the file it names and the rename replaces
+  // that file, so the link stays (a missing or dangling target: beside PATH)
+  std::error_code ec;
+  const std::filesystem::path real = std::filesystem::canonical(path_, ec);
+  target_ = ec ? path_ : real.string();
+  tmp_ = target_ + ".tmp";
   fd_ = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw IoError(path_, std::strerror(errno));
 }
@@ -39,7 +56,8 @@ void AtomicFile::commit() {
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) throw IoError(path_, std::strerror(errno));  // delayed write errors (NFS)
-  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) throw IoError(path_, std::strerror(errno));
+  if (tmp_.empty()) return;                                          // written in place (a device or a pipe)
+  if (std::rename(tmp_.c_str(), target_.c_str()) != 0) throw IoError(path_, std::strerror(errno));
   tmp_.clear();
 }
 
@@ -54,6 +72,13 @@ void check_output_file(const std::string& path) {
   if (path.empty()) throw IoError("\"\"", "an empty file name");
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw IoError(path, "it is a folder");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    // a device or a pipe: opened only for the real write (opening and closing a FIFO here would
+    // end its reader's input before the run)
+    if (::access(path.c_str(), W_OK) != 0) throw IoError(path, std::strerror(errno));
+    return;
+  }
   // the real test: the temporary the write will use can be created (folder exists, writable,
   // file system not read-only), then it is removed again
   AtomicFile probe(path);

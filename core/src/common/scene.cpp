@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -176,10 +177,16 @@ class PathTracker {
   bool operator()(int, json::parse_event_t event, json& parsed) {
     using E = json::parse_event_t;
     if (event == E::object_start || event == E::array_start) {
-      frames_.push_back({event == E::array_start, false, {}, 0});
+      frames_.push_back({event == E::array_start, false, {}, 0, {}});
     } else if (event == E::key) {
-      frames_.back().key = parsed.get<std::string>();
-      frames_.back().has_key = true;
+      Frame& f = frames_.back();
+      f.key = parsed.get<std::string>();
+      f.has_key = true;
+      // RFC 8259 leaves repeated names to the parser; nlohmann keeps the last, silently
+      if (!f.keys.insert(f.key).second)
+        throw SceneError(path(),
+                         "the key appears twice in its object (the later value would silently replace the "
+                         "earlier one)");
     } else {
       // a value ends: a scalar (value) or a container (object_end, array_end)
       if (event != E::value) frames_.pop_back();
@@ -204,6 +211,7 @@ class PathTracker {
     bool has_key;
     std::string key;
     std::size_t index;
+    std::set<std::string> keys;  // the object's keys so far
   };
   std::vector<Frame> frames_;
 };
@@ -260,20 +268,44 @@ Scene parse_scene_text(const std::string& text, const std::string& name) {
   return s;
 }
 
+namespace {
+
+// scenes are a few KB and their meshes a few MB; an input above this is not one
+constexpr std::size_t kMaxSceneBytes = std::size_t{64} << 20;
+
+// The bytes of `in`, read in blocks up to kMaxSceneBytes: a larger input, also one with no size
+// (/dev/zero, a pipe), is refused after that much instead of being read until memory runs out.
+// Returns "" with `why` set on a failure.
+std::string read_bounded(std::istream& in, std::string& why) {
+  std::string out;
+  std::vector<char> block(std::size_t{1} << 16);
+  while (in) {
+    in.read(block.data(), static_cast<std::streamsize>(block.size()));
+    out.append(block.data(), static_cast<std::size_t>(in.gcount()));
+    if (out.size() > kMaxSceneBytes) {
+      why = "larger than 64 MiB";
+      return {};
+    }
+  }
+  if (in.bad()) why = "read error";
+  return out;
+}
+
+}  // namespace
+
 Scene load_scene(const std::string& file) {
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
     throw SceneError("$", "cannot read scene file " + file + ": a directory");
-  // scenes are a few KB; a regular file above this is not one (and is not read into memory)
-  constexpr std::uintmax_t kMaxSceneBytes = std::uintmax_t{64} << 20;
+  // a regular file above the limit is refused before it is read
   if (std::filesystem::is_regular_file(file, ec) && std::filesystem::file_size(file, ec) > kMaxSceneBytes)
     throw SceneError("$", "scene file " + file + " is larger than 64 MiB");
   std::ifstream f(file, std::ios::binary);
   if (!f) throw SceneError("$", "cannot open scene file " + file);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  if (f.bad()) throw SceneError("$", "read error in scene file " + file);
-  Scene s = parse_scene_text(ss.str(), file);
+  std::string why;
+  const std::string text = read_bounded(f, why);
+  if (!why.empty()) throw SceneError("$", "cannot read scene file " + file + ": " + why);
+  Scene s = parse_scene_text(text, file);
   s.dir = std::filesystem::absolute(std::filesystem::path(file), ec).parent_path().string();
   return s;
 }
@@ -287,12 +319,14 @@ std::string read_scene_file(const Scene& scene, const std::string& relative) {
     return std::string(bytes);
   }
   const std::filesystem::path path = std::filesystem::path(scene.dir) / relative;
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw std::runtime_error(path.string() + ": a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(path.string() + ": cannot be read");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(path.string() + ": read error");
-  return bytes.str();
+  std::string why;
+  std::string bytes = read_bounded(in, why);
+  if (!why.empty()) throw std::runtime_error(path.string() + ": " + why);
+  return bytes;
 }
 
 }  // namespace huygens

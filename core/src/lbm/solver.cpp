@@ -260,6 +260,13 @@ DamFlow parse_dam(const JsonIn& dam, const LbmParams& p, LbmFields& f) {
   return flow;
 }
 
+// A region or obstacle that holds no cell centre (outside the grid, x1 <= x0, smaller than a cell)
+// would do nothing: a misplaced shape is refused rather than run without it.
+[[noreturn]] void fail_no_cell(const JsonIn& shape, const char* what) {
+  shape.fail_here(std::string("the ") + what +
+                  " holds no cell centre of the grid (outside it, x1 <= x0 or y1 <= y0, or smaller than a cell)");
+}
+
 // "regions": rectangles [x0, x1) x [y0, y1) (unit: m) with their own level and velocity.
 void parse_regions(const JsonIn& init, const LbmParams& p, LbmFields& f) {
   for (const JsonIn& reg : init.array("regions")) {
@@ -269,14 +276,17 @@ void parse_regions(const JsonIn& init, const LbmParams& p, LbmFields& f) {
     if (reg.has("depth_m") && reg.has("surface_m")) reg.fail("surface_m", "give depth_m or surface_m, not both");
     const bool has_u = reg.has("velocity_mps");
     const auto u = vec2_or_zero(reg, "velocity_mps", -1e4, 1e4);
+    std::size_t cells = 0;
     for_each_cell(p, [&](std::size_t i, double x, double y) {
       if (x < x0 || x >= x1 || y < y0 || y >= y1) return;
+      ++cells;
       set_level(reg, i, f);
       if (has_u) {
         f.ux_mps[i] = static_cast<float>(u[0]);
         f.uy_mps[i] = static_cast<float>(u[1]);
       }
     });
+    if (cells == 0) fail_no_cell(reg, "region");
   }
 }
 
@@ -313,10 +323,12 @@ void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f, std::ve
       ob.allow_only({"type", "x_m", "y_m", "radius_m"});
       const double cx = ob.number("x_m", -1e9, 1e9), cy = ob.number("y_m", -1e9, 1e9);
       const double rad = ob.number("radius_m", 0.0, 1e9);
+      std::size_t cells = 0;
       for_each_cell(p, [&](std::size_t i, double xc, double yc) {
         const double x = xc - cx, y = yc - cy;
-        if (x * x + y * y <= rad * rad) f.solid[i] = 1;
+        if (x * x + y * y <= rad * rad) f.solid[i] = 1, ++cells;
       });
+      if (cells == 0) fail_no_cell(ob, "obstacle");
       RenderObstacle s{RenderObstacle::Kind::cylinder};
       s.centre_m = {cx, cy};
       s.radius_m = rad;
@@ -326,9 +338,11 @@ void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f, std::ve
       ob.allow_only({"type", "x0_m", "x1_m", "y0_m", "y1_m"});
       const double x0 = ob.number("x0_m", -1e9, 1e9), x1 = ob.number("x1_m", -1e9, 1e9);
       const double y0 = ob.number("y0_m", -1e9, 1e9), y1 = ob.number("y1_m", -1e9, 1e9);
+      std::size_t cells = 0;
       for_each_cell(p, [&](std::size_t i, double x, double y) {
-        if (x >= x0 && x < x1 && y >= y0 && y < y1) f.solid[i] = 1;
+        if (x >= x0 && x < x1 && y >= y0 && y < y1) f.solid[i] = 1, ++cells;
       });
+      if (cells == 0) fail_no_cell(ob, "obstacle");
       shapes.push_back(RenderObstacle{RenderObstacle::Kind::box, {x0, y0, -kInf}, {x1, y1, kInf}});
     }
   }
@@ -447,6 +461,7 @@ MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks, bool carry) {
 LbmScene parse_lbm_scene(const Scene& scene) {
   const JsonIn root = scene.root();
   root.allow_only({"solver", "lbm", "description", "render"});
+  root.string("description", "");  // a string, as in the Huygens scene
   const JsonIn lb = root.object("lbm");
   LbmScene s;
   s.render = parse_render_request(root);

@@ -85,6 +85,21 @@ void check_closed(const SphMesh& m, const std::string& name) {
                    " belongs to " + std::to_string(n) + " faces (2 expected)");
 }
 
+// a closed mesh encloses a volume: V = sum_t a.(b x c) / 6 (divergence theorem); flat or collinear
+// vertices enclose none and would be an obstacle without a single boundary particle
+void check_volume(const SphMesh& m, const std::string& name) {
+  double six_v = 0, extent = 0;
+  V3 lo = m.vertices[m.triangles[0][0]], hi = lo;
+  for (const auto& t : m.triangles) {
+    six_v += dot(m.vertices[t[0]], cross(m.vertices[t[1]], m.vertices[t[2]]));
+    for (int c : t)
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], m.vertices[c][a]), hi[a] = std::max(hi[a], m.vertices[c][a]);
+  }
+  for (int a = 0; a < 3; ++a) extent = std::max(extent, double(hi[a]) - lo[a]);
+  if (!(std::abs(six_v) > 1e-6 * extent * extent * extent))
+    obj_fail(name, 0, "the mesh encloses no volume (its vertices are flat or on a line)");
+}
+
 }  // namespace
 
 SphMesh sph_parse_obj(const std::string& text, const std::string& name) {
@@ -94,6 +109,7 @@ SphMesh sph_parse_obj(const std::string& text, const std::string& name) {
   int line = 0;
   while (std::getline(in, l)) parse_obj_line(l, name, ++line, m);
   check_closed(m, name);
+  check_volume(m, name);
   return m;
 }
 

@@ -57,6 +57,12 @@ RenderObstacle render_obstacle(const SphObstacle& o) {
 class SphSolver final : public Solver {
  public:
   explicit SphSolver(const SphScene& sc) : scene_(sc), sys_(sc.params) {
+    // blocks thinner than the spacing, or all inside obstacles, leave the lattice empty: refused,
+    // not run with no water (an empty heightfield and empty dumps)
+    if (sys_.count() == 0)
+      throw SceneError("$.sph.fluid",
+                       "the fluid blocks place no particle (thinner than spacing_m, or inside the "
+                       "obstacles): no water to simulate");
     surface_stage_ = sys_.stats().add("surface");
     sph_heightfield_init(scene_.surface, sc.params.container_m[0], sc.params.container_m[1], hf_);
     sys_.stats()[surface_stage_].bytes = (hf_.height.size() + hf_.normal.size()) * sizeof(float);
@@ -284,6 +290,23 @@ void parse_mesh(const JsonIn& o, const Scene& scene, SphObstacle& ob) {
   ob.mesh = std::make_shared<const SphMesh>(std::move(m));
 }
 
+// An obstacle whose bounding box misses the container [0, L]^3 holds no boundary particle and
+// touches no fluid: a misplaced obstacle (units, coordinates) is refused rather than run without it.
+void check_in_container(const JsonIn& o, const SphObstacle& ob, const std::array<float, 3>& container) {
+  std::array<float, 3> lo = ob.min_m, hi = ob.max_m;
+  if (ob.type == SphObstacle::Type::sphere)
+    for (int a = 0; a < 3; ++a)
+      lo[a] = ob.sphere_centre_m[a] - ob.radius_m, hi[a] = ob.sphere_centre_m[a] + ob.radius_m;
+  if (ob.type == SphObstacle::Type::cylinder)
+    for (int a = 0; a < 3; ++a)
+      lo[a] = a < 2 ? ob.centre_m[a] - ob.radius_m : ob.z0_m, hi[a] = a < 2 ? ob.centre_m[a] + ob.radius_m : ob.z1_m;
+  for (int a = 0; a < 3; ++a)
+    if (hi[a] <= 0.f || lo[a] >= container[a])
+      o.fail_here("the obstacle lies outside the container [0, " + num(container[0], 4) + "] x [0, " +
+                  num(container[1], 4) + "] x [0, " + num(container[2], 4) + "] m (its extent on axis " +
+                  std::string(1, char('x' + a)) + ": [" + num(lo[a], 4) + ", " + num(hi[a], 4) + "] m)");
+}
+
 SphObstacle parse_obstacle(const JsonIn& o, const Scene& scene) {
   SphObstacle ob;
   const std::string type = o.string("type", "", {"box", "cylinder", "sphere", "mesh"});
@@ -389,6 +412,7 @@ double boundary_estimate(const SphParams& p) {
 SphScene parse_sph_scene(const Scene& scene) {
   const JsonIn root = scene.root();
   root.allow_only({"solver", "sph", "description"});
+  root.string("description", "");  // a string, as in the Huygens scene
   const JsonIn s = root.object("sph");
   s.reject_renamed({{"viscosity_m2ps", "viscosity_m2s"}});
   s.allow_only({"method", "spacing_m", "support_factor", "rest_density_kgpm3", "viscosity_m2s", "artificial_viscosity",
@@ -403,7 +427,10 @@ SphScene parse_sph_scene(const Scene& scene) {
   parse_fluid_params(s, p);
   parse_fluid_blocks(s, p);
   check_sound_speed(s, p);
-  for (const auto& o : s.array("obstacles")) p.obstacles.push_back(parse_obstacle(o, scene));
+  for (const auto& o : s.array("obstacles")) {
+    p.obstacles.push_back(parse_obstacle(o, scene));
+    check_in_container(o, p.obstacles.back(), p.container_m);
+  }
   parse_time(s, p);
   const double nb = boundary_estimate(p);
   if (nb > 2e7)

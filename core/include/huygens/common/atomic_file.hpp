@@ -1,7 +1,8 @@
 #pragma once
 // Checked, atomic file output: a file is written to PATH.tmp beside its target, every write and
 // the close are checked, and only a complete file is renamed onto PATH. A failed write removes
-// the temporary and leaves the previous PATH as it was (docs/robustness.md).
+// the temporary and leaves the previous PATH as it was (docs/robustness.md). A PATH that is a device
+// or a pipe (/dev/stdout, /dev/full, a FIFO) is written in place; a symbolic link is followed.
 #include <cstddef>
 #include <span>
 #include <stdexcept>
@@ -36,7 +37,7 @@ class AtomicFile {
   void commit();
 
  private:
-  std::string path_, tmp_;
+  std::string path_, target_, tmp_;  // target_: PATH with its symbolic links resolved
   int fd_ = -1;
 };
 
