@@ -329,7 +329,8 @@ void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f, std::ve
         if (x * x + y * y <= rad * rad) f.solid[i] = 1, ++cells;
       });
       if (cells == 0) fail_no_cell(ob, "obstacle");
-      RenderObstacle s{RenderObstacle::Kind::cylinder};
+      RenderObstacle s;
+      s.kind = RenderObstacle::Kind::cylinder;
       s.centre_m = {cx, cy};
       s.radius_m = rad;
       s.z0_m = -kInf, s.z1_m = kInf;
@@ -343,7 +344,10 @@ void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f, std::ve
         if (x >= x0 && x < x1 && y >= y0 && y < y1) f.solid[i] = 1, ++cells;
       });
       if (cells == 0) fail_no_cell(ob, "obstacle");
-      shapes.push_back(RenderObstacle{RenderObstacle::Kind::box, {x0, y0, -kInf}, {x1, y1, kInf}});
+      RenderObstacle s;
+      s.min_m = {x0, y0, -kInf};
+      s.max_m = {x1, y1, kInf};
+      shapes.push_back(s);
     }
   }
 }
