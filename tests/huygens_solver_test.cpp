@@ -14,10 +14,10 @@
 using namespace huygens;
 
 namespace {
-std::unique_ptr<Solver> build(const std::string& extra) {
-  const std::string text = R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 0, "cutoff": false},
-                               "time": {"dt_s": 0.02})" +
-                           extra + "}";
+std::unique_ptr<Solver> build(const std::string& extra, const std::string& time = R"({"dt_s": 0.02})") {
+  const std::string text =
+      R"({"solver": "huygens", "grid": {"n": 64, "length_m": 2.0, "margin": 0, "cutoff": false}, "time": )" + time +
+      extra + "}";
   return make_solver(parse_scene_text(text), RunOptions{false});
 }
 }  // namespace
@@ -129,8 +129,8 @@ TEST(HuygensSolver, FeaturesRegisterOnlyTheirStagesAndTransforms) {
 // Displayed frames: j = 0 is the full step; j = 1..D-1 are the cubic Hermite interpolants between
 // the previous and the current full step (at s = 0 and 1 they would be the end frames exactly).
 TEST(HuygensSolver, DisplayFramesInterpolateBetweenFullSteps) {
-  auto s = build(R"(, "time": {"dt_s": 0.02, "display_per_step": 3},
-      "initial": [{"type": "gaussian", "x_m": 1.0, "y_m": 1.0, "sigma_m": 0.1, "amplitude_m": 0.01}])");
+  auto s = build(R"(, "initial": [{"type": "gaussian", "x_m": 1.0, "y_m": 1.0, "sigma_m": 0.1, "amplitude_m": 0.01}])",
+                 R"({"dt_s": 0.02, "display_per_step": 3})");
   EXPECT_EQ(s->display_per_step(), 3);
   EXPECT_TRUE(s->display_outputs(1).empty());  // no step yet: nothing to interpolate
   const std::vector<float> e0(s->height().begin(), s->height().end());
