@@ -7,12 +7,14 @@
 #include <sys/mman.h>
 #endif
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <mutex>
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace huygens {
 
@@ -98,14 +100,46 @@ int fft_set_threads(int threads) {
 
 const char* fft_version() { return fftwf_version; }
 
+namespace {
+// N x N row transforms (rank 1, N of them N points apart), from a to b.
+fftwf_plan plan_rows(int n, fftwf_complex* a, fftwf_complex* b, int sign) {
+  fftw_iodim dim{n, 1, 1}, many{n, n, n};
+  return fftwf_plan_guru_dft(1, &dim, 1, &many, a, b, sign, FFTW_ESTIMATE);
+}
+// In-place transpose of an N x N array in 16 x 16 blocks (two blocks of complex floats fit in L1;
+// a block pair is swapped by one thread).
+void transpose_square(cfloat* a, int n) {
+  constexpr int B = 16;
+  const int nb = (n + B - 1) / B;
+#pragma omp parallel for schedule(dynamic, 4) if (n >= 512)
+  for (int bi = 0; bi < nb; ++bi) {
+    const int i1 = std::min(n, bi * B + B);
+    for (int bj = bi; bj < nb; ++bj) {
+      const int j1 = std::min(n, bj * B + B);
+      for (int i = bi * B; i < i1; ++i) {
+        cfloat* row = a + static_cast<std::size_t>(i) * n;
+        for (int j = bj == bi ? i + 1 : bj * B; j < j1; ++j) std::swap(row[j], a[static_cast<std::size_t>(j) * n + i]);
+      }
+    }
+  }
+}
+// Square grids from this size on take the row-column form under FFTW_ESTIMATE (fft.hpp).
+constexpr int kRowColumnMin = 256;
+}  // namespace
+
 Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort) : rows_(rows), cols_(cols) {
   init_threads_once();
   std::lock_guard lock(planner_mutex());
+  auto* fin = reinterpret_cast<fftwf_complex*>(in);
+  auto* fout = reinterpret_cast<fftwf_complex*>(out);
   // MEASURE/PATIENT overwrite the buffers while planning: plan on scratch copies.
   fftwf_plan p = nullptr;
-  if (effort == PlanEffort::estimate) {
-    p = fftwf_plan_dft_2d(rows, cols, reinterpret_cast<fftwf_complex*>(in), reinterpret_cast<fftwf_complex*>(out), sign,
-                          flags_of(effort));
+  if (effort == PlanEffort::estimate && rows == cols && rows >= kRowColumnMin) {
+    p = plan_rows(rows, fin, fout, sign);
+    rows_plan_ = plan_rows(rows, fout, fout, sign);
+    if (p && !rows_plan_) fftwf_destroy_plan(p), p = nullptr;
+  } else if (effort == PlanEffort::estimate) {
+    p = fftwf_plan_dft_2d(rows, cols, fin, fout, sign, flags_of(effort));
   } else {
     const std::size_t n = static_cast<std::size_t>(rows) * cols;
     auto* a = static_cast<fftwf_complex*>(aligned_alloc64(n * sizeof(fftwf_complex)));
@@ -125,16 +159,21 @@ Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort e
 }
 
 Fft2D::~Fft2D() {
-  if (!plan_) return;
   std::lock_guard lock(planner_mutex());
-  fftwf_destroy_plan(static_cast<fftwf_plan>(plan_));
+  if (plan_) fftwf_destroy_plan(static_cast<fftwf_plan>(plan_));
+  if (rows_plan_) fftwf_destroy_plan(static_cast<fftwf_plan>(rows_plan_));
 }
 
 void Fft2D::execute() const { execute(in_, out_); }
 
 void Fft2D::execute(cfloat* in, cfloat* out) const {
-  fftwf_execute_dft(static_cast<fftwf_plan>(plan_), reinterpret_cast<fftwf_complex*>(in),
-                    reinterpret_cast<fftwf_complex*>(out));
+  auto* fout = reinterpret_cast<fftwf_complex*>(out);
+  fftwf_execute_dft(static_cast<fftwf_plan>(plan_), reinterpret_cast<fftwf_complex*>(in), fout);
+  if (!rows_plan_) return;
+  // row-column form: the columns as rows of the transpose
+  transpose_square(out, rows_);
+  fftwf_execute_dft(static_cast<fftwf_plan>(rows_plan_), fout, fout);
+  transpose_square(out, rows_);
 }
 
 }  // namespace huygens

@@ -59,13 +59,20 @@ int fft_set_threads(int threads);
 const char* fft_version();
 
 /// A 2D complex-to-complex transform of rows x cols, in place on the buffer given at
-/// construction (or out of place from `in` to `out`). Plans are made once here.
+/// construction (or out of place from `in` to `out`). Plans are made once here. With
+/// PlanEffort::estimate a square grid of N >= 256 runs in row-column form: the row transforms
+/// (in to out), a transpose, the row transforms again (in place), a transpose back. FFTW_ESTIMATE's
+/// own 2D plan transforms the columns at a stride of N points, which the cache serves badly at
+/// these sizes (12 ms against 1.5 ms at 512^2 here, docs/performance.md); both forms are
+/// deterministic, FFTW_MEASURE's choice is not (it times candidates).
 class Fft2D {
  public:
   Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort = PlanEffort::measure);
   ~Fft2D();
-  Fft2D(Fft2D&& o) noexcept : plan_(o.plan_), in_(o.in_), out_(o.out_), rows_(o.rows_), cols_(o.cols_) {
+  Fft2D(Fft2D&& o) noexcept
+      : plan_(o.plan_), rows_plan_(o.rows_plan_), in_(o.in_), out_(o.out_), rows_(o.rows_), cols_(o.cols_) {
     o.plan_ = nullptr;
+    o.rows_plan_ = nullptr;
   }
   Fft2D(const Fft2D&) = delete;
   Fft2D& operator=(const Fft2D&) = delete;
@@ -82,7 +89,8 @@ class Fft2D {
   static constexpr int backward = +1;
 
  private:
-  void* plan_ = nullptr;
+  void* plan_ = nullptr;       // the 2D plan, or in row-column form the row pass from in to out
+  void* rows_plan_ = nullptr;  // row-column form: the row pass in place on out (else nullptr)
   cfloat* in_ = nullptr;
   cfloat* out_ = nullptr;
   int rows_ = 0;
