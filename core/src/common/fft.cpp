@@ -135,9 +135,13 @@ Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort e
   // MEASURE/PATIENT overwrite the buffers while planning: plan on scratch copies.
   fftwf_plan p = nullptr;
   if (effort == PlanEffort::estimate && rows == cols && rows >= kRowColumnMin) {
-    p = plan_rows(rows, fin, fout, sign);
-    rows_plan_ = plan_rows(rows, fout, fout, sign);
-    if (p && !rows_plan_) fftwf_destroy_plan(p), p = nullptr;
+    // a plan this process measured before (FFTW's wisdom) is taken as FFTW_ESTIMATE would
+    p = fftwf_plan_dft_2d(rows, cols, fin, fout, sign, FFTW_ESTIMATE | FFTW_WISDOM_ONLY);
+    if (!p) {
+      p = plan_rows(rows, fin, fout, sign);
+      rows_plan_ = plan_rows(rows, fout, fout, sign);
+      if (p && !rows_plan_) fftwf_destroy_plan(p), p = nullptr;
+    }
   } else if (effort == PlanEffort::estimate) {
     p = fftwf_plan_dft_2d(rows, cols, fin, fout, sign, flags_of(effort));
   } else {

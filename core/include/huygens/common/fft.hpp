@@ -63,8 +63,9 @@ const char* fft_version();
 /// PlanEffort::estimate a square grid of N >= 256 runs in row-column form: the row transforms
 /// (in to out), a transpose, the row transforms again (in place), a transpose back. FFTW_ESTIMATE's
 /// own 2D plan transforms the columns at a stride of N points, which the cache serves badly at
-/// these sizes (12 ms against 1.5 ms at 512^2 here, docs/performance.md); both forms are
-/// deterministic, FFTW_MEASURE's choice is not (it times candidates).
+/// these sizes (10 ms against 1.6 ms at 512^2 here, docs/performance.md); both forms are
+/// deterministic, FFTW_MEASURE's choice is not (it times candidates). A 2D plan this process
+/// measured before (FFTW's wisdom) is used instead, as FFTW_ESTIMATE itself does.
 class Fft2D {
  public:
   Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort = PlanEffort::measure);
