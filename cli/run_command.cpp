@@ -225,8 +225,6 @@ void report(const RunArgs& a, Solver& solver, double wall, int rc) {
   if (!a.dump_dir.empty()) std::printf("dumps: %s (meta.json)\n", a.dump_dir.c_str());
 }
 
-}  // namespace
-
 // --stats-json must not name the scene file or a file the dump writes (meta.json, *.npy in DIR): it
 // replaced them when the run ended, with exit code 0 (a scene turned into stats, a dump's meta.json
 // that was not one).
@@ -242,6 +240,8 @@ void check_outputs_apart(const RunArgs& a) {
     throw UsageError("--stats-json " + a.stats_file + " is a file the dump writes in " + a.dump_dir +
                      " (meta.json, *.npy); name another file");
 }
+
+}  // namespace
 
 int cmd_run(int argc, char** argv) {
   RunArgs a;
