@@ -6,6 +6,7 @@
 #include <exception>
 #include <filesystem>
 #include <functional>
+#include <regex>
 
 #include "huygens/common/atomic_file.hpp"
 #include "huygens/common/comm.hpp"
@@ -15,12 +16,12 @@
 
 namespace huygens {
 
+// The names a dump writes: meta.json and FIELD_NNNNNN[_J].npy (FIELD a lower-case identifier, the
+// step in six or more digits, J the display frame inside a step), each also with ".tmp". Any other
+// file in the folder (an input bed .npy, notes) is not a run's and is never removed.
 bool is_run_file(const std::filesystem::path& p) {
-  const std::string name = p.filename().string();
-  auto ends = [&](const std::string& s) {
-    return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
-  };
-  return name == "meta.json" || name == "meta.json.tmp" || ends(".npy") || ends(".npy.tmp");
+  static const std::regex name(R"((meta\.json|[a-z][a-z0-9_]*_[0-9]{6,}(_[0-9]+)?\.npy)(\.tmp)?)");
+  return std::regex_match(p.filename().string(), name);
 }
 
 namespace {

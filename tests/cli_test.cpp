@@ -129,11 +129,15 @@ TEST(Cli, ADumpFolderOfAnotherRunIsRefusedUnlessOverwrite) {
   const Result again = run(d, "run scene.json --steps 2 --dump out --fast-plans");
   EXPECT_EQ(again.code, 2) << again.output;
   EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
-  std::ofstream(d / "out" / "notes.txt") << "mine";
+  // only the run's own files are removed: not notes, not an input such as a bed kept beside the dumps
+  const std::vector<std::string> mine = {"notes.txt", "bed.npy", "eta.npy", "eta_final.npy", "eta_12.npy"};
+  for (const auto& name : mine) std::ofstream(d / "out" / name) << "mine";
   const Result over = run(d, "run scene.json --steps 2 --dump out --overwrite --fast-plans");
   EXPECT_EQ(over.code, 0) << over.output;
-  EXPECT_TRUE(fs::exists(d / "out" / "notes.txt"));  // only the run's own files are removed
-  fs::remove(d / "out" / "notes.txt");
+  for (const auto& name : mine) {
+    EXPECT_EQ(slurp(d / "out" / name), "mine") << name;
+    fs::remove(d / "out" / name);
+  }
   expect_listed_equals_present(d / "out");
   EXPECT_EQ(nlohmann::json::parse(slurp(d / "out" / "meta.json"))["dumps"].size(), 3u);
 }
@@ -198,6 +202,11 @@ TEST(Cli, AScenePastTheMemoryIsRefusedBeforeTheRun) {
   const Result ok = run(d, "run scene.json --steps 1 --fast-plans", "HUYGENS_MAX_MEMORY_GIB=1");
   EXPECT_EQ(ok.code, 0) << ok.output;
   EXPECT_NE(ok.output.find("estimated"), std::string::npos) << ok.output;
+  for (const char* bad : {"abc", "-1", "nan", "1x"}) {  // a malformed cap is bad input, not a lack of memory
+    const Result r = run(d, "run scene.json --steps 1 --fast-plans", std::string("HUYGENS_MAX_MEMORY_GIB=") + bad);
+    EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("HUYGENS_MAX_MEMORY_GIB"), std::string::npos) << r.output;
+  }
 }
 
 TEST(Cli, TheAddressSpaceLimitCountsAsMemory) {

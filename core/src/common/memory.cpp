@@ -111,7 +111,7 @@ std::uint64_t available_memory() {
     char* end = nullptr;
     const double gib = std::strtod(cap, &end);
     if (*end || !(gib >= 0) || !std::isfinite(gib))
-      throw ResourceError(std::string("HUYGENS_MAX_MEMORY_GIB must be a number of GiB >= 0, got '") + cap + "'");
+      throw UsageError(std::string("HUYGENS_MAX_MEMORY_GIB must be a number of GiB >= 0, got '") + cap + "'");
     avail = std::min(avail, static_cast<std::uint64_t>(gib * 1024.0 * 1024.0 * 1024.0));
   }
   return avail;
