@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "huygens/sph/mesh_tree.hpp"
+
 namespace huygens {
 
 // ---------------------------------------------------------------------------------------------
@@ -121,63 +123,6 @@ SphMesh sph_read_obj(const std::string& file) {
   return sph_parse_obj(s.str(), file);
 }
 
-// ---------------------------------------------------------------------------------------------
-// mesh geometry: inside test by winding number, distance to the surface
-
-namespace {
-
-// Inside a closed mesh where its winding number sum_t Omega_t / (4 pi) is above 1/2 (Jacobson et al.
-// 2013, generalised winding number): Omega_t is the signed solid angle of triangle t seen from p,
-// tan(Omega/2) = a.(b x c) / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|) with a, b, c its corners
-// relative to p (Van Oosterom and Strackee 1983). Unlike a ray's crossing count it has no edge or
-// vertex case: a ray through an edge shared by two triangles counted twice.
-bool mesh_inside(const SphMesh& m, const V3& p) {
-  double omega = 0.0;
-  for (const auto& t : m.triangles) {
-    const V3 a = sub(m.vertices[t[0]], p), b = sub(m.vertices[t[1]], p), c = sub(m.vertices[t[2]], p);
-    const double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b)), lc = std::sqrt(dot(c, c));
-    const double num = dot(a, cross(b, c));
-    const double den = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-    omega += 2.0 * std::atan2(num, den);
-  }
-  return std::fabs(omega) > 2.0 * std::numbers::pi;  // |winding number| above 1/2, either orientation
-}
-
-// squared distance from p to triangle (a, b, c) (Ericson 2005, Real-Time Collision Detection, 5.1.5)
-float tri_dist2(const V3& p, const V3& a, const V3& b, const V3& c) {
-  const V3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-  const float d1 = dot(ab, ap), d2 = dot(ac, ap);
-  auto d2to = [&](const V3& q) { return dot(sub(p, q), sub(p, q)); };
-  auto lerp = [](const V3& x, const V3& y, float t) {
-    return V3{x[0] + t * (y[0] - x[0]), x[1] + t * (y[1] - x[1]), x[2] + t * (y[2] - x[2])};
-  };
-  if (d1 <= 0.f && d2 <= 0.f) return d2to(a);
-  const V3 bp = sub(p, b);
-  const float d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0.f && d4 <= d3) return d2to(b);
-  const float vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.f && d1 >= 0.f && d3 <= 0.f) return d2to(lerp(a, b, d1 / (d1 - d3)));
-  const V3 cp = sub(p, c);
-  const float d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0.f && d5 <= d6) return d2to(c);
-  const float vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.f && d2 >= 0.f && d6 <= 0.f) return d2to(lerp(a, c, d2 / (d2 - d6)));
-  const float va = d3 * d6 - d5 * d4;
-  if (va <= 0.f && (d4 - d3) >= 0.f && (d5 - d6) >= 0.f) return d2to(lerp(b, c, (d4 - d3) / ((d4 - d3) + (d5 - d6))));
-  const float den = 1.f / (va + vb + vc), v = vb * den, w = vc * den;
-  const V3 q{a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w};
-  return d2to(q);
-}
-
-float mesh_dist2(const SphMesh& m, const V3& p) {
-  float best = 1e30f;
-  for (const auto& t : m.triangles)
-    best = std::min(best, tri_dist2(p, m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]));
-  return best;
-}
-
-}  // namespace
-
 bool SphObstacle::blocks(float x, float y, float z, float margin) const {
   const float e = margin;
   switch (type) {
@@ -198,8 +143,8 @@ bool SphObstacle::blocks(float x, float y, float z, float margin) const {
       if (!(x > min_m[0] - e && x < max_m[0] + e && y > min_m[1] - e && y < max_m[1] + e && z > min_m[2] - e &&
             z < max_m[2] + e))
         return false;
-      if (e >= 0.f) return mesh_inside(*mesh, {x, y, z}) || mesh_dist2(*mesh, {x, y, z}) < e * e;
-      return mesh_inside(*mesh, {x, y, z}) && mesh_dist2(*mesh, {x, y, z}) > e * e;
+      if (e >= 0.f) return sph_mesh_inside(*mesh, {x, y, z}) || sph_mesh_dist2(*mesh, {x, y, z}) < e * e;
+      return sph_mesh_inside(*mesh, {x, y, z}) && sph_mesh_dist2(*mesh, {x, y, z}) > e * e;
   }
   return false;
 }
@@ -385,8 +330,8 @@ bool buried_in_wall(const V3& a, const V3& b, const V3& c, const V3& L, float ep
 // points along the edge, ~dx apart, at the kite's centroid on the bisector, (dx/2)(1 + cos^2 alpha) /
 // (3 sin alpha) from the edge, weight = the kite's volume per point / dx^3. Edges flatter than 150
 // degrees (a quad's diagonal: 180) are left out, as are points outside the mesh or the container.
-void sample_convex_edges(const SphMesh& exposed, const SphMesh& m, float orient, const V3& container, float dx,
-                         SphBoundarySample& out) {
+void sample_convex_edges(const SphMesh& exposed, const SphMesh& m, const SphMeshTree& solid, float orient,
+                         const V3& container, float dx, SphBoundarySample& out) {
   std::map<std::pair<int, int>, std::vector<std::size_t>> edges;
   for (std::size_t t = 0; t < exposed.triangles.size(); ++t)
     for (int e = 0; e < 3; ++e) {
@@ -422,7 +367,7 @@ void sample_convex_edges(const SphMesh& exposed, const SphMesh& m, float orient,
                  a[2] + u * (b[2] - a[2]) + depth * bis[2] / lb};
       const bool in_box =
           p[0] > 0.f && p[1] > 0.f && p[2] > 0.f && p[0] < container[0] && p[1] < container[1] && p[2] < container[2];
-      if (in_box && mesh_inside(m, p)) out.add(p[0], p[1], p[2], w, -bis[0] / lb, -bis[1] / lb, -bis[2] / lb);
+      if (in_box && solid.inside(p)) out.add(p[0], p[1], p[2], w, -bis[0] / lb, -bis[1] / lb, -bis[2] / lb);
     }
   }
 }
@@ -435,7 +380,8 @@ void sample_mesh(const SphMesh& m, const V3& container, float dx, int layers, Sp
   for (const auto& t : m.triangles)
     if (!buried_in_wall(m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]], container, 1e-3f * dx))
       exposed.triangles.push_back(t);
-  sample_convex_edges(exposed, m, orient, container, dx, out);
+  const SphMeshTree solid(m, m.triangles), faces(m, exposed.triangles);
+  sample_convex_edges(exposed, m, solid, orient, container, dx, out);
   for (const auto& t : exposed.triangles) {
     const V3 &a = m.vertices[t[0]], &b = m.vertices[t[1]], &c = m.vertices[t[2]];
     const V3 ab = sub(b, a), ac = sub(c, a), nn = cross(ab, ac);
@@ -456,7 +402,7 @@ void sample_mesh(const SphMesh& m, const V3& container, float dx, int layers, Sp
                        a[2] + u * ab[2] + v * ac[2] - d * nrm[2]};
             const bool in_box = p[0] > 0.f && p[1] > 0.f && p[2] > 0.f && p[0] < container[0] && p[1] < container[1] &&
                                 p[2] < container[2];
-            if (in_box && mesh_dist2(exposed, p) >= d * d * (1.f - 1e-3f) && mesh_inside(m, p))
+            if (in_box && !faces.nearer_than(p, d * d * (1.f - 1e-3f)) && solid.inside(p))
               out.add(p[0], p[1], p[2], w, nrm[0], nrm[1], nrm[2]);
           }
   }
