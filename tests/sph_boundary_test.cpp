@@ -36,10 +36,7 @@ SphObstacle cube_mesh(float lo, float size) {
   for (auto& v : m.vertices)
     for (float& c : v) c = lo + size * c;
   SphObstacle o;
-  o.type = SphObstacle::Type::mesh;
-  o.min_m = {lo, lo, lo};
-  o.max_m = {lo + size, lo + size, lo + size};
-  o.mesh = std::make_shared<const SphMesh>(std::move(m));
+  o.set_mesh(std::move(m));
   return o;
 }
 
@@ -52,10 +49,7 @@ SphObstacle wedge_mesh(float x0, float y0, float z0) {
       "wedge.obj");
   for (auto& v : m.vertices) v = {v[0] + x0, v[1] + y0, v[2] + z0};
   SphObstacle o;
-  o.type = SphObstacle::Type::mesh;
-  o.min_m = {x0, y0, z0};
-  o.max_m = {x0 + 0.1f, y0 + 0.1f, z0 + 0.08f};
-  o.mesh = std::make_shared<const SphMesh>(std::move(m));
+  o.set_mesh(std::move(m));
   return o;
 }
 
@@ -430,7 +424,10 @@ TEST(SphBoundary, MeshInsideHoldsOnEdgesAndForEitherOrientation) {
   SphMesh flipped = *o.mesh;
   for (auto& tri : flipped.triangles) std::swap(tri[1], tri[2]);
   SphObstacle f = o;
-  f.mesh = std::make_shared<const SphMesh>(std::move(flipped));
+  f.set_mesh(std::move(flipped));
+  SphObstacle stale = o;  // a mesh swapped in by hand keeps the old mesh's tree: refused, not answered wrongly
+  stale.mesh = f.mesh;
+  EXPECT_THROW(stale.blocks(0.5f, 0.5f, 0.5f, 0.f), std::logic_error);
   int wrong = 0;
   for (int i = 0; i < 9; ++i)
     for (int j = 0; j < 9; ++j)

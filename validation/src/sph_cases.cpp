@@ -287,12 +287,9 @@ std::vector<ValidationRow> sph_obstacle_rows(float dx, double t_end) {
       "v 0 0 0\nv 0.1 0 0\nv 0.05 0 0.08\nv 0 0.1 0\nv 0.1 0.1 0\nv 0.05 0.1 0.08\n"
       "f 1 2 3\nf 4 6 5\nf 1 4 5 2\nf 1 3 6 4\nf 2 5 6 3\n";
   SphObstacle mesh;
-  mesh.type = SphObstacle::Type::mesh;
   SphMesh m = sph_parse_obj(wedge, "wedge.obj");
   for (auto& v : m.vertices) v = {v[0] + 0.25f, v[1] + 0.f, v[2]};
-  mesh.min_m = {0.25f, 0.f, 0.f};
-  mesh.max_m = {0.35f, 0.1f, 0.08f};
-  mesh.mesh = std::make_shared<const SphMesh>(std::move(m));
+  mesh.set_mesh(std::move(m));
   SphObstacle sphere;
   sphere.type = SphObstacle::Type::sphere;
   sphere.sphere_centre_m = {0.3f, 0.15f, 0.05f};

@@ -143,10 +143,26 @@ bool SphObstacle::blocks(float x, float y, float z, float margin) const {
       if (!(x > min_m[0] - e && x < max_m[0] + e && y > min_m[1] - e && y < max_m[1] + e && z > min_m[2] - e &&
             z < max_m[2] + e))
         return false;
-      if (e >= 0.f) return sph_mesh_inside(*mesh, {x, y, z}) || sph_mesh_dist2(*mesh, {x, y, z}) < e * e;
-      return sph_mesh_inside(*mesh, {x, y, z}) && sph_mesh_dist2(*mesh, {x, y, z}) > e * e;
+      if (!tree || &tree->mesh() != mesh.get())
+        throw std::logic_error("a mesh obstacle is made by SphObstacle::set_mesh (its tree must be its mesh's)");
+      // within e of the surface: some face nearer than e; deeper than -e: no face at -e or nearer
+      if (e >= 0.f) return tree->inside({x, y, z}) || tree->nearer_than({x, y, z}, e * e);
+      return tree->inside({x, y, z}) && !tree->nearer_than({x, y, z}, std::nextafter(e * e, 1e30f));
   }
   return false;
+}
+
+void SphObstacle::set_mesh(SphMesh placed) {
+  type = Type::mesh;
+  min_m = {1e30f, 1e30f, 1e30f};
+  max_m = {-1e30f, -1e30f, -1e30f};
+  for (const auto& v : placed.vertices)
+    for (int a = 0; a < 3; ++a) {
+      min_m[a] = std::min(min_m[a], v[a]);
+      max_m[a] = std::max(max_m[a], v[a]);
+    }
+  mesh = std::make_shared<const SphMesh>(std::move(placed));
+  tree = std::make_shared<const SphMeshTree>(mesh);
 }
 
 // ---------------------------------------------------------------------------------------------

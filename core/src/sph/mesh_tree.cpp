@@ -92,6 +92,10 @@ SphMeshTree::SphMeshTree(const SphMesh& mesh, std::vector<std::array<int, 3>> tr
   if (!tris_.empty()) build(0, static_cast<int>(tris_.size()));
 }
 
+SphMeshTree::SphMeshTree(std::shared_ptr<const SphMesh> mesh) : SphMeshTree(*mesh, mesh->triangles) {
+  owner_ = std::move(mesh);
+}
+
 // Node over tris_[first, first + count): box, centroid, vector area and radius; split at the median
 // centroid along the box's longest axis until kLeafTriangles remain.
 int SphMeshTree::build(int first, int count) {

@@ -266,7 +266,6 @@ void check_sound_speed(const JsonIn& s, const SphParams& p) {
 // moved by position_m.
 void parse_mesh(const JsonIn& o, const Scene& scene, SphObstacle& ob) {
   o.allow_only({"type", "file", "position_m", "scale"});
-  ob.type = SphObstacle::Type::mesh;
   const std::string file = o.string("file", "");
   if (file.empty()) o.fail("file", "the OBJ file of the mesh is required");
   const std::array<float, 3> pos = o.has("position_m") ? vecf<3>(o, "position_m", -1e4, 1e4) : std::array<float, 3>{};
@@ -279,15 +278,9 @@ void parse_mesh(const JsonIn& o, const Scene& scene, SphObstacle& ob) {
   } catch (const std::runtime_error& e) {
     o.fail("file", e.what());
   }
-  ob.min_m = {1e30f, 1e30f, 1e30f};
-  ob.max_m = {-1e30f, -1e30f, -1e30f};
   for (auto& v : m.vertices)
-    for (int a = 0; a < 3; ++a) {
-      v[a] = v[a] * scale + pos[a];
-      ob.min_m[a] = std::min(ob.min_m[a], v[a]);
-      ob.max_m[a] = std::max(ob.max_m[a], v[a]);
-    }
-  ob.mesh = std::make_shared<const SphMesh>(std::move(m));
+    for (int a = 0; a < 3; ++a) v[a] = v[a] * scale + pos[a];
+  ob.set_mesh(std::move(m));
 }
 
 // An obstacle whose bounding box misses the container [0, L]^3 holds no boundary particle and

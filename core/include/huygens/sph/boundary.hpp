@@ -36,6 +36,8 @@ SphMesh sph_read_obj(const std::string& file);
 /// The same from text (`name` stands for the file in messages).
 SphMesh sph_parse_obj(const std::string& text, const std::string& name);
 
+class SphMeshTree;
+
 /// A static rigid obstacle: an axis-aligned box, a vertical cylinder standing on z0_m, a sphere, or
 /// a closed triangle mesh.
 struct SphObstacle {
@@ -53,8 +55,11 @@ struct SphObstacle {
   float radius_m = 0.f;
   /// Cylinder bottom and top heights (unit: m).
   float z0_m = 0.f, z1_m = 0.f;
-  /// Mesh, placed (unit: m); min_m / max_m hold its bounding box.
+  /// Mesh, placed (unit: m); min_m / max_m hold its bounding box. Set by set_mesh, with its tree.
   std::shared_ptr<const SphMesh> mesh;
+  std::shared_ptr<const SphMeshTree> tree;
+  /// Makes this a mesh obstacle: the placed mesh (unit: m), its bounding box and its query tree.
+  void set_mesh(SphMesh placed);
   /// True where (x, y, z) lies inside the obstacle or within `margin` of it; a negative margin: deeper
   /// than -margin inside (unit: m).
   bool blocks(float x, float y, float z, float margin) const;

@@ -13,6 +13,7 @@
 // - nearer: the exact minimum over the triangles whose box is nearer than the distance (the boxes
 //   prune; no answer changes).
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "huygens/sph/boundary.hpp"
@@ -36,6 +37,10 @@ float sph_mesh_dist2(const SphMesh& m, const std::array<float, 3>& p);
 class SphMeshTree {
  public:
   SphMeshTree(const SphMesh& mesh, std::vector<std::array<int, 3>> triangles);
+  /// Over every triangle of a shared mesh, which the tree then keeps alive.
+  explicit SphMeshTree(std::shared_ptr<const SphMesh> mesh);
+  /// The mesh the tree was built on.
+  const SphMesh& mesh() const { return mesh_; }
   /// The answer of sph_mesh_inside over these triangles.
   bool inside(const std::array<float, 3>& p) const;
   /// True when some triangle lies nearer to p than sqrt(r2) (exact, as the minimum of sph_mesh_dist2 < r2).
@@ -53,6 +58,7 @@ class SphMeshTree {
   double winding_sum(int node, const std::array<float, 3>& p) const;
   bool nearer(int node, const std::array<float, 3>& p, float r2) const;
 
+  std::shared_ptr<const SphMesh> owner_;  // set by the shared-mesh constructor
   const SphMesh& mesh_;
   std::vector<std::array<int, 3>> given_, tris_;  // as given, and in the tree's order
   std::vector<Node> nodes_;
