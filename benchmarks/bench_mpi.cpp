@@ -103,8 +103,8 @@ struct Timing {
   int transposes = 0;  // per step
 };
 
-Timing time_solver(const HuygensScene& sc, MPI_Comm comm, int steps) {
-  HuygensSlabSolver s(sc, comm);
+Timing time_solver(const HuygensScene& sc, MPI_Comm comm, int steps, SlabTransforms how) {
+  HuygensSlabSolver s(sc, comm, how);
   s.step();  // warm-up
   MPI_Barrier(comm);
   const double sent0 = g_sent, t0 = MPI_Wtime();
@@ -135,9 +135,9 @@ double time_transpose(int n, MPI_Comm comm, int reps) {
 }
 
 // rank 0 measures alone (the others wait without spinning a core)
-Timing time_one_rank(const HuygensScene& sc, int steps, int rank) {
+Timing time_one_rank(const HuygensScene& sc, int steps, int rank, SlabTransforms how) {
   Timing t;
-  if (rank == 0) t = time_solver(sc, MPI_COMM_SELF, steps);
+  if (rank == 0) t = time_solver(sc, MPI_COMM_SELF, steps, how);
   MPI_Request req;
   MPI_Ibarrier(MPI_COMM_WORLD, &req);
   for (int done = 0; !done;) {
@@ -155,23 +155,26 @@ void run_under_mpi(Context& ctx) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   if (rank != 0 && !std::freopen("/dev/null", "w", stdout)) std::perror("freopen");  // rank 0 prints
-  Table t({"N", "ranks", "ms/step", "all-to-all ms", "local ms", "speedup", "transposes", "bytes/rank/step formula",
-           "measured", "ratio"});
-  for (int n : ctx.quick ? std::vector<int>{256, 512} : std::vector<int>{1024, 2048}) {
-    const HuygensScene sc = mpi_scene(n);
-    const int steps = n >= 2048 ? 8 : n >= 1024 ? 16 : 32;
-    const Timing one = time_one_rank(sc, steps, rank);
-    const Timing many = time_solver(sc, MPI_COMM_WORLD, steps);
-    const double tr = time_transpose(n, MPI_COMM_WORLD, 2 * steps) * many.transposes;
-    if (rank != 0) continue;
-    t.add({fmt("%d", n), "1", fmt("%.1f", 1e3 * one.step_s), "0", fmt("%.1f", 1e3 * one.step_s), "1.00",
-           fmt("%d", one.transposes), "0", fmt("%.0f", one.bytes), "-"});
-    t.add({fmt("%d", n), fmt("%d", ranks), fmt("%.1f", 1e3 * many.step_s), fmt("%.1f", 1e3 * tr),
-           fmt("%.1f", 1e3 * (many.step_s - tr)), fmt("%.2f", one.step_s / many.step_s), fmt("%d", many.transposes),
-           fmt("%.0f", many.formula), fmt("%.0f", many.bytes), fmt("%.4f", many.bytes / many.formula)});
-    ctx.expect(std::abs(many.bytes / many.formula - 1.0) < 0.01,
-               fmt("mpi: measured bytes match the formula at N=%d", n));
-  }
+  Table t({"N", "transforms", "ranks", "ms/step", "all-to-all ms", "local ms", "speedup", "transposes",
+           "bytes/rank/step formula", "measured", "ratio"});
+  const std::pair<SlabTransforms, const char*> forms[] = {{SlabTransforms::fftw_transposed, "FFTW transposed"},
+                                                          {SlabTransforms::one_process_bits, "one-process bits"}};
+  for (int n : ctx.quick ? std::vector<int>{256, 512} : std::vector<int>{1024, 2048})
+    for (const auto& [how, name] : forms) {
+      const HuygensScene sc = mpi_scene(n);
+      const int steps = n >= 2048 ? 8 : n >= 1024 ? 16 : 32;
+      const Timing one = time_one_rank(sc, steps, rank, how);
+      const Timing many = time_solver(sc, MPI_COMM_WORLD, steps, how);
+      const double tr = time_transpose(n, MPI_COMM_WORLD, 2 * steps) * many.transposes;
+      if (rank != 0) continue;
+      t.add({fmt("%d", n), name, "1", fmt("%.1f", 1e3 * one.step_s), "0", fmt("%.1f", 1e3 * one.step_s), "1.00",
+             fmt("%d", one.transposes), "0", fmt("%.0f", one.bytes), "-"});
+      t.add({fmt("%d", n), name, fmt("%d", ranks), fmt("%.1f", 1e3 * many.step_s), fmt("%.1f", 1e3 * tr),
+             fmt("%.1f", 1e3 * (many.step_s - tr)), fmt("%.2f", one.step_s / many.step_s), fmt("%d", many.transposes),
+             fmt("%.0f", many.formula), fmt("%.0f", many.bytes), fmt("%.4f", many.bytes / many.formula)});
+      ctx.expect(std::abs(many.bytes / many.formula - 1.0) < 0.01,
+                 fmt("mpi: measured bytes match the formula at N=%d (%s)", n, name));
+    }
   if (rank == 0)
     ctx.report("mpi",
                fmt("Huygens slab solver, strong scaling 1 -> %d ranks (first order + cutoff, FFTW_ESTIMATE, "

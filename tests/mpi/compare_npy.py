@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Relative L2 difference of the .npy dumps of two `huygens run --dump` folders (tests/mpi/near_dumps.cmake).
 
-compare_npy.py A B --limit 1e-6 [--also C]: every .npy of B must exist in A with the same shape and
-||A - B|| / ||B|| <= limit (exit 1 otherwise); with --also, ||A - C|| / ||C|| is printed, not asserted.
+compare_npy.py A B --limit 1e-6 [--also C [--also-limit 1e-6]]: every .npy of B must exist in A with the
+same shape and ||A - B|| / ||B|| <= limit (exit 1 otherwise; --limit 0: the same bits); with --also,
+||A - C|| / ||C|| is printed, and asserted <= the --also-limit when one is given.
 """
 import argparse
 import array
@@ -44,6 +45,7 @@ def main():
     ap.add_argument("b")
     ap.add_argument("--limit", type=float, required=True)
     ap.add_argument("--also")
+    ap.add_argument("--also-limit", type=float)
     args = ap.parse_args()
     names = sorted(f for f in os.listdir(args.b) if f.endswith(".npy"))
     if not names:
@@ -61,10 +63,14 @@ def main():
         if e > args.limit:
             bad.append("%s (%.3e)" % (f, e))
         if args.also:
-            worst_also = max(worst_also, rel_l2(a, load_npy(os.path.join(args.also, f))[1]))
+            e = rel_l2(a, load_npy(os.path.join(args.also, f))[1])
+            worst_also = max(worst_also, e)
+            if args.also_limit is not None and not e <= args.also_limit:
+                bad.append("%s against %s (%.3e)" % (f, args.also, e))
     print("%d dumps: worst relative L2 %.3e (limit %g)%s" % (
         len(names), worst, args.limit,
-        "; against %s %.3e (not asserted)" % (args.also, worst_also) if args.also else ""))
+        "; against %s %.3e (%s)" % (args.also, worst_also, "not asserted" if args.also_limit is None else
+                                    "limit %g" % args.also_limit) if args.also else ""))
     if bad:
         print("over the limit: " + ", ".join(bad))
         return 1

@@ -101,9 +101,9 @@ int fft_set_threads(int threads) {
 const char* fft_version() { return fftwf_version; }
 
 namespace {
-// N x N row transforms (rank 1, N of them N points apart), from a to b.
-fftwf_plan plan_rows(int n, fftwf_complex* a, fftwf_complex* b, int sign) {
-  fftw_iodim dim{n, 1, 1}, many{n, n, n};
+// howmany row transforms of n points (rank 1, n points apart), from a to b.
+fftwf_plan plan_rows(int n, int howmany, fftwf_complex* a, fftwf_complex* b, int sign) {
+  fftw_iodim dim{n, 1, 1}, many{howmany, n, n};
   return fftwf_plan_guru_dft(1, &dim, 1, &many, a, b, sign, FFTW_ESTIMATE);
 }
 // In-place transpose of an N x N array in 16 x 16 blocks (two blocks of complex floats fit in L1;
@@ -127,6 +127,30 @@ void transpose_square(cfloat* a, int n) {
 constexpr int kRowColumnMin = 256;
 }  // namespace
 
+bool fft_row_column(int rows, int cols, PlanEffort effort) {
+  return effort == PlanEffort::estimate && rows == cols && rows >= kRowColumnMin;
+}
+
+FftRows::FftRows(int n, int howmany, cfloat* a, cfloat* b, int sign) {
+  if (howmany <= 0) return;  // a rank without rows: nothing to transform
+  init_threads_once();
+  std::lock_guard lock(planner_mutex());
+  plan_ = plan_rows(n, howmany, reinterpret_cast<fftwf_complex*>(a), reinterpret_cast<fftwf_complex*>(b), sign);
+  if (!plan_)
+    throw std::runtime_error("FFTW could not plan " + std::to_string(howmany) + " rows of " + std::to_string(n));
+}
+
+FftRows::~FftRows() {
+  std::lock_guard lock(planner_mutex());
+  if (plan_) fftwf_destroy_plan(static_cast<fftwf_plan>(plan_));
+}
+
+void FftRows::execute(cfloat* a, cfloat* b) const {
+  if (!plan_) return;
+  fftwf_execute_dft(static_cast<fftwf_plan>(plan_), reinterpret_cast<fftwf_complex*>(a),
+                    reinterpret_cast<fftwf_complex*>(b));
+}
+
 Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort effort) : rows_(rows), cols_(cols) {
   init_threads_once();
   std::lock_guard lock(planner_mutex());
@@ -134,12 +158,12 @@ Fft2D::Fft2D(int rows, int cols, cfloat* in, cfloat* out, int sign, PlanEffort e
   auto* fout = reinterpret_cast<fftwf_complex*>(out);
   // MEASURE/PATIENT overwrite the buffers while planning: plan on scratch copies.
   fftwf_plan p = nullptr;
-  if (effort == PlanEffort::estimate && rows == cols && rows >= kRowColumnMin) {
+  if (fft_row_column(rows, cols, effort)) {
     // a plan this process measured before (FFTW's wisdom) is taken as FFTW_ESTIMATE would
     p = fftwf_plan_dft_2d(rows, cols, fin, fout, sign, FFTW_ESTIMATE | FFTW_WISDOM_ONLY);
     if (!p) {
-      p = plan_rows(rows, fin, fout, sign);
-      rows_plan_ = plan_rows(rows, fout, fout, sign);
+      p = plan_rows(rows, rows, fin, fout, sign);
+      rows_plan_ = plan_rows(rows, rows, fout, fout, sign);
       if (p && !rows_plan_) fftwf_destroy_plan(p), p = nullptr;
     }
   } else if (effort == PlanEffort::estimate) {

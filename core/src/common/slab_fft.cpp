@@ -37,8 +37,24 @@ unsigned effort_flags(PlanEffort e) {
 }
 }  // namespace
 
+bool slab_row_column(int n, PlanEffort effort) { return fft_row_column(n, n, effort); }
+
 SlabFft::SlabFft(const SlabGrid& g, cfloat* in, cfloat* out, int sign, PlanEffort effort, MPI_Comm comm) {
   slab_fft_init();
+  if (g.row_column) {
+    if (g.transposed) throw std::logic_error("SlabFft: the row-column form needs the normal layout");
+    first_ = std::make_unique<FftRows>(g.n, static_cast<int>(g.rows), in, out, sign);
+    second_ = std::make_unique<FftRows>(g.n, static_cast<int>(g.share), out, out, sign);
+    // an N x N array of complex values (2 floats) split by rows; square, so the transpose's rows
+    // are split as the array's and one plan transposes there and back
+    auto* o = reinterpret_cast<float*>(out);
+    plan_ = fftwf_mpi_plan_many_transpose(g.n, g.n, 2, FFTW_MPI_DEFAULT_BLOCK, FFTW_MPI_DEFAULT_BLOCK, o, o, comm,
+                                          FFTW_ESTIMATE);
+    if (!plan_) throw std::runtime_error("fftwf_mpi_plan_many_transpose failed");
+    in_ = in;
+    out_ = out;
+    return;
+  }
   const unsigned layout = !g.transposed            ? 0u
                           : sign == Fft2D::forward ? FFTW_MPI_TRANSPOSED_OUT
                                                    : FFTW_MPI_TRANSPOSED_IN;
@@ -51,9 +67,20 @@ SlabFft::~SlabFft() {
   if (plan_) fftwf_destroy_plan(static_cast<fftwf_plan>(plan_));
 }
 
-void SlabFft::execute() const { fftwf_execute(static_cast<fftwf_plan>(plan_)); }
+void SlabFft::execute() const {
+  if (first_) return execute(in_, out_);
+  fftwf_execute(static_cast<fftwf_plan>(plan_));
+}
 
 void SlabFft::execute(cfloat* in, cfloat* out) const {
+  if (first_) {  // rows, transpose, rows (the columns), transpose back: Fft2D's row-column form
+    auto* o = reinterpret_cast<float*>(out);
+    first_->execute(in, out);
+    fftwf_mpi_execute_r2r(static_cast<fftwf_plan>(plan_), o, o);
+    second_->execute(out, out);
+    fftwf_mpi_execute_r2r(static_cast<fftwf_plan>(plan_), o, o);
+    return;
+  }
   fftwf_mpi_execute_dft(static_cast<fftwf_plan>(plan_), reinterpret_cast<fftwf_complex*>(in),
                         reinterpret_cast<fftwf_complex*>(out));
 }

@@ -152,6 +152,37 @@ void gaussian_axis_factors(cfloat* f, int n, double length_m, double x0_m, doubl
   }
 }
 
+void add_gaussian_row(cfloat row, const cfloat* col, const float* w_over_k, const float* om, double age_s, cfloat* sc,
+                      int n) {
+  const float yr = row.real(), yi = row.imag();
+  const float* fx = reinterpret_cast<const float*>(col);
+  float* s = reinterpret_cast<float*>(sc);
+  if (age_s == 0.0) {
+#pragma omp simd
+    for (int c = 0; c < n; ++c) {
+      // e = fy fx; S += -i (omega/k) e
+      const float er = yr * fx[2 * c] - yi * fx[2 * c + 1];
+      const float ei = yr * fx[2 * c + 1] + yi * fx[2 * c];
+      const float f = w_over_k[c];
+      s[2 * c] += f * ei;
+      s[2 * c + 1] -= f * er;
+    }
+    return;
+  }
+  const float age = static_cast<float>(age_s);
+  for (int c = 0; c < n; ++c) {
+    const float er = yr * fx[2 * c] - yi * fx[2 * c + 1];
+    const float ei = yr * fx[2 * c + 1] + yi * fx[2 * c];
+    const float f = w_over_k[c];
+    // released age_s ago: the mode has turned by exp(-i omega age)
+    const double ph = -static_cast<double>(om[c]) * age;
+    const float cr = static_cast<float>(std::cos(ph)), ci = static_cast<float>(std::sin(ph));
+    const float ar = f * ei, ai = -f * er;
+    s[2 * c] += ar * cr - ai * ci;
+    s[2 * c + 1] += ar * ci + ai * cr;
+  }
+}
+
 void HuygensPropagator::add_gaussian(double x_m, double y_m, double sigma_m, double amplitude_m, double age_s) {
   reserve_sources();  // allocates only on first use (see the header)
   const int n = p_.n;
@@ -159,39 +190,10 @@ void HuygensPropagator::add_gaussian(double x_m, double y_m, double sigma_m, dou
   const double amp = 2.0 * kPi * sigma_m * sigma_m * amplitude_m / (d * d);
   gaussian_axis_factors(src_x_.data(), n, p_.length_m, x_m, sigma_m, 1.0);
   gaussian_axis_factors(src_y_.data(), n, p_.length_m, y_m, sigma_m, amp);
-  const float* fx = reinterpret_cast<const float*>(src_x_.data());
-  const float* fy = reinterpret_cast<const float*>(src_y_.data());
-  const float* w_over_k = src_.data();
-  const float* om = omega_.data();
-  float* s = reinterpret_cast<float*>(s_.data());
-  const float age = static_cast<float>(age_s);
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (int r = 0; r < n; ++r) {
-    const float yr = fy[2 * r], yi = fy[2 * r + 1];
     const std::size_t o = static_cast<std::size_t>(r) * n;
-    if (age_s == 0.0) {
-#pragma omp simd
-      for (int c = 0; c < n; ++c) {
-        // e = fy fx; S += -i (omega/k) e
-        const float er = yr * fx[2 * c] - yi * fx[2 * c + 1];
-        const float ei = yr * fx[2 * c + 1] + yi * fx[2 * c];
-        const float f = w_over_k[o + c];
-        s[2 * (o + c)] += f * ei;
-        s[2 * (o + c) + 1] -= f * er;
-      }
-    } else {
-      for (int c = 0; c < n; ++c) {
-        const float er = yr * fx[2 * c] - yi * fx[2 * c + 1];
-        const float ei = yr * fx[2 * c + 1] + yi * fx[2 * c];
-        const float f = w_over_k[o + c];
-        // released age_s ago: the mode has turned by exp(-i omega age)
-        const double ph = -static_cast<double>(om[o + c]) * age;
-        const float cr = static_cast<float>(std::cos(ph)), ci = static_cast<float>(std::sin(ph));
-        const float ar = f * ei, ai = -f * er;
-        s[2 * (o + c)] += ar * cr - ai * ci;
-        s[2 * (o + c) + 1] += ar * ci + ai * cr;
-      }
-    }
+    add_gaussian_row(src_y_[r], src_x_.data(), src_.data() + o, omega_.data() + o, age_s, s_.data() + o, n);
   }
 }
 

@@ -50,11 +50,17 @@ MemoryEstimate huygens_slab_memory(const HuygensScene& s, int ranks) {
   return m;
 }
 
-HuygensSlabSolver::HuygensSlabSolver(const HuygensScene& scene, MPI_Comm comm, bool transposed)
+HuygensSlabSolver::HuygensSlabSolver(const HuygensScene& scene, MPI_Comm comm, SlabTransforms how)
     : scene_(scene), comm_(comm) {
   const HuygensParams& p = scene_.params;
   if (auto e = huygens_params_error(p); !e.empty()) throw std::invalid_argument(e);
-  g_ = slab_grid(p.n, comm_, transposed);
+  const bool bits_possible = slab_row_column(p.n, p.effort);
+  if (how == SlabTransforms::one_process_bits && !bits_possible)
+    throw std::invalid_argument("the one-process bits need FFTW_ESTIMATE plans and N >= 256");
+  if (how == SlabTransforms::automatic)
+    how = bits_possible ? SlabTransforms::one_process_bits : SlabTransforms::fftw_transposed;
+  g_ = slab_grid(p.n, comm_, how == SlabTransforms::fftw_transposed);
+  g_.row_column = how == SlabTransforms::one_process_bits;
   sent_per_transform_ = static_cast<std::uint64_t>(g_.transposes() * slab_transpose_bytes(g_));
   spatial_ = p.absorber != Absorber::off || !scene_.ships.empty();
   second_ = scene_.stokes;
@@ -198,29 +204,12 @@ void HuygensSlabSolver::add_gaussian(double x_m, double y_m, double sigma_m, dou
   const double amp = 2.0 * kPi * sigma_m * sigma_m * amplitude_m / (d * d);
   gaussian_axis_factors(src_x_.data(), n, p.length_m, x_m, sigma_m, 1.0);
   gaussian_axis_factors(src_y_.data(), n, p.length_m, y_m, sigma_m, amp);
-  const float* fr = reinterpret_cast<const float*>((g_.transposed ? src_x_ : src_y_).data());  // row factor
-  const float* fc = reinterpret_cast<const float*>((g_.transposed ? src_y_ : src_x_).data());  // column factor
-  float* s = reinterpret_cast<float*>(s_.data());
+  const cfloat* fr = (g_.transposed ? src_x_ : src_y_).data();  // row factor
+  const cfloat* fc = (g_.transposed ? src_y_ : src_x_).data();  // column factor
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::ptrdiff_t lr = 0; lr < g_.krows; ++lr) {
-    const std::size_t kr = static_cast<std::size_t>(g_.krow0 + lr);
-    const float xr = fr[2 * kr], xi = fr[2 * kr + 1];
     const std::size_t o = static_cast<std::size_t>(lr) * n;
-    for (int c = 0; c < n; ++c) {
-      const float er = fc[2 * c] * xr - fc[2 * c + 1] * xi;
-      const float ei = fc[2 * c] * xi + fc[2 * c + 1] * xr;
-      const float f = src_[o + c];
-      float ar = f * ei, ai = -f * er;  // -i (omega/k) E^
-      if (age_s != 0.0) {               // released age_s ago: turned by exp(-i omega age)
-        const double ph = -static_cast<double>(omega_[o + c]) * static_cast<float>(age_s);
-        const float cr = static_cast<float>(std::cos(ph)), ci = static_cast<float>(std::sin(ph));
-        const float t = ar * cr - ai * ci;
-        ai = ar * ci + ai * cr;
-        ar = t;
-      }
-      s[2 * (o + c)] += ar;
-      s[2 * (o + c) + 1] += ai;
-    }
+    add_gaussian_row(fr[g_.krow0 + lr], fc, src_.data() + o, omega_.data() + o, age_s, s_.data() + o, n);
   }
 }
 
@@ -514,8 +503,10 @@ nlohmann::json HuygensSlabSolver::meta() const {
   // the one-process description of the global grid, plus how it was split
   nlohmann::json j = huygens_meta(scene_, transforms_per_step(), still_energy_);
   j["mpi"] = {{"ranks", g_.ranks},
-              {"layout", "row slabs; spectrum transposed (FFTW_MPI_TRANSPOSED_OUT/IN)"},
-              {"transposes_per_step", transforms_per_step()},
+              {"layout", g_.row_column   ? "row slabs; spectrum normal; row-column transforms (one-process bits)"
+                         : g_.transposed ? "row slabs; spectrum transposed (FFTW_MPI_TRANSPOSED_OUT/IN)"
+                                         : "row slabs; spectrum normal (FFTW's MPI plans)"},
+              {"transposes_per_step", transforms_per_step() * g_.transposes()},
               {"height", "i IFFT[alpha Y] + i conj(IFFT[beta Y]): two transforms, no mirror exchange"}};
   return j;
 }

@@ -58,6 +58,27 @@ int fft_set_threads(int threads);
 /// FFTW's version string (for machine lines in benchmarks).
 const char* fft_version();
 
+/// True when Fft2D plans a rows x cols transform of this effort in row-column form (square, N >= 256,
+/// estimate; unless this process holds a measured 2D plan in FFTW's wisdom, see Fft2D).
+bool fft_row_column(int rows, int cols, PlanEffort effort);
+
+/// The row stage of Fft2D's row-column form: `howmany` contiguous rows of n points each, transformed
+/// from a to b (in place when a == b) by one FFTW_ESTIMATE plan. A row's arithmetic does not depend on
+/// howmany or the placement (the same bits for slabs of 1/2 to 1/8 of a grid's rows, in and out of
+/// place, N = 256 to 1024), so row slabs on MPI ranks (slab_fft.hpp) give Fft2D's bits.
+class FftRows {
+ public:
+  FftRows(int n, int howmany, cfloat* a, cfloat* b, int sign);
+  ~FftRows();
+  FftRows(const FftRows&) = delete;
+  FftRows& operator=(const FftRows&) = delete;
+  /// Runs the plan on buffers of the same size, alignment and placement as the planned ones.
+  void execute(cfloat* a, cfloat* b) const;
+
+ private:
+  void* plan_ = nullptr;
+};
+
 /// A 2D complex-to-complex transform of rows x cols, in place on the buffer given at
 /// construction (or out of place from `in` to `out`). Plans are made once here. With
 /// PlanEffort::estimate a square grid of N >= 256 runs in row-column form: the row transforms

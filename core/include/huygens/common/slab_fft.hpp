@@ -12,6 +12,7 @@
 #include <mpi.h>
 
 #include <cstddef>
+#include <memory>
 
 #include "huygens/common/fft.hpp"
 
@@ -35,6 +36,8 @@ struct SlabGrid {
   /// Spectrum layout: transposed (kx rows, one transpose per transform) or normal (ky rows, the
   /// same rows as the field, two transposes per transform).
   bool transposed = true;
+  /// Transforms in Fft2D's row-column form (SlabFft; normal layout only), the one-process bits.
+  bool row_column = false;
   /// All-to-all transposes one N x N transform pays: 1 transposed, 2 normal.
   int transposes() const { return transposed ? 1 : 2; }
 };
@@ -46,10 +49,14 @@ SlabGrid slab_grid(int n, MPI_Comm comm, bool transposed = true);
 /// One N x N complex transform over the slabs (collective plan and execution): forward =
 /// spatial rows -> spectrum, backward = spectrum -> spatial rows; in the transposed layout with
 /// FFTW_MPI_TRANSPOSED_OUT (forward) / FFTW_MPI_TRANSPOSED_IN (backward). FFTW's MPI algorithm
-/// transforms the locally contiguous dimension first: the normal layout (and the transposed
-/// forward) transforms rows (x) first like the one-process plan (fft.hpp), so it rounds the same
-/// way; the transposed backward transforms columns first (a rounding difference of ~2e-7 per
-/// transform, docs/scale.md). Unnormalised, FFTW's sign convention (fft.hpp).
+/// transforms the locally contiguous dimension first, with other kernels than the one-process
+/// plan (a rounding difference of ~1e-7 per transform, docs/scale.md). Unnormalised, FFTW's sign
+/// convention (fft.hpp).
+/// Row-column form (SlabGrid::row_column, normal layout): the local rows (FftRows, in to out), an
+/// all-to-all transpose (fftwf_mpi_plan_many_transpose, in place on out), the local rows again, the
+/// transpose back: the arithmetic of Fft2D's row-column form (FFTW_ESTIMATE, N >= 256,
+/// slab_row_column), so the result is the one-process transform bit for bit, at two transposes per
+/// transform; `effort` is then not used.
 class SlabFft {
  public:
   /// Plans on (in, out); measure/patient planning overwrites them (plan before filling).
@@ -62,8 +69,14 @@ class SlabFft {
   void execute(cfloat* in, cfloat* out) const;
 
  private:
-  void* plan_ = nullptr;
+  void* plan_ = nullptr;                     // FFTW's MPI plan, or the row-column form's transpose
+  std::unique_ptr<FftRows> first_, second_;  // row-column form: the row stages
+  cfloat *in_ = nullptr, *out_ = nullptr;    // row-column form: the planned buffers
 };
+
+/// True when Fft2D runs an N x N transform of this effort in row-column form (fft_row_column), i.e.
+/// when slab transforms in row-column form give the one-process bits.
+bool slab_row_column(int n, PlanEffort effort);
 
 /// Bytes one rank sends in one all-to-all transpose of an N x N complex float slab (unit: bytes):
 /// its rows x N values, all but the block it keeps, 8 rows (N - n_p) bytes (n_p: the columns it

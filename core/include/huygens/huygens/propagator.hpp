@@ -76,6 +76,13 @@ std::string huygens_params_error(const HuygensParams& p);
 /// part, so that the spectrum of the real elevation stays Hermitian.
 void gaussian_axis_factors(cfloat* f, int n, double length_m, double x0_m, double sigma_m, double scale);
 
+/// One spectrum row of a Gaussian source: E^ = row x col[c] (the separable factors), Z^ += -i (omega/k)
+/// E^, turned by exp(-i omega age) when it was released age_s ago (age_s != 0). w_over_k and om:
+/// the row's omega/k and omega (N values; unit: m/s, rad/s). Shared by the one-process and the slab
+/// solver so both add the same bits.
+void add_gaussian_row(cfloat row, const cfloat* col, const float* w_over_k, const float* om, double age_s, cfloat* s,
+                      int n);
+
 class HuygensPropagator {
  public:
   /// Allocates every buffer and table and makes the three FFTW plans. Throws

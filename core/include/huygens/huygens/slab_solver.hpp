@@ -2,7 +2,9 @@
 // The "huygens" solver on MPI ranks (issue 17, docs/scale.md "Huygens on slabs"): the same
 // step as HuygensSolver (solver.hpp; paper 004 section 3) on row slabs of the N x N grid with
 // FFTW's MPI transforms (slab_fft.hpp). The spectrum is kept transposed (rank p owns kx rows), so
-// the three propagation/height transforms each pay one all-to-all transpose. Stages:
+// the three propagation/height transforms each pay one all-to-all transpose; with FFTW_ESTIMATE
+// plans (N >= 256) the transforms run in Fft2D's row-column form instead, spectrum in the normal
+// layout, and give the one-process spectrum bit for bit (SlabTransforms). Stages:
 //   propagate (rotation on the local kx rows, backward TRANSPOSED_IN) -> cutoff (local y rows)
 //   -> ships (each rank adds the rows of every P x P patch it owns) -> spectrum (forward
 //   TRANSPOSED_OUT) -> drops (analytic spectrum on the local kx rows) -> wind (quadrant phase)
@@ -31,11 +33,20 @@ namespace huygens {
 /// Per-rank bytes of the slab solver of `scene` on `ranks` ranks (even split; formula, nothing allocated).
 MemoryEstimate huygens_slab_memory(const HuygensScene& scene, int ranks);
 
+/// How the slab solver transforms (slab_fft.hpp):
+/// - one_process_bits: Fft2D's row-column form on the slabs, spectrum in the normal layout (two
+///   all-to-all transposes per transform): the one-process solver's spectrum bit for bit, and its
+///   height to the height's rounding (docs/scale.md). Needs FFTW_ESTIMATE plans and N >= 256.
+/// - fftw_transposed: FFTW's MPI plans, spectrum transposed (one transpose per transform; the
+///   fastest); fftw_normal: FFTW's MPI plans, normal layout.
+/// - automatic: one_process_bits where it applies (`huygens run --fast-plans`, the tests), else
+///   fftw_transposed.
+enum class SlabTransforms { automatic, one_process_bits, fftw_transposed, fftw_normal };
+
 class HuygensSlabSolver : public Solver {
  public:
   /// Collective on comm: plans, tables and the initial state of the rows this rank owns.
-  /// transposed: the spectrum's layout (slab_fft.hpp; false: normal, two transposes per transform).
-  HuygensSlabSolver(const HuygensScene& scene, MPI_Comm comm, bool transposed = true);
+  HuygensSlabSolver(const HuygensScene& scene, MPI_Comm comm, SlabTransforms how = SlabTransforms::automatic);
   ~HuygensSlabSolver() override;
   HuygensSlabSolver(const HuygensSlabSolver&) = delete;
   HuygensSlabSolver& operator=(const HuygensSlabSolver&) = delete;
