@@ -344,6 +344,32 @@ TEST(LbmWetDry, StillWaterAroundIslandsStaysStill) {
   EXPECT_EQ(r.max_dry_depth_m, 0.0);
 }
 
+// A shoal whose bed lies half min_depth_m below still water is dry by the threshold; the face to it
+// stays closed (the water must stand min_depth_m above the dry bed), so nothing moves. With the
+// margin dropped from the closed-face test the shoal floods (8.8e-2 m deep, 7.7 m/s after 2000 steps).
+TEST(LbmWetDry, StillWaterBesideAShoalJustBelowItStaysStill) {
+  LbmParams p;
+  p.cols = 64;
+  p.rows = 1;
+  p.cell_m = 1.0;
+  p.dt_s = 0.4 / std::sqrt(9.81);
+  p.viscosity_m2s = nu_for_tau(0.6, p);
+  p.bottom = p.top = LbmSide::periodic;
+  LbmFields f = uniform(1, 64, 1.0);
+  f.bed_m.assign(64, 0.0f);
+  for (int c = 40; c < 64; ++c) {
+    f.bed_m[c] = static_cast<float>(1.0 - 0.5 * p.min_depth_m);
+    f.depth_m[c] = 0.0f;
+  }
+  LbmShallow sim(p, f);
+  sim.run(2000);
+  EXPECT_EQ(sim.dry_cells(), 24u);
+  for (int c = 0; c < 64; ++c) {
+    EXPECT_EQ(sim.velocity_at(0, c)[0], 0.0f) << c;  // measured 0
+    if (c >= 40) EXPECT_EQ(sim.depth_at(0, c), 0.0f) << c;
+  }
+}
+
 TEST(LbmWetDry, KeepsVolumeAndDepthsNonNegativeWhileWettingAndDrying) {
   const auto r = lbm_wet_dry_mass(32, 32, 3000);
   EXPECT_EQ(r.stopped, "");
