@@ -4,7 +4,7 @@ with the LBM solver's wet/dry pass (docs/lbm.md, "The front of a dam break onto 
 
 The scheme is the one the wet/dry pass uses on its HLL faces, in one dimension: MUSCL-Hancock
 (van Leer 1979; Toro 2001 sec. 14.4) with minmod slopes of depth and velocity, first order on a
-face with a dry side, HLL fluxes (Harten, Lax and van Leer 1983) with Einfeldt's wave speeds and
+face with a dry side, HLL fluxes (Harten, Lax and van Leer 1983) with Davis's wave speeds and
 the dry-bed speeds u - c, u + 2c (Toro 2001), a cell below min_depth dry (velocity 0, no exchange
 with another dry cell). Same setup as lbm_ritter: 100 m, h0 = 1 m left of the dam at a third,
 walls, dt = cfl dx / (2 sqrt(g h0)), run until the head is 0.1 of the way from the wall.

@@ -339,8 +339,8 @@ TEST(LbmWetDry, StillWaterAroundIslandsStaysStill) {
   const auto r = lbm_islands_at_rest(2000);
   EXPECT_GT(r.dry_start, 0u);
   EXPECT_EQ(r.dry_end, r.dry_start);
-  EXPECT_LT(r.max_speed_mps, 1e-4);
-  EXPECT_LT(r.max_surface_error_m, 1e-5);
+  EXPECT_LT(r.max_speed_mps, 2e-5);        // measured 5.1e-6 m/s
+  EXPECT_LT(r.max_surface_error_m, 1e-6);  // measured 2.4e-7 m (a bed term off by 1e-5 gives 8.8e-6)
   EXPECT_EQ(r.max_dry_depth_m, 0.0);
 }
 
@@ -366,7 +366,9 @@ TEST(LbmWetDry, StillWaterBesideAShoalJustBelowItStaysStill) {
   EXPECT_EQ(sim.dry_cells(), 24u);
   for (int c = 0; c < 64; ++c) {
     EXPECT_EQ(sim.velocity_at(0, c)[0], 0.0f) << c;  // measured 0
-    if (c >= 40) EXPECT_EQ(sim.depth_at(0, c), 0.0f) << c;
+    if (c >= 40) {
+      EXPECT_EQ(sim.depth_at(0, c), 0.0f) << c;
+    }
   }
 }
 
@@ -387,7 +389,7 @@ TEST(LbmWetDry, RitterDryBedDamBreakConvergesToTheExactProfile) {
   for (const auto* r : {&a, &b}) {
     EXPECT_EQ(r->stopped, "");
     EXPECT_GE(r->min_depth_m, 0.0);
-    EXPECT_LT(std::abs(r->volume_drift), 1e-9);
+    EXPECT_LT(std::abs(r->volume_drift), 1e-10);  // measured 3.2e-14 and -1.7e-11
   }
   EXPECT_LT(a.l1_relative, 1.2e-2);
   EXPECT_LT(b.l1_relative, 0.7 * a.l1_relative);
@@ -399,14 +401,14 @@ TEST(LbmWetDry, RitterDryBedDamBreakConvergesToTheExactProfile) {
 TEST(LbmWetDry, RitterFrontTracksTheThresholdPointOnceTheFanIsResolved) {
   // Ritter at 1024 cells with its first 2 s (257 steps) taken from the exact solution: the last wet
   // cell's face is measured 0.13 % short of where the exact depth falls to min_depth_m (from the
-  // dam at t = 0: 5.3 % short, the error made while the fan and its tip span a few cells; 1 s: 1.1 %).
+  // dam at t = 0: 5.3 % short, the error made while the fan and its tip span a few cells; 1 s: 0.96 %).
   const auto r = lbm_ritter(1024, 0.55, 0.5, 2.0);
   EXPECT_EQ(r.stopped, "");
   EXPECT_GE(r.min_depth_m, 0.0);
-  EXPECT_LT(std::abs(r.volume_drift), 1e-9);
+  EXPECT_LT(std::abs(r.volume_drift), 1e-10);  // measured -3.7e-12
   EXPECT_LT(std::abs(r.front_m - r.front_threshold_exact_m), 0.01 * r.front_threshold_exact_m);
-  EXPECT_LT(std::abs(r.x01_m - r.x01_exact_m), 0.01 * r.x01_exact_m);
-  EXPECT_LT(r.l1_relative, 1e-2);
+  EXPECT_LT(std::abs(r.x01_m - r.x01_exact_m), 2e-3 * r.x01_exact_m);  // measured -0.019 %
+  EXPECT_LT(r.l1_relative, 1.5e-3);  // measured 7.2e-4; without the Hancock half step 4.2e-3
 }
 
 TEST(LbmWetDry, ThackerBowlShorelinesAfterOnePeriod) {
@@ -417,6 +419,7 @@ TEST(LbmWetDry, ThackerBowlShorelinesAfterOnePeriod) {
   EXPECT_LT(std::abs(r.right_error_m), 0.02);
   EXPECT_LT(r.l1_relative, 2e-2);
   EXPECT_GE(r.min_depth_m, 0.0);
+  EXPECT_LT(std::abs(r.volume_drift), 1e-9);  // measured -3.1e-10
 }
 
 TEST(LbmWetDry, AWetRunThatDriesSwitchesPassesAndKeepsDepthsNonNegative) {
@@ -448,7 +451,7 @@ TEST(LbmWetDry, AWetRunThatDriesSwitchesPassesAndKeepsDepthsNonNegative) {
   }
   EXPECT_GT(most_dry, 0u);
   for (int c = 0; c < 64; ++c) EXPECT_GE(sim.depth_at(0, c), 0.0f) << c;
-  EXPECT_LT(std::abs(sim.volume_m3() - v0) / v0, 1e-5);
+  EXPECT_LT(std::abs(sim.volume_m3() - v0) / v0, 1e-6);  // measured -2.1e-7
 }
 
 TEST(LbmWetDry, SameResultWithOneAndTwoThreads) {

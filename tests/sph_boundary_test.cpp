@@ -96,20 +96,21 @@ TEST(SphBoundary, ObstacleShellsHoldTheShellVolume) {
   sph.sphere_centre_m = {0.3f, 0.3f, 0.3f};
   sph.radius_m = 0.06f;
   const SphObstacle mesh = cube_mesh(0.1f, 0.1f);
+  // measured: box and cylinder exact (0.0000), sphere -0.33 %, cube mesh +2.5 %
   struct Case {
     const SphObstacle* o;
-    double want;
+    double want, tolerance;
   } cases[] = {
-      {&box, 0.1 * 0.08 * 0.06 - (0.1 - 2 * d) * (0.08 - 2 * d) * (0.06 - 2 * d)},
-      {&cyl, kPi * (0.05 * 0.05 * 0.1 - (0.05 - d) * (0.05 - d) * (0.1 - 2 * d))},
-      {&sph, 4.0 / 3.0 * kPi * (std::pow(0.06, 3) - std::pow(0.06 - d, 3))},
-      {&mesh, 1e-3 - std::pow(0.1 - 2 * d, 3)},
+      {&box, 0.1 * 0.08 * 0.06 - (0.1 - 2 * d) * (0.08 - 2 * d) * (0.06 - 2 * d), 1e-3},
+      {&cyl, kPi * (0.05 * 0.05 * 0.1 - (0.05 - d) * (0.05 - d) * (0.1 - 2 * d)), 1e-3},
+      {&sph, 4.0 / 3.0 * kPi * (std::pow(0.06, 3) - std::pow(0.06 - d, 3)), 0.01},
+      {&mesh, 1e-3 - std::pow(0.1 - 2 * d, 3), 0.04},
   };
   for (const auto& c : cases) {
     SphBoundarySample s;
     sph_sample_obstacle(*c.o, {1.f, 1.f, 1.f}, dx, K, s);
     ASSERT_GT(s.size(), 0u);
-    EXPECT_NEAR(volume(s, dx), c.want, 0.06 * c.want) << int(c.o->type);
+    EXPECT_NEAR(volume(s, dx), c.want, c.tolerance * c.want) << int(c.o->type);
     for (std::size_t i = 0; i < s.size(); ++i) EXPECT_TRUE(c.o->blocks(s.x[i], s.y[i], s.z[i], 0.f)) << i;
   }
 }

@@ -629,14 +629,13 @@ struct LinkState {
   pi = 2.0f * lam * s.h * (g * s.h * (1.0f / 6.0f) + 0.5f * eu * eu - (s.ux * s.ux + s.uy * s.uy) * (1.0f / 6.0f));
 }
 
-// HLL flux (Harten, Lax and van Leer 1983; wave speeds of Einfeldt 1988, the dry-bed speeds
-// u +- 2c of Toro 2001) of link pair a from L = x - e_a to R = x, in the link's own 1D problem:
-// speeds in link lengths per step, (e_a.u)/|e_a|^2 +- c/|e_a|, conserved link variables
-// kappa_a (eta, e_a.J) with kappa_a = (2/3) lambda_a |e_a|^2, so a uniform state gets exactly the
-// LBM exchange (link_flux) and a 1D flow the physical flux split 2/3, 1/6, 1/6 over the three
-// links that cross a face. The mass dissipation acts on the surface eta (still water over a bed
-// exchanges nothing). Returns the mass into R and the momentum flux along e_a. Not inlined: both
-// cells of a face call it with the same arguments, so they get the same floats (mass is exchanged).
+// HLL flux (Harten, Lax and van Leer 1983; the wave speeds of Davis 1988, min / max of u -+ c over
+// both sides; the dry-bed speeds u +- 2c of Toro 2001) of link pair a from L = x - e_a to R = x, in the link's own 1D
+// problem: speeds in link lengths per step, (e_a.u)/|e_a|^2 +- c/|e_a|, conserved link variables kappa_a (eta, e_a.J)
+// with kappa_a = (2/3) lambda_a |e_a|^2, so a uniform state gets exactly the LBM exchange (link_flux) and a 1D flow the
+// physical flux split 2/3, 1/6, 1/6 over the three links that cross a face. The mass dissipation acts on the surface
+// eta (still water over a bed exchanges nothing). Returns the mass into R and the momentum flux along e_a. Not inlined:
+// both cells of a face call it with the same arguments, so they get the same floats (mass is exchanged).
 [[gnu::noinline]] void hll_link(int a, LinkState L, LinkState R, float g, float hmin, float& m, float& pi) {
   const bool diag = a >= 5;
   const float e2 = diag ? 2.0f : 1.0f, ie = diag ? 0.70710678f : 1.0f, kap = diag ? 1.0f / 3.0f : 2.0f / 3.0f;
