@@ -933,6 +933,53 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(channel(dry, xd, yd, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6);
 }
 
+// The colour bar beside a plan too short for its labels (sph_dam_break's 4 x 128 slab, 1:32, a
+// plot 32 px high at 1280x720): its tick labels (glyphs 7 text units high) are spaced at least
+// 9 units apart (before: the bar was the plot's height, 6.4 px between labels, which overlapped
+// into one smear), the bar is drawn where its layout says, inside the image; a square plot's bar
+// is the plot's height, as before.
+TEST_F(VizRender, ColourBarOfAShortPlanKeepsItsTickLabelsApart) {
+  GridPlacement g;
+  g.rows = 4, g.cols = 128, g.dx = 0.457 / 128, g.x0 = g.y0 = 0.5 * g.dx;
+  WaterRenderer r(g, 0.0, 4);
+  std::vector<float> v(g.rows * g.cols);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = static_cast<float>(0.025 * (k % g.cols) / (g.cols - 1.0));  // m
+  const int W = 1280, H = 720;
+  const double s = std::round(H / 300.0);  // the plot's text scale
+  RenderTarget target(W, H);
+  r.render_plan(v, "depth", 100.0, "cm", false, "strip", target);
+  const gl::Image8 img = target.read();
+  PlotSpec spec;
+  plot_range(0.0, 100.0 * v.back(), false, spec);  // render_plan's range of these values: 0 to 3 cm by 0.5
+  ASSERT_DOUBLE_EQ(r.plan.lo, spec.lo);
+  ASSERT_DOUBLE_EQ(r.plan.hi, spec.hi);
+  const ColourBar b = colour_bar_layout(r.plan, spec, H);
+  const double pitch = b.height / ((spec.hi - spec.lo) / spec.step);
+  std::printf("strip plan: plot %.1f px high, colour bar %.1f px, %.1f px between tick labels (text scale %.0f)\n",
+              r.plan.height, b.height, pitch, s);
+  EXPECT_LT(r.plan.height, 40.0) << "the case: a plot too short for the labels";
+  EXPECT_GE(pitch, 9.0 * s) << "tick labels overlap";
+  EXPECT_GE(b.y, 0.0);
+  EXPECT_LE(b.y + b.height, H);
+  // the bar's pixels are the map where the layout puts them: the top row near 1, the bottom near 0
+  const int xb = static_cast<int>(b.x + 0.5 * b.width);
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(channel(img, xb, static_cast<int>(b.y + 1), ch), plan_colour(1.0, false)[ch], 0.03) << ch;
+    EXPECT_NEAR(channel(img, xb, static_cast<int>(b.y + b.height - 2), ch), plan_colour(0.0, false)[ch], 0.03) << ch;
+  }
+  if (::testing::Test::HasFailure()) write_debug("strip_plan.png", img);
+  // a square plot: the bar beside it, as tall as the plot
+  WaterRenderer sq(test_grid(), -kDepth, 4);
+  std::vector<float> w(kN * kN, 0.0f);
+  w[0] = 0.01f;
+  sq.render_plan(w, "height", 1000.0, "mm", true, "square", target);
+  PlotSpec sq_spec;
+  plot_range(-10.0, 10.0, true, sq_spec);
+  const ColourBar bs = colour_bar_layout(sq.plan, sq_spec, H);
+  EXPECT_DOUBLE_EQ(bs.y, sq.plan.y0);
+  EXPECT_DOUBLE_EQ(bs.height, sq.plan.height);
+}
+
 // The particle view (plot.hpp, render_particles): particles seen from the side (-y) as discs
 // coloured by speed on the colour bar's range, the nearer particle over the farther one (and the
 // farther shaded darker), an obstacle as a grey silhouette between them; the plot keeps the
