@@ -933,6 +933,50 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(channel(dry, xd, yd, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6);
 }
 
+// Over terrain, the flow's plan views leave dry land out as the depth view does (sand): a thin
+// film's speed is noise (flood.json at t = 12 s: 10-12 m/s speckles beyond its front) and dry
+// land carries no dye or foam (the dye's bands ran on over the dry land). Left half wet (0.5 m
+// at 1 m/s), right half dry (0.5 mm, "moving" at 5 m/s), dye and foam 1 everywhere.
+TEST_F(VizRender, FlowPlanViewsLeaveDryLandOutOverTerrain) {
+  SceneView view;
+  view.grid.rows = 8, view.grid.cols = 16, view.grid.dx = 1.0, view.grid.x0 = view.grid.y0 = 0.5;
+  view.plan_depth = true;
+  const std::size_t R = 8, C = 16;
+  view.bed.resize(R * C);
+  std::vector<float> field(R * C), velocity(2 * R * C, 0.0f), ones(R * C, 1.0f);
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j) {
+      const std::size_t k = i * C + j;
+      const bool wet = j < C / 2;
+      view.bed[k] = static_cast<float>(0.1 * j);  // a slope up to the right
+      field[k] = view.bed[k] + (wet ? 0.5f : 0.0005f);
+      velocity[2 * k] = wet ? 1.0f : 5.0f;
+    }
+  WaterRenderer r(view.grid, 0.0, 4);
+  RenderTarget target(640, 360);
+  auto pixel = [&](const gl::Image8& img, std::size_t i, std::size_t j, int ch) {
+    return channel(img, static_cast<int>(r.plan.x0 + (j + 0.5) * r.plan.width / C),
+                   static_cast<int>(r.plan.y0 + r.plan.height - (i + 0.5) * r.plan.height / R), ch);
+  };
+  const PlanData data{field, velocity, ones, ones, {}};
+  for (PlanQuantity q : {PlanQuantity::speed, PlanQuantity::dye, PlanQuantity::foam}) {
+    render_plan_view(r, view, data, q, 12.0, "terrain", target);
+    const gl::Image8 img = target.read();
+    const double wet = q == PlanQuantity::speed ? 100.0 : 1.0;  // 1 m/s in cm/s; dye and foam 1
+    const double wet_t = (wet - r.plan.lo) / (r.plan.hi - r.plan.lo);
+    for (int ch = 0; ch < 3; ++ch) {
+      EXPECT_NEAR(pixel(img, 4, 12, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6)
+          << "dry land, quantity " << static_cast<int>(q) << " channel " << ch;
+      EXPECT_NEAR(pixel(img, 4, 3, ch), plan_colour(wet_t, false)[ch], 0.5 / 255.0 + 1e-6)
+          << "water, quantity " << static_cast<int>(q) << " channel " << ch;
+    }
+    if (q == PlanQuantity::speed) {
+      EXPECT_LT(r.plan.hi, 500.0) << "the dry film's 5 m/s sets no range (cm/s)";
+    }
+    if (::testing::Test::HasFailure()) write_debug("terrain_flow_plan.png", img);
+  }
+}
+
 // The colour bar beside a plan too short for its labels (sph_dam_break's 4 x 128 slab, 1:32, a
 // plot 32 px high at 1280x720): its tick labels (glyphs 7 text units high) are spaced at least
 // 9 units apart (before: the bar was the plot's height, 6.4 px between labels, which overlapped
