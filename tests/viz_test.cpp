@@ -1195,6 +1195,34 @@ TEST(VizDye, UniformFlowShiftsThePatternAndTheChannelCarriesVelocity) {
   runner.stop();
 }
 
+// The start-up camera of a pool, shallow or SPH pool scene frames the whole region: its four
+// corners at the rest level project inside the image with the 15 % margin (NDC within 1/1.15),
+// and it is not farther than it needs (one corner on that margin). Regions 1:1 (default, ring,
+// pond, dam_break, pool), 2:1 (channel, flood) and 1:2, images 16:9, 1:1 and 9:16. Before
+// 2026-12-03 the distance counted the region's depth as foreshortened by sin(pitch) only, as if
+// seen from infinitely far: at 1280x720 a square region's near edge fell at NDC y = -1.25 (its
+// near sixth cut off by the bottom of the image) and the channel's near corners at x = -1.10.
+TEST(VizCamera, StartUpViewFramesTheWholeRegion) {
+  for (const auto& [cols, rows] : {std::pair{385, 385}, std::pair{321, 161}, std::pair{161, 321}})
+    for (const double aspect : {16.0 / 9.0, 1.0, 9.0 / 16.0}) {
+      SceneView view;
+      view.grid.rows = rows, view.grid.cols = cols, view.grid.dx = 0.03, view.grid.x0 = 1.0, view.grid.y0 = -2.0;
+      const OrbitCamera cam = start_camera(view, aspect, nullptr);
+      const glm::dmat4 m = cam.projection(aspect) * cam.view();
+      double worst = 0.0;
+      for (const double x : {view.grid.x(0), view.grid.x(cols - 1)})
+        for (const double y : {view.grid.y(0), view.grid.y(rows - 1)}) {
+          glm::dvec4 p = m * glm::dvec4(x, y, 0.0, 1.0);
+          p /= p.w;
+          worst = std::max({worst, std::abs(p.x), std::abs(p.y)});
+        }
+      std::printf("region %dx%d, aspect %.2f: distance %.2f m, corners out to NDC %.4f\n", cols, rows, aspect,
+                  cam.distance, worst);
+      EXPECT_LE(worst, 1.0 / 1.15 + 1e-6) << cols << "x" << rows << " at aspect " << aspect << ": a corner outside";
+      EXPECT_GE(worst, 1.0 / 1.15 - 1e-3) << cols << "x" << rows << " at aspect " << aspect << ": farther than needed";
+    }
+}
+
 TEST(VizCamera, FollowedShipNearAnEdgeKeepsTheViewOnTheWater) {
   // A 100 m region seen from 56 m (half height of the view at the target: 56 tan(22.5 deg) =
   // 23.2 m): the target stays that far inside the region, and the ship within that of the target.

@@ -93,11 +93,16 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
   const bool slab = view.slab;
   c.pitch = (slab ? 8.0 : 50.0) * kDeg;
   if (slab && H > W) c.yaw = 0.0;  // the eye on the +x side looking along -x
-  // the whole region in view: its far-near extent foreshortened by sin(pitch), its width by
-  // the aspect (a 15 % margin for the perspective)
+  // the whole region in view, a 15 % margin: its four corners at the rest level within 1/1.15 of
+  // the image's half sizes (in perspective its near edge is wider and lower on screen than the
+  // far one: the far-near extent foreshortened by sin(pitch) alone cut the near sixth of a square
+  // region off at 16:9)
   const double t = std::tan(0.5 * c.fov_y);
   const double across = c.yaw == 0.0 ? H : W, along = c.yaw == 0.0 ? W : H;
-  c.distance = 1.15 * std::max(along * std::sin(c.pitch) / (2.0 * t), across / (2.0 * t * aspect));
+  const std::array<glm::dvec3, 4> corners{glm::dvec3(g.x(0), g.y(0), 0.0), glm::dvec3(g.x(g.cols - 1), g.y(0), 0.0),
+                                          glm::dvec3(g.x(0), g.y(g.rows - 1), 0.0),
+                                          glm::dvec3(g.x(g.cols - 1), g.y(g.rows - 1), 0.0)};
+  c.distance = frame_distance(c, corners, aspect, 1.0 / 1.15);
   if (slab) c.distance = 1.15 * across / (2.0 * t * aspect);
   if (slab && view.particle_box) {
     // a particle solver's slab: its container's side, floor to lid, looked at across the slab
