@@ -933,6 +933,42 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(channel(dry, xd, yd, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6);
 }
 
+// The plan view draws the ships where the frames put them (WaterRenderer::set_ships), their
+// waterline (Wigley: half-width B/2 (1 - (2 x / L)^2)) grey like the obstacles, and leaves the
+// hull's own dent out of the colour range (as an obstacle's cells): kelvin.json's and ocean.json's
+// plans showed the wake with no ship. A 1 m x 0.3 m hull at 30 degrees over a 5 cm dent in 2 mm
+// waves.
+TEST_F(VizRender, PlanViewDrawsTheShipsAndLeavesTheirDentOutOfTheRange) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  ShipPose ship;
+  ship.x = 3.0, ship.y = 3.0, ship.heading = std::numbers::pi / 6.0, ship.length = 1.0, ship.beam = 0.3;
+  std::vector<float> v(kN * kN);
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j) {
+      const double dx = g.x(j) - ship.x, dy = g.y(i) - ship.y;
+      v[i * kN + j] = static_cast<float>(0.002 * std::sin(3.0 * g.x(j)) - 0.05 * std::exp(-(dx * dx + dy * dy) / 0.02));
+    }
+  r.set_ships(std::span(&ship, 1));
+  RenderTarget target(640, 360);
+  r.render_plan(v, "height", 1000.0, "mm", true, "ship", target);
+  const gl::Image8 img = target.read();
+  const WaterRenderer::PlanPlot& p = r.plan;
+  auto at = [&](double x, double y, int ch) {
+    return channel(img, static_cast<int>(p.x0 + (x - g.x0 + 0.5 * g.dx) / (kN * g.dx) * p.width),
+                   static_cast<int>(p.y0 + p.height - (y - g.y0 + 0.5 * g.dx) / (kN * g.dx) * p.height), ch);
+  };
+  const double c = std::cos(ship.heading), sn = std::sin(ship.heading);
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(at(ship.x, ship.y, ch), 0.55, 0.5 / 255.0 + 1e-6) << "the hull's middle, channel " << ch;
+    EXPECT_NEAR(at(ship.x + 0.35 * c, ship.y + 0.35 * sn, ch), 0.55, 0.5 / 255.0 + 1e-6)
+        << "along the hull, channel " << ch;
+    EXPECT_GT(std::abs(at(ship.x - 0.3 * sn, ship.y + 0.3 * c, ch) - 0.55), 0.02) << "beside the hull, channel " << ch;
+  }
+  EXPECT_LT(p.hi, 30.0) << "the dent under the hull (50 mm) sets no range";
+  if (::testing::Test::HasFailure()) write_debug("plan_ship.png", img);
+}
+
 // Over terrain, the flow's plan views leave dry land out as the depth view does (sand): a thin
 // film's speed is noise (flood.json at t = 12 s: 10-12 m/s speckles beyond its front) and dry
 // land carries no dye or foam (the dye's bands ran on over the dry land). Left half wet (0.5 m
