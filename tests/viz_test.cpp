@@ -933,6 +933,133 @@ TEST_F(VizRender, PlanViewPixelsAreTheColourMapOfTheValues) {
   for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(channel(dry, xd, yd, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6);
 }
 
+// The plan view draws the ships where the frames put them (WaterRenderer::set_ships), their
+// waterline (Wigley: half-width B/2 (1 - (2 x / L)^2)) grey like the obstacles, and leaves the
+// hull's own dent out of the colour range (as an obstacle's cells): kelvin.json's and ocean.json's
+// plans showed the wake with no ship. A 1 m x 0.3 m hull at 30 degrees over a 5 cm dent in 2 mm
+// waves.
+TEST_F(VizRender, PlanViewDrawsTheShipsAndLeavesTheirDentOutOfTheRange) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  ShipPose ship;
+  ship.x = 3.0, ship.y = 3.0, ship.heading = std::numbers::pi / 6.0, ship.length = 1.0, ship.beam = 0.3;
+  std::vector<float> v(kN * kN);
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j) {
+      const double dx = g.x(j) - ship.x, dy = g.y(i) - ship.y;
+      v[i * kN + j] = static_cast<float>(0.002 * std::sin(3.0 * g.x(j)) - 0.05 * std::exp(-(dx * dx + dy * dy) / 0.02));
+    }
+  r.set_ships(std::span(&ship, 1));
+  RenderTarget target(640, 360);
+  r.render_plan(v, "height", 1000.0, "mm", true, "ship", target);
+  const gl::Image8 img = target.read();
+  const WaterRenderer::PlanPlot& p = r.plan;
+  auto at = [&](double x, double y, int ch) {
+    return channel(img, static_cast<int>(p.x0 + (x - g.x0 + 0.5 * g.dx) / (kN * g.dx) * p.width),
+                   static_cast<int>(p.y0 + p.height - (y - g.y0 + 0.5 * g.dx) / (kN * g.dx) * p.height), ch);
+  };
+  const double c = std::cos(ship.heading), sn = std::sin(ship.heading);
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(at(ship.x, ship.y, ch), 0.55, 0.5 / 255.0 + 1e-6) << "the hull's middle, channel " << ch;
+    EXPECT_NEAR(at(ship.x + 0.35 * c, ship.y + 0.35 * sn, ch), 0.55, 0.5 / 255.0 + 1e-6)
+        << "along the hull, channel " << ch;
+    EXPECT_GT(std::abs(at(ship.x - 0.3 * sn, ship.y + 0.3 * c, ch) - 0.55), 0.02) << "beside the hull, channel " << ch;
+  }
+  EXPECT_LT(p.hi, 30.0) << "the dent under the hull (50 mm) sets no range";
+  if (::testing::Test::HasFailure()) write_debug("plan_ship.png", img);
+}
+
+// Over terrain, the flow's plan views leave dry land out as the depth view does (sand): a thin
+// film's speed is noise (flood.json at t = 12 s: 10-12 m/s speckles beyond its front) and dry
+// land carries no dye or foam (the dye's bands ran on over the dry land). Left half wet (0.5 m
+// at 1 m/s), right half dry (0.5 mm, "moving" at 5 m/s), dye and foam 1 everywhere.
+TEST_F(VizRender, FlowPlanViewsLeaveDryLandOutOverTerrain) {
+  SceneView view;
+  view.grid.rows = 8, view.grid.cols = 16, view.grid.dx = 1.0, view.grid.x0 = view.grid.y0 = 0.5;
+  view.plan_depth = true;
+  const std::size_t R = 8, C = 16;
+  view.bed.resize(R * C);
+  std::vector<float> field(R * C), velocity(2 * R * C, 0.0f), ones(R * C, 1.0f);
+  for (std::size_t i = 0; i < R; ++i)
+    for (std::size_t j = 0; j < C; ++j) {
+      const std::size_t k = i * C + j;
+      const bool wet = j < C / 2;
+      view.bed[k] = static_cast<float>(0.1 * j);  // a slope up to the right
+      field[k] = view.bed[k] + (wet ? 0.5f : 0.0005f);
+      velocity[2 * k] = wet ? 1.0f : 5.0f;
+    }
+  WaterRenderer r(view.grid, 0.0, 4);
+  RenderTarget target(640, 360);
+  auto pixel = [&](const gl::Image8& img, std::size_t i, std::size_t j, int ch) {
+    return channel(img, static_cast<int>(r.plan.x0 + (j + 0.5) * r.plan.width / C),
+                   static_cast<int>(r.plan.y0 + r.plan.height - (i + 0.5) * r.plan.height / R), ch);
+  };
+  const PlanData data{field, velocity, ones, ones, {}};
+  for (PlanQuantity q : {PlanQuantity::speed, PlanQuantity::dye, PlanQuantity::foam}) {
+    render_plan_view(r, view, data, q, 12.0, "terrain", target);
+    const gl::Image8 img = target.read();
+    const double wet = q == PlanQuantity::speed ? 100.0 : 1.0;  // 1 m/s in cm/s; dye and foam 1
+    const double wet_t = (wet - r.plan.lo) / (r.plan.hi - r.plan.lo);
+    for (int ch = 0; ch < 3; ++ch) {
+      EXPECT_NEAR(pixel(img, 4, 12, ch), kPlanDryLand[ch], 0.5 / 255.0 + 1e-6)
+          << "dry land, quantity " << static_cast<int>(q) << " channel " << ch;
+      EXPECT_NEAR(pixel(img, 4, 3, ch), plan_colour(wet_t, false)[ch], 0.5 / 255.0 + 1e-6)
+          << "water, quantity " << static_cast<int>(q) << " channel " << ch;
+    }
+    if (q == PlanQuantity::speed) {
+      EXPECT_LT(r.plan.hi, 500.0) << "the dry film's 5 m/s sets no range (cm/s)";
+    }
+    if (::testing::Test::HasFailure()) write_debug("terrain_flow_plan.png", img);
+  }
+}
+
+// The colour bar beside a plan too short for its labels (sph_dam_break's 4 x 128 slab, 1:32, a
+// plot 32 px high at 1280x720): its tick labels (glyphs 7 text units high) are spaced at least
+// 9 units apart (before: the bar was the plot's height, 6.4 px between labels, which overlapped
+// into one smear), the bar is drawn where its layout says, inside the image; a square plot's bar
+// is the plot's height, as before.
+TEST_F(VizRender, ColourBarOfAShortPlanKeepsItsTickLabelsApart) {
+  GridPlacement g;
+  g.rows = 4, g.cols = 128, g.dx = 0.457 / 128, g.x0 = g.y0 = 0.5 * g.dx;
+  WaterRenderer r(g, 0.0, 4);
+  std::vector<float> v(g.rows * g.cols);
+  for (std::size_t k = 0; k < v.size(); ++k) v[k] = static_cast<float>(0.025 * (k % g.cols) / (g.cols - 1.0));  // m
+  const int W = 1280, H = 720;
+  const double s = std::round(H / 300.0);  // the plot's text scale
+  RenderTarget target(W, H);
+  r.render_plan(v, "depth", 100.0, "cm", false, "strip", target);
+  const gl::Image8 img = target.read();
+  PlotSpec spec;
+  plot_range(0.0, 100.0 * v.back(), false, spec);  // render_plan's range of these values: 0 to 3 cm by 0.5
+  ASSERT_DOUBLE_EQ(r.plan.lo, spec.lo);
+  ASSERT_DOUBLE_EQ(r.plan.hi, spec.hi);
+  const ColourBar b = colour_bar_layout(r.plan, spec, H);
+  const double pitch = b.height / ((spec.hi - spec.lo) / spec.step);
+  std::printf("strip plan: plot %.1f px high, colour bar %.1f px, %.1f px between tick labels (text scale %.0f)\n",
+              r.plan.height, b.height, pitch, s);
+  EXPECT_LT(r.plan.height, 40.0) << "the case: a plot too short for the labels";
+  EXPECT_GE(pitch, 9.0 * s) << "tick labels overlap";
+  EXPECT_GE(b.y, 0.0);
+  EXPECT_LE(b.y + b.height, H);
+  // the bar's pixels are the map where the layout puts them: the top row near 1, the bottom near 0
+  const int xb = static_cast<int>(b.x + 0.5 * b.width);
+  for (int ch = 0; ch < 3; ++ch) {
+    EXPECT_NEAR(channel(img, xb, static_cast<int>(b.y + 1), ch), plan_colour(1.0, false)[ch], 0.03) << ch;
+    EXPECT_NEAR(channel(img, xb, static_cast<int>(b.y + b.height - 2), ch), plan_colour(0.0, false)[ch], 0.03) << ch;
+  }
+  if (::testing::Test::HasFailure()) write_debug("strip_plan.png", img);
+  // a square plot: the bar beside it, as tall as the plot
+  WaterRenderer sq(test_grid(), -kDepth, 4);
+  std::vector<float> w(kN * kN, 0.0f);
+  w[0] = 0.01f;
+  sq.render_plan(w, "height", 1000.0, "mm", true, "square", target);
+  PlotSpec sq_spec;
+  plot_range(-10.0, 10.0, true, sq_spec);
+  const ColourBar bs = colour_bar_layout(sq.plan, sq_spec, H);
+  EXPECT_DOUBLE_EQ(bs.y, sq.plan.y0);
+  EXPECT_DOUBLE_EQ(bs.height, sq.plan.height);
+}
+
 // The particle view (plot.hpp, render_particles): particles seen from the side (-y) as discs
 // coloured by speed on the colour bar's range, the nearer particle over the farther one (and the
 // farther shaded darker), an obstacle as a grey silhouette between them; the plot keeps the
@@ -1102,6 +1229,34 @@ TEST(VizDye, UniformFlowShiftsThePatternAndTheChannelCarriesVelocity) {
   ASSERT_TRUE(runner.frames().velocity(vel));
   EXPECT_NEAR(vel[2 * (80 * 320 + 2)], 0.297, 0.03) << "u at the inflow";
   runner.stop();
+}
+
+// The start-up camera of a pool, shallow or SPH pool scene frames the whole region: its four
+// corners at the rest level project inside the image with the 15 % margin (NDC within 1/1.15),
+// and it is not farther than it needs (one corner on that margin). Regions 1:1 (default, ring,
+// pond, dam_break, pool), 2:1 (channel, flood) and 1:2, images 16:9, 1:1 and 9:16. Before
+// 2026-12-03 the distance counted the region's depth as foreshortened by sin(pitch) only, as if
+// seen from infinitely far: at 1280x720 a square region's near edge fell at NDC y = -1.25 (its
+// near sixth cut off by the bottom of the image) and the channel's near corners at x = -1.10.
+TEST(VizCamera, StartUpViewFramesTheWholeRegion) {
+  for (const auto& [cols, rows] : {std::pair{385, 385}, std::pair{321, 161}, std::pair{161, 321}})
+    for (const double aspect : {16.0 / 9.0, 1.0, 9.0 / 16.0}) {
+      SceneView view;
+      view.grid.rows = rows, view.grid.cols = cols, view.grid.dx = 0.03, view.grid.x0 = 1.0, view.grid.y0 = -2.0;
+      const OrbitCamera cam = start_camera(view, aspect, nullptr);
+      const glm::dmat4 m = cam.projection(aspect) * cam.view();
+      double worst = 0.0;
+      for (const double x : {view.grid.x(0), view.grid.x(cols - 1)})
+        for (const double y : {view.grid.y(0), view.grid.y(rows - 1)}) {
+          glm::dvec4 p = m * glm::dvec4(x, y, 0.0, 1.0);
+          p /= p.w;
+          worst = std::max({worst, std::abs(p.x), std::abs(p.y)});
+        }
+      std::printf("region %dx%d, aspect %.2f: distance %.2f m, corners out to NDC %.4f\n", cols, rows, aspect,
+                  cam.distance, worst);
+      EXPECT_LE(worst, 1.0 / 1.15 + 1e-6) << cols << "x" << rows << " at aspect " << aspect << ": a corner outside";
+      EXPECT_GE(worst, 1.0 / 1.15 - 1e-3) << cols << "x" << rows << " at aspect " << aspect << ": farther than needed";
+    }
 }
 
 TEST(VizCamera, FollowedShipNearAnEdgeKeepsTheViewOnTheWater) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <span>
 
 #include "refraction.hpp"
 
@@ -63,6 +64,27 @@ struct OrbitCamera {
     dir = glm::normalize(glm::dvec3(b) - glm::dvec3(a));
   }
 };
+
+/// The smallest distance from `camera.target` (direction and field of view kept) at which every
+/// point of `points` projects within `ndc_limit` of the image's centre (|x| and |y| in normalised
+/// device coordinates, image aspect `aspect`). Backing away along the view axis moves every point
+/// in front of the eye toward the centre (x_ndc = x_view / (z_view tan(fov_y / 2) aspect), z_view
+/// growing), so "all inside" is monotone in the distance: bisection.
+inline double frame_distance(OrbitCamera camera, std::span<const glm::dvec3> points, double aspect, double ndc_limit) {
+  auto fits = [&](double d) {
+    camera.distance = d;
+    const glm::dmat4 m = camera.projection(aspect) * camera.view();
+    for (const glm::dvec3& q : points) {
+      const glm::dvec4 p = m * glm::dvec4(q, 1.0);
+      if (p.w <= 0.0 || std::abs(p.x) > ndc_limit * p.w || std::abs(p.y) > ndc_limit * p.w) return false;
+    }
+    return true;
+  };
+  double lo = 0.0, hi = 1e-3;
+  for (int k = 0; k < 80 && !fits(hi); ++k) lo = hi, hi *= 2.0;
+  for (int k = 0; k < 60; ++k) (fits(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  return hi;
+}
 
 /// The start-up view of a visible region `width` x `height` metres whose corner is at
 /// (x0, y0): from the south, 50 degrees above the horizon, the whole region in view.

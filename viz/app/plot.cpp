@@ -89,6 +89,17 @@ WaterRenderer::PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double r
   return r;
 }
 
+ColourBar colour_bar_layout(const WaterRenderer::PlanPlot& r, const PlotSpec& spec, int H) {
+  const double s = std::max(1.0, std::round(H / 300.0));  // text scale, as plot_layout
+  const double top = 30 * s, bottom = 26 * s;             // plot_layout's margins
+  ColourBar b;
+  b.x = r.x0 + r.width + 12 * s, b.width = 12 * s;
+  const double intervals = std::max(1.0, std::round((spec.hi - spec.lo) / spec.step));
+  b.height = std::min(std::max(r.height, intervals * kTickPitch * s), std::max(r.height, H - top - bottom));
+  b.y = std::clamp(r.y0 + 0.5 * (r.height - b.height), std::min(top, r.y0), std::max(r.y0, H - bottom - b.height));
+  return b;
+}
+
 void plot_range(double lo, double hi, bool diverging, PlotSpec& spec) {
   if (lo > hi) lo = hi = 0.0;
   if (diverging) hi = std::max(std::abs(lo), std::abs(hi)), lo = -hi;
@@ -126,17 +137,19 @@ void draw_axes(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpe
   p.text(r.x0 - 0.5 * Painter::text_width(spec.y_label, s), r.y0 - 16 * s, spec.y_label, s);  // above the axis
 }
 
-// The colour bar right of the plot: one row per pixel through the map, ticks at spec.step.
-void draw_colour_bar(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpec& spec, double s) {
-  const double lw = std::max(1.0, s * 0.5), bx = r.x0 + r.width + 12 * s, bw = 12 * s;
-  for (int row = 0; row < static_cast<int>(r.height); ++row)
-    p.rect(bx, r.y0 + r.height - row - 1, bw, 1, plan_colour((row + 0.5) / r.height, spec.diverging));
+// The colour bar right of the plot (colour_bar_layout): one row per pixel through the map,
+// ticks at spec.step.
+void draw_colour_bar(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpec& spec, double s, int H) {
+  const ColourBar b = colour_bar_layout(r, spec, H);
+  const double lw = std::max(1.0, s * 0.5);
+  for (int row = 0; row < static_cast<int>(b.height); ++row)
+    p.rect(b.x, b.y + b.height - row - 1, b.width, 1, plan_colour((row + 0.5) / b.height, spec.diverging));
   for (double v = spec.lo; v <= spec.hi + 1e-9 * spec.step; v += spec.step) {
-    const double y = r.y0 + r.height - (v - spec.lo) / (spec.hi - spec.lo) * r.height;
-    p.rect(bx + bw, y - 0.5 * lw, 3 * s, lw, glm::vec3(0.0f));
-    p.text(bx + bw + 5 * s, y - 3 * s, tick_label(v, spec.step), s);
+    const double y = b.y + b.height - (v - spec.lo) / (spec.hi - spec.lo) * b.height;
+    p.rect(b.x + b.width, y - 0.5 * lw, 3 * s, lw, glm::vec3(0.0f));
+    p.text(b.x + b.width + 5 * s, y - 3 * s, tick_label(v, spec.step), s);
   }
-  p.text(bx, r.y0 - 12 * s, spec.quantity + " (" + spec.unit + ")", s);
+  p.text(b.x, b.y - 12 * s, spec.quantity + " (" + spec.unit + ")", s);
 }
 
 }  // namespace
@@ -163,7 +176,7 @@ void draw_plot(const WaterRenderer::PlanPlot& r, const PlotSpec& spec, const std
   glEnable(GL_SCISSOR_TEST);
   const Painter p{H};
   draw_axes(p, r, spec, s);
-  draw_colour_bar(p, r, spec, s);
+  draw_colour_bar(p, r, spec, s, H);
   p.text(r.x0, 5 * s, spec.title, s);
   glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

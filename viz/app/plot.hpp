@@ -39,6 +39,18 @@ struct PlotSpec {
 /// the aspect of width_m x height_m, leaving `reserve_right` pixels free on the right.
 WaterRenderer::PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right);
 
+/// The colour bar right of a plot (pixels from the top-left corner): its rectangle, as tall as
+/// the plot, or, beside a plot too short for its tick labels (a 32:1 slab: 35 px at 1280x720),
+/// the height that spaces the labels kTickPitch text scales apart, centred on the plot and kept
+/// inside the image between the title's and the x axis' margins.
+struct ColourBar {
+  double x = 0, y = 0, width = 0, height = 0;
+};
+/// Vertical distance between two tick labels of the colour bar, in text scales: a glyph is 7
+/// units high, so labels nearer than that overlap.
+inline constexpr double kTickPitch = 12.0;
+ColourBar colour_bar_layout(const WaterRenderer::PlanPlot& rect, const PlotSpec& spec, int H);
+
 /// The colour bar's range of values in [lo, hi] rounded out to nice ticks (symmetric about 0
 /// when `diverging`); sets spec.lo, hi and step.
 void plot_range(double lo, double hi, bool diverging, PlotSpec& spec);

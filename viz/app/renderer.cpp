@@ -167,6 +167,24 @@ void append_hull(const ShipPose& s, std::vector<float>& out) {
   }
 }
 
+// The grid points under the ships' waterlines (1 there, else 0): in the ship's frame (lx along
+// the heading) a Wigley hull's waterline is |ly| <= B/2 (1 - (2 lx / L)^2), |lx| <= L/2.
+void mark_hulls(const GridPlacement& g, std::span<const ShipPose> ships, std::vector<std::uint8_t>& out) {
+  out.assign(g.rows * g.cols, 0);
+  for (const ShipPose& s : ships) {
+    const double ch = std::cos(s.heading), sh = std::sin(s.heading), reach = 0.5 * std::max(s.length, s.beam);
+    const auto lo = [&](double v, double v0) { return static_cast<long>(std::floor((v - reach - v0) / g.dx)); };
+    const auto hi = [&](double v, double v0) { return static_cast<long>(std::ceil((v + reach - v0) / g.dx)); };
+    for (long i = std::max(0L, lo(s.y, g.y0)); i <= std::min(static_cast<long>(g.rows) - 1, hi(s.y, g.y0)); ++i)
+      for (long j = std::max(0L, lo(s.x, g.x0)); j <= std::min(static_cast<long>(g.cols) - 1, hi(s.x, g.x0)); ++j) {
+        const double dx = g.x(static_cast<std::size_t>(j)) - s.x, dy = g.y(static_cast<std::size_t>(i)) - s.y;
+        const double lx = ch * dx + sh * dy, ly = -sh * dx + ch * dy, xi = 2.0 * lx / s.length;
+        if (std::abs(xi) <= 1.0 && std::abs(ly) <= 0.5 * s.beam * (1.0 - xi * xi))
+          out[static_cast<std::size_t>(i) * g.cols + static_cast<std::size_t>(j)] = 1;
+      }
+  }
+}
+
 }  // namespace
 
 // Surface mesh buffers: static (x, y), dynamic heights, per-view coefficients, triangle indices.
@@ -811,10 +829,13 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
                                 const RenderTarget& target) {
   const std::size_t R = grid_.rows, C = grid_.cols;
   // the colour range: symmetric about 0 (heights) or from the minimum (depths), rounded out to
-  // the colour bar's ticks; obstacles (fill_from_) are grey, NaN values (dry land) sand
+  // the colour bar's ticks; obstacles (fill_from_) and the ships' waterlines are grey (the dent
+  // under a hull sets no range), NaN values (dry land) sand
+  std::vector<std::uint8_t> hull;
+  mark_hulls(grid_, ships_, hull);
   double lo = 1e300, hi = -1e300;
   for (std::size_t k = 0; k < R * C; ++k) {
-    if ((!fill_from_.empty() && fill_from_[k] != k) || !std::isfinite(values[k])) continue;
+    if ((!fill_from_.empty() && fill_from_[k] != k) || !std::isfinite(values[k]) || hull[k]) continue;
     if (!mesh_outline_.empty() && mesh_outline_[k]) continue;
     lo = std::min(lo, unit_scale * values[k]);
     hi = std::max(hi, unit_scale * values[k]);
@@ -826,7 +847,8 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   plot_range(lo, hi, diverging, spec);
   std::vector<std::uint8_t> px(R * C * 4);
   for (std::size_t k = 0; k < R * C; ++k) {
-    const bool solid = (!fill_from_.empty() && fill_from_[k] != k) || (!mesh_outline_.empty() && mesh_outline_[k]);
+    const bool solid =
+        (!fill_from_.empty() && fill_from_[k] != k) || (!mesh_outline_.empty() && mesh_outline_[k]) || hull[k];
     const bool dry = !std::isfinite(values[k]);
     const glm::vec3 c = solid ? glm::vec3(0.55f)
                         : dry ? kPlanDryLand

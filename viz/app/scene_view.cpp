@@ -93,11 +93,16 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
   const bool slab = view.slab;
   c.pitch = (slab ? 8.0 : 50.0) * kDeg;
   if (slab && H > W) c.yaw = 0.0;  // the eye on the +x side looking along -x
-  // the whole region in view: its far-near extent foreshortened by sin(pitch), its width by
-  // the aspect (a 15 % margin for the perspective)
+  // the whole region in view, a 15 % margin: its four corners at the rest level within 1/1.15 of
+  // the image's half sizes (in perspective its near edge is wider and lower on screen than the
+  // far one: the far-near extent foreshortened by sin(pitch) alone cut the near sixth of a square
+  // region off at 16:9)
   const double t = std::tan(0.5 * c.fov_y);
   const double across = c.yaw == 0.0 ? H : W, along = c.yaw == 0.0 ? W : H;
-  c.distance = 1.15 * std::max(along * std::sin(c.pitch) / (2.0 * t), across / (2.0 * t * aspect));
+  const std::array<glm::dvec3, 4> corners{glm::dvec3(g.x(0), g.y(0), 0.0), glm::dvec3(g.x(g.cols - 1), g.y(0), 0.0),
+                                          glm::dvec3(g.x(0), g.y(g.rows - 1), 0.0),
+                                          glm::dvec3(g.x(g.cols - 1), g.y(g.rows - 1), 0.0)};
+  c.distance = frame_distance(c, corners, aspect, 1.0 / 1.15);
   if (slab) c.distance = 1.15 * across / (2.0 * t * aspect);
   if (slab && view.particle_box) {
     // a particle solver's slab: its container's side, floor to lid, looked at across the slab
@@ -250,24 +255,31 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
                                      title, renderer.plan_reserve_right, target);
     return;
   }
+  // over terrain, dry land (thinner than the perspective's kDryDepth) is NaN, drawn sand, in every
+  // quantity: a dry cell's speed is a thin film's noise, and no water carries its dye or foam
+  const bool terrain = view.plan_depth && view.bed.size() == field.size();
+  const std::string label = std::string(title) + (terrain ? "   sand: dry land" : "");
+  auto dry = [&](std::size_t k) { return terrain && field[k] - view.bed[k] < WaterRenderer::kDryDepth; };
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
   std::vector<float> v;
   if (quantity == PlanQuantity::speed && velocity.size() == 2 * field.size()) {
     v.resize(field.size());
     double range = 0.0;
     for (std::size_t k = 0; k < v.size(); ++k) {
-      v[k] = std::hypot(velocity[2 * k], velocity[2 * k + 1]);
-      range = std::max(range, static_cast<double>(v[k]));
+      v[k] = dry(k) ? kNaN : std::hypot(velocity[2 * k], velocity[2 * k + 1]);
+      if (std::isfinite(v[k])) range = std::max(range, static_cast<double>(v[k]));
     }
     const bool cm = range < 2.0;
-    renderer.render_plan(v, "speed", cm ? 100.0 : 1.0, cm ? "cm/s" : "m/s", false, title, target);
+    renderer.render_plan(v, "speed", cm ? 100.0 : 1.0, cm ? "cm/s" : "m/s", false, label, target);
     return;
   }
-  if (quantity == PlanQuantity::dye && dye.size() == field.size()) {
-    renderer.render_plan(dye, "dye", 1.0, "1", false, title, target);
-    return;
-  }
-  if (quantity == PlanQuantity::foam && data.foam.size() == field.size()) {
-    renderer.render_plan(data.foam, "foam", 1.0, "1", false, title, target);
+  const bool carried = quantity == PlanQuantity::dye || quantity == PlanQuantity::foam;
+  const std::span<const float> tracer = quantity == PlanQuantity::dye ? dye : data.foam;
+  if (carried && tracer.size() == field.size()) {
+    v.assign(tracer.begin(), tracer.end());
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (dry(k)) v[k] = kNaN;
+    renderer.render_plan(v, quantity == PlanQuantity::dye ? "dye" : "foam", 1.0, "1", false, label, target);
     return;
   }
   // a height about rest (m); LBM/SPH: the depth above the bed (the height itself on a flat bed,
@@ -276,17 +288,12 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
   double range = 0.0;
   if (!view.plan_depth)
     for (float& x : v) x -= static_cast<float>(view.height_offset);
-  else if (view.bed.size() == v.size())  // dry land (thinner than the perspective's kDryDepth): NaN, drawn as land
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      const float d = v[k] - view.bed[k];
-      v[k] = d < WaterRenderer::kDryDepth ? std::numeric_limits<float>::quiet_NaN() : d;
-    }
+  else if (terrain)
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = dry(k) ? kNaN : v[k] - view.bed[k];
   for (float x : v)
     if (std::isfinite(x)) range = std::max(range, static_cast<double>(std::abs(x)));
   const double scale = range < 0.02 ? 1000.0 : range < 2.0 ? 100.0 : 1.0;
   const std::string unit = scale == 1000.0 ? "mm" : scale == 100.0 ? "cm" : "m";
-  std::string label = title;
-  if (view.plan_depth && view.bed.size() == v.size()) label += "   sand: dry land";
   renderer.render_plan(v, view.plan_depth ? "depth" : "height", scale, unit, !view.plan_depth, label, target);
 }
 
