@@ -362,7 +362,7 @@ int run(CliOptions o) {
       !solver_has_velocity(*vs.solver))
     throw UsageError("--view " + o.view + " needs a flow's velocity: the LBM scenes (dam_break, channel, flood)");
   if (quantity == PlanQuantity::particles && !vs.info.particle_box_m)
-    throw UsageError("--view particles needs a particle solver: the SPH scenes (pool, sph_dam_break)");
+    throw UsageError("--view particles needs a particle solver: an SPH scene (pool, sph_dam_break, sph_wedge)");
   if (o.benchmark) return run_benchmark(std::move(vs), settings, o.subsample);
   if (o.headless) return run_headless(std::move(vs), o, settings, plan, quantity);
   WindowOptions wo;
