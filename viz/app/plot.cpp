@@ -30,6 +30,11 @@ glm::vec3 plan_colour(double t, bool diverging) {
   return glm::mix(c[k], c[k + 1], static_cast<float>(x - k));
 }
 
+glm::vec3 plan_colour(double t, const PlotSpec& spec) {
+  if (!spec.hue) return plan_colour(t, spec.diverging);
+  return glm::mix(glm::vec3(1.0f), *spec.hue, static_cast<float>(std::clamp(t, 0.0, 1.0)));
+}
+
 double nice_step(double range, int n) {
   if (!(range > 0.0)) return 1.0;
   const double raw = range / n, p = std::pow(10.0, std::floor(std::log10(raw))), f = raw / p;
@@ -143,7 +148,7 @@ void draw_colour_bar(const Painter& p, const WaterRenderer::PlanPlot& r, const P
   const ColourBar b = colour_bar_layout(r, spec, H);
   const double lw = std::max(1.0, s * 0.5);
   for (int row = 0; row < static_cast<int>(b.height); ++row)
-    p.rect(b.x, b.y + b.height - row - 1, b.width, 1, plan_colour((row + 0.5) / b.height, spec.diverging));
+    p.rect(b.x, b.y + b.height - row - 1, b.width, 1, plan_colour((row + 0.5) / b.height, spec));
   for (double v = spec.lo; v <= spec.hi + 1e-9 * spec.step; v += spec.step) {
     const double y = b.y + b.height - (v - spec.lo) / (spec.hi - spec.lo) * b.height;
     p.rect(b.x + b.width, y - 0.5 * lw, 3 * s, lw, glm::vec3(0.0f));

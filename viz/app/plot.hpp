@@ -5,6 +5,7 @@
 // above; the particle view draws a particle solver's particles seen from the side, coloured by
 // speed.
 #include <glm/glm.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ namespace huygens {
 
 /// The plot's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
 glm::vec3 plan_colour(double t, bool diverging);
+/// The plot's own map at t in [0, 1]: white to spec.hue where a hue is set (the dye, in the colour
+/// the perspective view tints the water with), else plan_colour(t, spec.diverging).
+glm::vec3 plan_colour(double t, const struct PlotSpec& spec);
 /// The plan view's colour of a NaN value (dry land over terrain): a sand tone outside both maps.
 inline const glm::vec3 kPlanDryLand(0.80f, 0.72f, 0.55f);
 
@@ -32,6 +36,8 @@ struct PlotSpec {
   std::string quantity, unit;
   double lo = 0, hi = 1, step = 0.2;
   bool diverging = false;
+  /// A single-hue map from white (0) to this colour (1) instead (the dye).
+  std::optional<glm::vec3> hue;
   std::string title;
 };
 

@@ -826,7 +826,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
 
 void WaterRenderer::render_plan(std::span<const float> values, const std::string& quantity, double unit_scale,
                                 const std::string& unit, bool diverging, const std::string& title,
-                                const RenderTarget& target) {
+                                const RenderTarget& target, std::optional<glm::vec3> hue) {
   const std::size_t R = grid_.rows, C = grid_.cols;
   // the colour range: symmetric about 0 (heights) or from the minimum (depths), rounded out to
   // the colour bar's ticks; obstacles (fill_from_) and the ships' waterlines are grey (the dent
@@ -845,6 +845,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
   spec.width_m = C * grid_.dx, spec.height_m = R * grid_.dx;
   spec.quantity = quantity, spec.unit = unit, spec.title = title;
   plot_range(lo, hi, diverging, spec);
+  spec.hue = hue;
   std::vector<std::uint8_t> px(R * C * 4);
   for (std::size_t k = 0; k < R * C; ++k) {
     const bool solid =
@@ -852,7 +853,7 @@ void WaterRenderer::render_plan(std::span<const float> values, const std::string
     const bool dry = !std::isfinite(values[k]);
     const glm::vec3 c = solid ? glm::vec3(0.55f)
                         : dry ? kPlanDryLand
-                              : plan_colour((unit_scale * values[k] - spec.lo) / (spec.hi - spec.lo), diverging);
+                              : plan_colour((unit_scale * values[k] - spec.lo) / (spec.hi - spec.lo), spec);
     for (int ch = 0; ch < 3; ++ch) px[4 * k + ch] = static_cast<std::uint8_t>(std::lround(255.0f * c[ch]));
     px[4 * k + 3] = 255;
   }

@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -217,9 +218,11 @@ class WaterRenderer {
   void set_tank(const std::array<double, 3>& box_m);
   /// Draws `values` (rows x cols, the visible field) as a colour map seen from straight above,
   /// with a colour bar, axes in metres and a title (plan view, docs/viz.md); `diverging` uses
-  /// a blue-white-red map symmetric about 0, else a sequential one from the minimum.
+  /// a blue-white-red map symmetric about 0, else a sequential one from the minimum (viridis, or
+  /// white to `hue` when one is given).
   void render_plan(std::span<const float> values, const std::string& quantity, double unit_scale,
-                   const std::string& unit, bool diverging, const std::string& title, const RenderTarget& target);
+                   const std::string& unit, bool diverging, const std::string& title, const RenderTarget& target,
+                   std::optional<glm::vec3> hue = std::nullopt);
   /// Draw into `target` as seen by `camera`.
   void render(const OrbitCamera& camera, const RenderSettings& settings, const RenderTarget& target);
 

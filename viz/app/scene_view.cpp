@@ -279,7 +279,10 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
     v.assign(tracer.begin(), tracer.end());
     for (std::size_t k = 0; k < v.size(); ++k)
       if (dry(k)) v[k] = kNaN;
-    renderer.render_plan(v, quantity == PlanQuantity::dye ? "dye" : "foam", 1.0, "1", false, label, target);
+    // the dye from white to the colour the perspective view tints it with, the foam on viridis
+    const std::optional<glm::vec3> hue =
+        quantity == PlanQuantity::dye ? std::optional<glm::vec3>(RenderSettings{}.dye_colour) : std::nullopt;
+    renderer.render_plan(v, quantity == PlanQuantity::dye ? "dye" : "foam", 1.0, "1", false, label, target, hue);
     return;
   }
   // a height about rest (m); LBM/SPH: the depth above the bed (the height itself on a flat bed,
