@@ -103,8 +103,11 @@ void main() {
   } else if (u_glint == 2) {
     float r0 = (u_index - 1.0) / (u_index + 1.0);
     float Fs = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - nv, 5.0);
-    float c = dot(r, sun), edge = 1.0 - u_sun_cos;  // soft edge: half the disc's radius wide
-    col += Fs * u_sun_intensity * smoothstep(u_sun_cos - 0.5 * edge, u_sun_cos + 0.5 * edge, c) * u_sun_colour;
+    // soft edge: half the disc's radius wide, and at least the change of c over one pixel
+    // (fwidth: the share of the pixel that sees the disc), so a fleck of glint fades over a pixel
+    // instead of ending hard (anti-aliasing)
+    float c = dot(r, sun), half_edge = 0.5 * max(1.0 - u_sun_cos, fwidth(c));
+    col += Fs * u_sun_intensity * smoothstep(u_sun_cos - half_edge, u_sun_cos + half_edge, c) * u_sun_colour;
   }
   if (u_use_foam != 0) {
     vec2 gp = (v_pos.xy - u_grid_origin) / u_dx;
