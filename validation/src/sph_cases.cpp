@@ -144,17 +144,15 @@ std::vector<ValidationRow> sph_hydrostatic_rows(int nx, int nz, double settle_s,
     ++ni;
   }
   const double b = (sw * szp - sz * sp) / (sw * szz - sz * sz), a = (sp - b * sz) / sw;
-  // the weight per floor area: exact for any packing
+  // the weight per floor area N m g / A: exact for any packing. (No row against rho0 g H: with
+  // m = rho0 / sum_lattice W (system.cpp) it is N m g / A = rho0 g H / (dx^3 sum_lattice W), a kernel
+  // constant, 1 + 3e-5 for DFSPH's cubic spline at h = 2 dx, so such a row repeats this one.)
   const double expected = s.count() * double(s.mass()) * kG / (p.container_m[0] * p.container_m[1]);
   std::vector<ValidationRow> rows;
   rows.push_back(
       check(c, "bottom pressure from the p(z) fit (Pa) vs weight/area", a, expected, rel(a, expected), 0.02));
   rows.push_back(check(c, "pressure gradient -dp/dz (Pa/m) vs rho0 g", -b, p.rest_density_kgpm3 * kG,
                        rel(-b, p.rest_density_kgpm3 * kG), 0.02));
-  if (df) {
-    const double rgh = p.rest_density_kgpm3 * kG * H;
-    rows.push_back(check(c, "bottom pressure from the p(z) fit (Pa) vs rho0 g H", a, rgh, rel(a, rgh), 0.02));
-  }
   rows.push_back(check(c, "max compression max(rho/rho0 - 1) (1)", comp, 0, comp, 0.01));
   // DFSPH solves for the density: 0.1 % (WCSPH: 1 %, the Mach number of its sound speed)
   rows.push_back(check(c, "mean |rho/rho0 - 1| below the surface layer (1)", mean_err / std::max<std::size_t>(ni, 1), 0,
