@@ -372,6 +372,36 @@ TEST(LbmWetDry, StillWaterBesideAShoalJustBelowItStaysStill) {
   }
 }
 
+// Steps the all-wet pass hands to the wet/dry pass are counted. Zhou's partial dam with 10 m / 2 m
+// drives a breach corner below min_depth_m in the all-wet pass from step ~54 (docs/lbm.md); the
+// redone step keeps the corner wet, so the dry count alone does not show it. A still lake 2 cm deep
+// over a mound (1.5 mm of water on its top, 15 times min_depth_m) never redoes a step.
+TEST(LbmWetDry, RedoneStepsAreCountedAndAStillLakeRedoesNone) {
+  const auto dam = lbm_partial_dam(5.0, 200);
+  ASSERT_TRUE(dam.refused.empty()) << dam.refused;
+  EXPECT_EQ(dam.done_steps, 200);
+  EXPECT_GT(dam.redone_steps, 0);
+  LbmParams p;
+  p.cols = p.rows = 32;
+  p.cell_m = 0.1;
+  p.dt_s = 0.4 * p.cell_m / std::sqrt(9.81 * 0.02);
+  p.viscosity_m2s = nu_for_tau(0.7, p);
+  LbmFields f = uniform(p.rows, p.cols, 0.02);
+  f.bed_m.assign(f.depth_m.size(), 0.0f);
+  for (int r = 0; r < p.rows; ++r)
+    for (int c = 0; c < p.cols; ++c) {
+      const double x = c - 15.5, y = r - 15.5;
+      const std::size_t i = static_cast<std::size_t>(r) * p.cols + c;
+      f.bed_m[i] = static_cast<float>(0.019 * std::exp(-(x * x + y * y) / 20.0));
+      f.depth_m[i] = 0.02f - f.bed_m[i];
+    }
+  LbmShallow lake(p, f);
+  ASSERT_EQ(lake.dry_cells(), 0u);
+  lake.run(2000);
+  EXPECT_EQ(lake.dry_cells(), 0u);
+  EXPECT_EQ(lake.redone_steps(), 0);
+}
+
 TEST(LbmWetDry, KeepsVolumeAndDepthsNonNegativeWhileWettingAndDrying) {
   const auto r = lbm_wet_dry_mass(32, 32, 3000);
   EXPECT_EQ(r.stopped, "");

@@ -1212,6 +1212,7 @@ void LbmShallow::step() {
         bad = 1;
       } else {
         if (image_row_ >= 0) throw_periodic_wet_dry();
+        ++redone_;
         unshift();
         set_ghost_depths();
         fill_ghosts(true);

@@ -226,6 +226,9 @@ class LbmShallow {
   int bytes_per_cell() const;
   /// Fluid cells with depth below min_depth_m after the last step (or initially), over all ranks.
   std::size_t dry_cells() const { return dry_; }
+  /// Steps the all-wet pass handed over to the wet/dry pass and redid (a cell fell below min_depth_m
+  /// or went negative in it), since construction, over all ranks (every rank counts the same steps).
+  std::int64_t redone_steps() const { return redone_; }
   /// True when the run keeps the mass carry plane (the scene started with a dry cell).
   bool has_mass_carry() const { return carry_.size() != 0; }
   /// Bytes this rank sent to its neighbours so far (halo rows; unit: byte).
@@ -308,6 +311,7 @@ class LbmShallow {
   std::size_t ncells_ = 0;  // fluid cells
   std::size_t dry_ = 0;     // fluid cells with h < h_min (the wet/dry pass runs while > 0)
   std::int64_t steps_ = 0;
+  std::int64_t redone_ = 0;  // steps redone by the wet/dry pass (step())
   StageStats stats_;
   int st_fill_ = 0, st_kernel_ = 0;
   // decomposition over ranks (halo.cpp): this rank's rows [row0_, row0_ + rows_), halo rows each side

@@ -126,6 +126,8 @@ struct LbmPartialDamResult {
   double time_s = 0, volume_drift = 0, min_depth_m = 0;
   /// Largest number of dry cells seen at the end of a step.
   std::size_t max_dry = 0;
+  /// Steps the all-wet pass handed to the wet/dry pass to redo (LbmShallow::redone_steps()).
+  std::int64_t redone_steps = 0;
   std::string refused, stopped;
 };
 LbmPartialDamResult lbm_partial_dam(double ratio, std::int64_t steps);
