@@ -40,6 +40,17 @@ LbmFields uniform(int rows, int cols, double h, double ux = 0, double uy = 0) {
 
 double nu_for_tau(double tau, const LbmParams& p) { return (tau - 0.5) * p.cell_m * p.cell_m / (3 * p.dt_s); }
 
+// rows x cols cells of 1 m, dt = 0.4 / sqrt(g) s (a lattice speed 2.5 sqrt(g h) at h = 1 m), tau 0.6
+LbmParams metre_cells(int rows, int cols) {
+  LbmParams p;
+  p.cols = cols;
+  p.rows = rows;
+  p.cell_m = 1.0;
+  p.dt_s = 0.4 / std::sqrt(9.81);
+  p.viscosity_m2s = nu_for_tau(0.6, p);
+  return p;
+}
+
 std::string refusal(const LbmParams& p, const LbmFields& f) {
   try {
     lbm_check(p, f);
@@ -278,12 +289,7 @@ TEST(LbmBoundaries, InflowDeliversTheGivenDischarge) {
 TEST(LbmKernel, SameResultWithOneAndTwoThreads) {
   auto run = [](int threads) {
     omp_set_num_threads(threads);
-    LbmParams p;
-    p.cols = 160;
-    p.rows = 128;  // above the size at which the pass goes parallel
-    p.cell_m = 1.0;
-    p.dt_s = 0.4 / std::sqrt(9.81);
-    p.viscosity_m2s = nu_for_tau(0.6, p);
+    LbmParams p = metre_cells(128, 160);  // above the size at which the pass goes parallel
     LbmFields f = uniform(p.rows, p.cols, 1.0);
     f.bed_m.assign(f.depth_m.size(), 0.0f);
     for (int r = 0; r < p.rows; ++r)
@@ -313,12 +319,7 @@ TEST(LbmKernel, SameResultWithOneAndTwoThreads) {
 }
 
 TEST(LbmFailure, RunawayIsStoppedNeverSilent) {
-  LbmParams p;
-  p.cols = 64;
-  p.rows = 4;
-  p.cell_m = 1.0;
-  p.dt_s = 0.4 / std::sqrt(9.81);
-  p.viscosity_m2s = nu_for_tau(0.6, p);
+  LbmParams p = metre_cells(4, 64);
   p.left = p.right = p.bottom = p.top = LbmSide::periodic;
   p.accel_mps2 = {400.0, 0.0};  // a force the check does not bound: the flow runs away
   LbmShallow sim(p, uniform(p.rows, p.cols, 1.0));
@@ -348,12 +349,7 @@ TEST(LbmWetDry, StillWaterAroundIslandsStaysStill) {
 // stays closed (the water must stand min_depth_m above the dry bed), so nothing moves. With the
 // margin dropped from the closed-face test the shoal floods (8.8e-2 m deep, 7.7 m/s after 2000 steps).
 TEST(LbmWetDry, StillWaterBesideAShoalJustBelowItStaysStill) {
-  LbmParams p;
-  p.cols = 64;
-  p.rows = 1;
-  p.cell_m = 1.0;
-  p.dt_s = 0.4 / std::sqrt(9.81);
-  p.viscosity_m2s = nu_for_tau(0.6, p);
+  LbmParams p = metre_cells(1, 64);
   p.bottom = p.top = LbmSide::periodic;
   LbmFields f = uniform(1, 64, 1.0);
   f.bed_m.assign(64, 0.0f);
