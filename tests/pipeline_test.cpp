@@ -571,8 +571,8 @@ TEST(Pipeline, ManualClockFramesAreTheStepsOfASynchronousLoop) {
   const std::string dir = huygens::test::scenes_dir();
   RunOptions ro;
   ro.measure_plans = false;
-  for (const auto& [name, t0] :
-       {std::pair{"sph_dam_break", 0.02}, std::pair{"channel", 1.5}, std::pair{"kelvin", 1.0}}) {
+  for (const auto& [name, t0] : {std::pair{"sph_dam_break", 0.02}, std::pair{"channel", 1.5}, std::pair{"kelvin", 1.0},
+                                 std::pair{"ocean", 1.0}}) {
     const Scene scene = load_scene(dir + "/" + name + ".json");
     std::unique_ptr<Solver> ref = make_solver(scene, ro), run = make_solver(scene, ro);
     const double frame_dt = ref->render_info().frame_dt_s;
