@@ -1,8 +1,9 @@
 #pragma once
 // The simulation runner (docs/design.md 2, docs/pipeline.md; paper 004 Figure 2): a Solver on
 // its own thread, UI commands applied at step boundaries (refused ones handed back), a frame
-// published after every step into a FrameRing the render thread reads without waiting; an
-// exception from step() stops the thread and is kept (failed(), error(), rethrow_if_failed()).
+// published after every step (manual clock: every step the display can reach) into a FrameRing
+// the render thread reads without waiting; an exception from step() stops the thread and is
+// kept (failed(), error(), rethrow_if_failed()).
 // Clocks: as fast as possible; real time, D(now) = t0 + time_scale (now - wall0), frame n+1
 // published when D reaches t_n (so D lies between the two newest frames; rebased when more
 // than a step behind); manual (deterministic: headless, tests), frame n published once
