@@ -550,9 +550,10 @@ void expect_frame(const Frame& f, const Snapshot& s, const std::string& what) {
   EXPECT_EQ(f.info.step, s.step) << what;
   EXPECT_EQ(f.info.time_s, s.time_s) << what;
   EXPECT_EQ(std::memcmp(f.eta.data(), s.eta.data(), s.eta.size() * sizeof(float)), 0) << what << ": eta";
-  if (!s.particles.empty())
+  if (!s.particles.empty()) {
     EXPECT_EQ(std::memcmp(f.particles.data(), s.particles.data(), s.particles.size() * sizeof(float)), 0)
         << what << ": particles";
+  }
   ASSERT_EQ(f.info.ship_count, s.ships.size()) << what;
   for (std::size_t i = 0; i < s.ships.size(); ++i) {
     EXPECT_EQ(f.info.ships[i].x_m, s.ships[i].x_m) << what;
