@@ -1,10 +1,12 @@
 // The scene pipeline on the Huygens solver: determinism across thread counts,
 // proof that absent stages cost nothing, and failure containment (a non-finite value is
-// reported with the stage that produced it; dumps up to the last good step stay valid).
+// reported with the stage that produced it; dumps up to the last good step stay valid); the
+// manual-clock runner shows the frames of the steps at or before the display time, bit for bit.
 #include <gtest/gtest.h>
 #include <omp.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -27,6 +29,7 @@
 #include "huygens/huygens/solver.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "scenes_dir.hpp"
 
 using namespace huygens;
 using nlohmann::json;
@@ -520,4 +523,85 @@ TEST(Pipeline, RunnerReportsTheStageAndKeepsTheLastGoodFrame) {
   EXPECT_EQ(f.newest->info.step, 8);
   EXPECT_TRUE(all_finite(f.newest->eta.span()));
   r.stop();
+}
+
+namespace {
+
+/// What a frame shows of a solver's state.
+struct Snapshot {
+  std::int64_t step = 0;
+  double time_s = 0;
+  std::vector<float> eta, particles;
+  std::vector<ShipState> ships;
+};
+
+Snapshot snapshot(Solver& s) {
+  Snapshot r{s.steps(), s.time(), {}, {}, {}};
+  const auto h = s.height();
+  r.eta.assign(h.begin(), h.end());
+  const auto p = s.particles();
+  r.particles.assign(p.begin(), p.end());
+  std::array<ShipState, kMaxFrameShips> ships{};
+  r.ships.assign(ships.begin(), ships.begin() + static_cast<std::ptrdiff_t>(s.ship_poses(ships)));
+  return r;
+}
+
+void expect_frame(const Frame& f, const Snapshot& s, const std::string& what) {
+  EXPECT_EQ(f.info.step, s.step) << what;
+  EXPECT_EQ(f.info.time_s, s.time_s) << what;
+  EXPECT_EQ(std::memcmp(f.eta.data(), s.eta.data(), s.eta.size() * sizeof(float)), 0) << what << ": eta";
+  if (!s.particles.empty()) {
+    EXPECT_EQ(std::memcmp(f.particles.data(), s.particles.data(), s.particles.size() * sizeof(float)), 0)
+        << what << ": particles";
+  }
+  ASSERT_EQ(f.info.ship_count, s.ships.size()) << what;
+  for (std::size_t i = 0; i < s.ships.size(); ++i) {
+    EXPECT_EQ(f.info.ships[i].x_m, s.ships[i].x_m) << what;
+    EXPECT_EQ(f.info.ships[i].y_m, s.ships[i].y_m) << what;
+  }
+}
+
+}  // namespace
+
+// The headless render's frames (huygens-viz --headless: the runner's manual clock, display times
+// T, T + frame_dt, ...) are the steps a synchronous loop takes: after show(T) the newest frame is
+// the last step at or before T (1e-9 of a step: the runner's tolerance) and the one before it the
+// step before that (the interpolation's other end), with bit-identical heights, particles and
+// ships, for the three solvers (SPH: adaptive step bounded by dt_max; LBM and Huygens: fixed).
+TEST(Pipeline, ManualClockFramesAreTheStepsOfASynchronousLoop) {
+  const std::string dir = huygens::test::scenes_dir();
+  RunOptions ro;
+  ro.measure_plans = false;
+  for (const auto& [name, t0] : {std::pair{"sph_dam_break", 0.02}, std::pair{"channel", 1.5}, std::pair{"kelvin", 1.0},
+                                 std::pair{"ocean", 1.0}}) {
+    const Scene scene = load_scene(dir + "/" + name + ".json");
+    std::unique_ptr<Solver> ref = make_solver(scene, ro), run = make_solver(scene, ro);
+    const double frame_dt = ref->render_info().frame_dt_s;
+    (void)run->render_info();  // as the viewer does before the runner starts
+    RunnerParams rp;
+    rp.manual_clock = true;
+    Runner runner(std::move(run), rp);
+    runner.start();
+    Snapshot prev, cur = snapshot(*ref);
+    ref->step();  // one step ahead of `cur`, as the runner holds a step that is not due yet
+    for (int k = 0; k < 3; ++k) {
+      const double t = t0 + k * frame_dt;
+      while (ref->time() <= t + 1e-9 * (ref->time() - cur.time_s)) {
+        prev = std::move(cur);
+        cur = snapshot(*ref);
+        ref->step();
+      }
+      runner.show(t);
+      ASSERT_TRUE(runner.wait_shown(600.0)) << name << " " << t;
+      const FramePair fp = runner.frames();
+      ASSERT_TRUE(fp && fp.prev) << name;
+      const std::string what = std::string(name) + " at display time " + std::to_string(t);
+      expect_frame(*fp.newest, cur, what + ", newest frame");
+      expect_frame(*fp.prev, prev, what + ", the frame before it");
+    }
+    runner.stop();
+    EXPECT_FALSE(runner.failed()) << name;
+    EXPECT_LT(runner.frames_published(), static_cast<std::uint64_t>(cur.step) + 1)
+        << name << ": frames the display time passed are not published";
+  }
 }

@@ -32,6 +32,9 @@ class FakeSolver : public Solver {
     bool with_rate = true;
     /// Report one ship (x = step, y = the last ShipTarget's x, heading = its y) and accept ShipTarget.
     bool ship = false;
+    /// Solver::time_bound: 0 none (+infinity), 1 exact (fixed dt), 2 adaptive steps of
+    /// dt (0.3 .. 1] (step-dependent) bounded by t + k dt.
+    int bound = 0;
   };
   explicit FakeSolver(Options o) : o_(o), eta_(kRows * kCols), rate_(kRows * kCols) {
     stage_ = stats_.add("propagate", eta_.size() * sizeof(float));
@@ -50,13 +53,19 @@ class FakeSolver : public Solver {
       while (std::chrono::steady_clock::now() < until) {
       }
     }
+    t_ += o_.bound == 2 ? o_.dt * (0.3 + 0.7 * static_cast<double>((steps_ * 7) % 5) / 4.0) : 0.0;
     ++steps_;
     stats_[stage_].transforms += 2;
     fill();
     in_step_ = false;
   }
-  double time() const override { return static_cast<double>(steps_) * o_.dt; }
+  double time() const override { return o_.bound == 2 ? t_ : static_cast<double>(steps_) * o_.dt; }
   std::int64_t steps() const override { return steps_; }
+  double time_bound(int k) const override {
+    if (o_.bound == 1) return static_cast<double>(steps_ + k) * o_.dt;
+    if (o_.bound == 2) return t_ + k * o_.dt;
+    return Solver::time_bound(k);
+  }
   std::vector<OutputField> outputs() override { return {{"eta", {kRows, kCols}, eta_}}; }
   nlohmann::json meta() const override { return nlohmann::json::object(); }
   const StageStats& stats() const override { return stats_; }
@@ -107,6 +116,7 @@ class FakeSolver : public Solver {
   StageStats stats_;
   int stage_ = 0;
   std::int64_t steps_ = 0;
+  double t_ = 0;  // Options::bound == 2
   float depth_sum_ = 0;
   double target_x_ = -1, target_y_ = 0;
   bool in_step_ = false;
@@ -408,4 +418,96 @@ TEST(Runner, ThreeThreadsStress) {
   auto& s = dynamic_cast<FakeSolver&>(r.solver());
   EXPECT_FALSE(s.inside_step_);
   EXPECT_LE(s.drops_.size(), static_cast<std::size_t>(sent.load()));
+}
+
+namespace {
+
+/// The fake's time after `steps` steps, as it computes it (the reference for the frames expected).
+double fake_time(const FakeSolver::Options& o, std::int64_t steps) {
+  FakeSolver ref(o);
+  for (std::int64_t k = 0; k < steps; ++k) ref.step();
+  return ref.time();
+}
+
+}  // namespace
+
+// The manual clock shows the same frames whether or not the solver bounds its next steps' times:
+// after show(T) the newest frame is the last step at or before T and the one before it the step
+// before that (the pair the display interpolates between), each with its step's field; the runner
+// leaves unpublished only frames that display time passed (fewer frames than steps), none when the
+// solver cannot bound its step (every step, as the window's real-time path has them).
+TEST(RunnerManualClock, ShowsTheSameFramesWithAndWithoutTimeBounds) {
+  const std::vector<double> shows = {0.0, 0.004, 0.01, 0.0345, 0.05, 0.05, 0.2, 0.2001, 0.5, 1.0};
+  for (int bound : {0, 1, 2}) {
+    FakeSolver::Options o;
+    o.bound = bound;
+    RunnerParams rp;
+    rp.manual_clock = true;
+    Runner runner(fake(o), rp);
+    runner.start();
+    FakeSolver ref(o);  // stepped while its next step is at or before T: the frames expected
+    for (double t : shows) {
+      for (;;) {
+        const double t0 = ref.time();
+        const double t1 = fake_time(o, ref.steps() + 1);
+        if (!(t1 <= t + 1e-9 * (t1 - t0))) break;
+        ref.step();
+      }
+      runner.show(t);
+      ASSERT_TRUE(runner.wait_shown(60.0)) << t;
+      const FramePair fp = runner.frames();
+      ASSERT_TRUE(fp);
+      EXPECT_EQ(fp.newest->info.step, ref.steps()) << "bound " << bound << ", display time " << t;
+      EXPECT_EQ(fp.newest->info.time_s, ref.time()) << "bound " << bound << ", display time " << t;
+      EXPECT_TRUE(consistent(*fp.newest, 0.0f));
+      if (ref.steps() == 0) continue;
+      ASSERT_NE(fp.prev, nullptr);
+      EXPECT_EQ(fp.prev->info.step, ref.steps() - 1) << "bound " << bound << ", display time " << t;
+      EXPECT_TRUE(consistent(*fp.prev, 0.0f));
+    }
+    runner.stop();
+    EXPECT_FALSE(runner.failed());
+    const auto all = static_cast<std::uint64_t>(ref.steps()) + 1;
+    if (bound == 0)
+      EXPECT_EQ(runner.frames_published(), all) << "no bound: every step published";
+    else
+      EXPECT_LT(runner.frames_published(), all / 2) << "bound " << bound << ": frames the display passed left out";
+  }
+}
+
+// max_steps ends the run before the display time: the last two steps taken are still published.
+TEST(RunnerManualClock, TheLastStepsBeforeMaxStepsArePublished) {
+  FakeSolver::Options o;
+  o.bound = 1;
+  RunnerParams rp;
+  rp.manual_clock = true;
+  rp.max_steps = 40;
+  Runner runner(fake(o), rp);
+  runner.start();
+  runner.show(1.0);  // 100 steps of 0.01 s
+  EXPECT_FALSE(runner.wait_shown(60.0)) << "the thread ends at step 40";
+  const FramePair fp = runner.frames();
+  ASSERT_TRUE(fp);
+  EXPECT_EQ(fp.newest->info.step, 40);
+  ASSERT_NE(fp.prev, nullptr);
+  EXPECT_EQ(fp.prev->info.step, 39);
+  runner.stop();
+}
+
+// A paused manual-clock runner still steps one frame per StepOnce and publishes it.
+TEST(RunnerManualClock, StepOncePublishesEveryStepWhilePaused) {
+  FakeSolver::Options o;
+  o.bound = 1;
+  RunnerParams rp;
+  rp.manual_clock = true;
+  rp.start_paused = true;
+  Runner runner(fake(o), rp);
+  runner.start();
+  runner.show(1.0);
+  for (int k = 1; k <= 3; ++k) {
+    ASSERT_TRUE(runner.send(cmd::StepOnce{}));
+    wait_for([&] { return runner.frames_published() >= static_cast<std::uint64_t>(k) + 1; });
+    EXPECT_EQ(runner.frames().newest->info.step, k);
+  }
+  runner.stop();
 }

@@ -21,8 +21,9 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   bool camera_placed = opt.custom_camera;
   RenderTarget target(opt.width, opt.height);
 
-  // the window's path with the manual clock: the runner publishes every step at or before the
-  // display time into the frame ring, and the frame drawn is sampled from the ring
+  // the window's path with the manual clock: the runner computes every step at or before the
+  // display time and publishes the last two into the frame ring (the pair the window would hold),
+  // and the frame drawn is sampled from the ring
   RunnerParams rp;
   rp.manual_clock = true;
   Runner runner(std::move(scene.solver), rp);
@@ -42,15 +43,23 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   const double t_first = history ? opt.time - skipped * view.frame_dt : opt.time;
   double flow_time = 0.0;
   bool has_velocity = false;
+  bool shown_ahead = false;  // show(t) of this frame was already called (a history frame's overlap)
   for (int k = 0; k < skipped + opt.frames; ++k) {
     const double t = t_first + k * view.frame_dt;
-    runner.show(t);
+    if (!shown_ahead) runner.show(t);
+    shown_ahead = false;
     if (!runner.wait_shown()) {
       runner.stop();
       runner.rethrow_if_failed();
       throw std::runtime_error("headless: the simulation ended before display time " + std::to_string(t) + " s");
     }
     const FramePair frames = runner.frames();
+    if (k < skipped) {
+      // a history frame is not drawn, and the pair it holds stays valid until the next frames():
+      // the simulation computes the next frame while the dye and the foam advance through this one
+      runner.show(t_first + (k + 1) * view.frame_dt);
+      shown_ahead = true;
+    }
     has_velocity = frames.velocity(velocity);
     if (history && has_velocity && frames.newest->info.time_s > flow_time) {
       const double dt = frames.newest->info.time_s - flow_time;

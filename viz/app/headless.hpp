@@ -5,7 +5,8 @@
 // gl::HeadlessContext, EGL surfaceless). The same options give the same image.
 //
 // Frame k (k = 0 .. frames-1) shows display time T + k frame_dt (RenderInfo::frame_dt_s); the
-// runner publishes every step at or before it, and the frame drawn is the newest (the last full
+// runner computes every step at or before it and publishes the last two (docs/pipeline.md,
+// Solver::time_bound), and the frame drawn is the newest (the last full
 // step at or before the display time: no interpolation, deterministic, exact at step times).
 // The image is the last frame. A flow's dye and foam are advected through every frame from
 // t = 0 (frame_dt apart), drawing only the last `frames` of them.

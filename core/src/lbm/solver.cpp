@@ -45,6 +45,8 @@ class LbmSolver final : public Solver {
   void step() override { sim_.step(); }
   double time() const override { return sim_.time_s(); }
   std::int64_t steps() const override { return sim_.steps(); }
+  /// (steps() + k) dt, as LbmShallow::time_s computes the time (exact).
+  double time_bound(int k) const override { return static_cast<double>(sim_.steps() + k) * sim_.params().dt_s; }
   std::vector<OutputField> outputs() override {
     refresh();
     sim_.velocity(u_);

@@ -66,6 +66,7 @@ void Runner::start() {
 
 void Runner::stop() {
   stop_.store(true, std::memory_order_release);
+  wake();
   if (thread_.joinable())
     thread_.join();
   else if (status_.load() == kRunning)
@@ -117,17 +118,33 @@ double Runner::display_time() const {
 void Runner::show(double t_s) {
   shown_t_.store(t_s, std::memory_order_release);
   shown_req_.fetch_add(1, std::memory_order_acq_rel);
+  wake();
+}
+
+void Runner::wake() {
+  // taking the mutex orders the change made before it with a waiter's test of its predicate
+  { const std::lock_guard<std::mutex> lock(wake_mutex_); }
+  wake_cv_.notify_all();
 }
 
 bool Runner::wait_shown(double timeout_s) const {
   const std::uint64_t req = shown_req_.load(std::memory_order_acquire);
-  const std::int64_t deadline = runner_now_ns() + static_cast<std::int64_t>(timeout_s * 1e9);
-  while (shown_done_.load(std::memory_order_acquire) < req) {
-    if (finished()) return shown_done_.load(std::memory_order_acquire) >= req;
-    if (runner_now_ns() > deadline) return false;
-    sleep_s(params_.poll_s);
-  }
-  return true;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::nanoseconds(static_cast<std::int64_t>(timeout_s * 1e9));
+  std::unique_lock<std::mutex> lock(wake_mutex_);
+  wake_cv_.wait_until(lock, deadline, [&] { return shown_done_.load(std::memory_order_acquire) >= req || finished(); });
+  return shown_done_.load(std::memory_order_acquire) >= req;
+}
+
+void Runner::mark_shown(std::uint64_t req) {
+  if (shown_done_.exchange(req, std::memory_order_acq_rel) != req) wake();
+}
+
+void Runner::wait_for_show() {
+  std::unique_lock<std::mutex> lock(wake_mutex_);
+  wake_cv_.wait_for(lock, std::chrono::nanoseconds(static_cast<std::int64_t>(params_.poll_s * 1e9)), [&] {
+    return shown_req_.load(std::memory_order_acquire) != seen_req_ || stop_.load(std::memory_order_acquire);
+  });
 }
 
 bool Runner::due(double t_s, double h_s) {
@@ -136,10 +153,19 @@ bool Runner::due(double t_s, double h_s) {
   // found not due is not due at the time of that request either
   const std::uint64_t req = shown_req_.load(std::memory_order_acquire);
   const double t = shown_t_.load(std::memory_order_acquire);
+  seen_req_ = req;
   // the same tolerance as a caller stepping while t_n + h <= T (1e-9 of a step)
   if (t_s <= t + 1e-9 * h_s) return true;
-  shown_done_.store(req, std::memory_order_release);
+  mark_shown(req);
   return false;
+}
+
+bool Runner::unreachable(std::int64_t steps_origin) const {
+  if (!params_.manual_clock || paused_ || step_once_ > 0) return false;
+  // frame n is drawn as the newest (t_n <= T < t_{n+1}) or the one before it (t_{n+1} <= T <
+  // t_{n+2}, the interpolation's other end); neither when step n+2 is taken and t_{n+2} <= T
+  if (params_.max_steps > 0 && solver_->steps() - steps_origin + 2 > params_.max_steps) return false;
+  return solver_->time_bound(2) <= shown_t_.load(std::memory_order_acquire);
 }
 
 // ---- simulation thread ----
@@ -213,7 +239,7 @@ void Runner::run() {
     std::int64_t steps_origin = solver_->steps();
 
     while (!stop_.load(std::memory_order_acquire)) {
-      apply_commands();
+      if (hold_commands_ == 0) apply_commands();
       if (reset_requested_) {
         reset_requested_ = false;
         if (reset_) {
@@ -243,24 +269,31 @@ void Runner::run() {
     exception_ = std::current_exception();
     status_.store(kFailed, std::memory_order_release);
   }
+  wake();  // wait_shown() returns once the thread has ended
 }
 
 bool Runner::run_once(bool& pending, double& last_time, std::int64_t steps_origin) {
   if (!pending) {
     if (paused_ && step_once_ == 0) {
       // paused: everything it will publish is published
-      if (params_.manual_clock)
-        shown_done_.store(shown_req_.load(std::memory_order_acquire), std::memory_order_release);
+      if (params_.manual_clock) mark_shown(shown_req_.load(std::memory_order_acquire));
       sleep_s(params_.poll_s);
       return true;
     }
     if (params_.max_steps > 0 && solver_->steps() - steps_origin >= params_.max_steps) return false;
+    step_from_ = solver_->time();
     solver_->step();
+    if (hold_commands_ > 0) --hold_commands_;
     pending = true;
   }
 
   // publish now: as fast as possible, a single step while paused, or a due frame of the manual clock
-  if (step_once_ > 0 || due(solver_->time(), solver_->time() - last_time)) {
+  if (step_once_ > 0 || due(solver_->time(), solver_->time() - step_from_)) {
+    if (unreachable(steps_origin)) {  // the manual clock's display passes it: not published
+      hold_commands_ = 2;
+      pending = false;
+      return true;
+    }
     publish();
     last_time = solver_->time();
     pending = false;
@@ -268,6 +301,10 @@ bool Runner::run_once(bool& pending, double& last_time, std::int64_t steps_origi
       --step_once_;
       if (paused_) set_clock(runner_now_ns(), last_time, 0.0);
     }
+    return true;
+  }
+  if (params_.manual_clock && !paused_) {
+    wait_for_show();
     return true;
   }
   if (paused_ || params_.manual_clock) {

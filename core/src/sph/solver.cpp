@@ -76,6 +76,12 @@ class SphSolver final : public Solver {
   }
   double time() const override { return sys_.time(); }
   std::int64_t steps() const override { return sys_.steps(); }
+  /// t + k dt_max: every step is at most dt_max (sph_choose_dt) and the time is their running sum.
+  double time_bound(int k) const override {
+    double t = sys_.time();
+    for (int i = 0; i < k; ++i) t += static_cast<double>(sys_.params().dt_max_s);
+    return t;
+  }
 
   std::vector<OutputField> outputs() override {
     sys_.positions_by_id(pos_);

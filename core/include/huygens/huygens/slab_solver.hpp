@@ -55,6 +55,8 @@ class HuygensSlabSolver : public Solver {
   void step() override;
   double time() const override { return static_cast<double>(steps_) * scene_.params.dt_s; }
   std::int64_t steps() const override { return steps_; }
+  /// (steps() + k) dt, as time() (exact).
+  double time_bound(int k) const override { return static_cast<double>(steps_ + k) * scene_.params.dt_s; }
   /// This rank's rows of the visible eta: shape {rows, v}, global_shape {v, v}, row0.
   std::vector<OutputField> outputs() override;
   /// The global grid (as HuygensSolver::meta) plus "mpi": ranks, layout, transposes per step.

@@ -93,6 +93,8 @@ class HuygensSolver : public Solver {
   void step() override;
   double time() const override { return prop_.time(); }
   std::int64_t steps() const override { return prop_.steps(); }
+  /// (steps() + k) dt, as HuygensPropagator computes the time (exact).
+  double time_bound(int k) const override { return static_cast<double>(prop_.steps() + k) * prop_.params().dt_s; }
   std::vector<OutputField> outputs() override;
   nlohmann::json meta() const override;
   const StageStats& stats() const override { return prop_.stats(); }

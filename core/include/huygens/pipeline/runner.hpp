@@ -1,21 +1,26 @@
 #pragma once
 // The simulation runner (docs/design.md 2, docs/pipeline.md; paper 004 Figure 2): a Solver on
 // its own thread, UI commands applied at step boundaries (refused ones handed back), a frame
-// published after every step into a FrameRing the render thread reads without waiting; an
-// exception from step() stops the thread and is kept (failed(), error(), rethrow_if_failed()).
+// published after every step (manual clock: every step the display can reach) into a FrameRing
+// the render thread reads without waiting; an exception from step() stops the thread and is
+// kept (failed(), error(), rethrow_if_failed()).
 // Clocks: as fast as possible; real time, D(now) = t0 + time_scale (now - wall0), frame n+1
 // published when D reaches t_n (so D lies between the two newest frames; rebased when more
 // than a step behind); manual (deterministic: headless, tests), frame n published once
-// t_n <= T of show(T), the newest frame the last step at or before T.
+// t_n <= T of show(T), the newest frame the last step at or before T, the one before it the step
+// before that; a frame the display cannot reach, t_{n+2} <= T by Solver::time_bound(2), is
+// computed but not published (nor are commands applied until step n+2: they could move it).
 // Threads: the constructor, start(), stop() and solver() belong to the owning thread;
 // send(), show() and next_refused() to one UI thread (single producer of commands); frames(),
 // display_time(), wait_shown(), failed(), error() to one render thread (single consumer).
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -88,7 +93,9 @@ class Runner {
   /// The oldest command the solver or the runner refused that was not taken yet (false: none).
   /// At most command_capacity are kept; later refusals are only counted (commands_rejected()).
   bool next_refused(Command& out) { return refused_.try_pop(out); }
-  /// Manual clock: the display time (unit: s); the simulation publishes every step at or before it.
+  /// Manual clock: the display time (unit: s); the simulation publishes the last step at or before
+  /// it and the one before that (every step while it cannot bound the next steps' times). Display
+  /// times given in increasing order (a smaller one shows the newest frame: none is computed back).
   void show(double t_s);
 
   // ---- render thread (single consumer) ----
@@ -98,8 +105,9 @@ class Runner {
   /// +infinity when running as fast as possible (FramePair::sample then shows the newest frame);
   /// the time given to show() with the manual clock.
   double display_time() const;
-  /// Manual clock: waits until every step at or before the time last given to show() is published
-  /// (or the simulation is paused). False when the thread ended first or after timeout_s.
+  /// Manual clock: waits (on a condition variable, woken by the simulation thread) until every step
+  /// at or before the time last given to show() is computed and the last two of them published (or
+  /// the simulation is paused). False when the thread ended first or after timeout_s.
   bool wait_shown(double timeout_s = 600.0) const;
   /// True once the simulation thread stopped on an exception; error() is then valid.
   bool failed() const { return status_.load(std::memory_order_acquire) == kFailed; }
@@ -128,6 +136,15 @@ class Runner {
   /// True when the frame just computed (time t_s, h_s after the last published one) is published
   /// now rather than held: always when running as fast as possible, t_s <= show() time when manual.
   bool due(double t_s, double h_s);
+  /// Manual clock: true when the frame just computed will be neither the newest nor the one before
+  /// it when the display time is reached, t_{n+2} <= T (Solver::time_bound(2)), so it is not published.
+  bool unreachable(std::int64_t steps_origin) const;
+  /// Manual clock: stores the request every due frame is published for; wakes wait_shown().
+  void mark_shown(std::uint64_t req);
+  /// Manual clock, nothing due: waits until show() is called again, at most poll_s.
+  void wait_for_show();
+  /// Wakes the threads waiting in wait_shown() or wait_for_show().
+  void wake();
   void apply_commands();
   void apply(const Command& c);
   void publish();
@@ -150,6 +167,13 @@ class Runner {
   int step_once_ = 0;
   bool reset_requested_ = false;
   std::int64_t steps_at_reset_ = 0;
+  /// Simulated time before the step in hand (unit: s): the due tolerance's step length.
+  double step_from_ = 0.0;
+  /// Manual clock: steps to take before commands are applied again (a frame was not published on
+  /// the promise that the next two steps are due: a command could change them).
+  int hold_commands_ = 0;
+  /// Manual clock: the show() request the last due() answered.
+  std::uint64_t seen_req_ = 0;
 
   // display clock, written by the simulation thread, read by the render thread (a seqlock
   // of atomics: the writer bumps seq to odd, stores, bumps to even; readers retry on change)
@@ -169,6 +193,10 @@ class Runner {
   alignas(kCacheLine) std::atomic<double> shown_t_{0.0};
   std::atomic<std::uint64_t> shown_req_{0};
   std::atomic<std::uint64_t> shown_done_{0};
+  // manual clock: wakes wait_shown() when shown_done_ or the status changes, the simulation
+  // thread when show() is called (the changes are made before the mutex is taken to notify)
+  mutable std::mutex wake_mutex_;
+  mutable std::condition_variable wake_cv_;
   RunnerError error_;
   std::exception_ptr exception_;
 };

@@ -4,6 +4,7 @@
 // a scene by make_solver(); each solver's factory lives with the solver.
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
 #include <span>
@@ -51,6 +52,14 @@ class Solver {
   virtual double time() const = 0;
   /// Full steps taken so far.
   virtual std::int64_t steps() const = 0;
+  /// An upper bound of time() after `steps` more steps (unit: s): the exact time when the step is
+  /// fixed (computed as time() is), t + steps dt_max when it is adaptive but bounded (rounding up
+  /// is monotone, so the sum bounds the sum of the smaller steps), +infinity when the solver cannot
+  /// tell (the default). The manual-clock runner does not publish a frame it knows will not be shown.
+  virtual double time_bound(int steps) const {
+    (void)steps;
+    return std::numeric_limits<double>::infinity();
+  }
   /// The fields a dump writes for the current state (may allocate: not called inside a step).
   virtual std::vector<OutputField> outputs() = 0;
   /// Grid, spacing, time step and visible region for meta.json.
