@@ -17,9 +17,6 @@ namespace huygens {
 
 /// The plot's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
 glm::vec3 plan_colour(double t, bool diverging);
-/// The plot's own map at t in [0, 1]: white to spec.hue where a hue is set (the dye, in the colour
-/// the perspective view tints the water with), else plan_colour(t, spec.diverging).
-glm::vec3 plan_colour(double t, const struct PlotSpec& spec);
 /// The plan view's colour of a NaN value (dry land over terrain): a sand tone outside both maps.
 inline const glm::vec3 kPlanDryLand(0.80f, 0.72f, 0.55f);
 
@@ -40,6 +37,10 @@ struct PlotSpec {
   std::optional<glm::vec3> hue;
   std::string title;
 };
+
+/// The plot's own map at t in [0, 1]: white to spec.hue where a hue is set (the dye, in the colour
+/// the perspective view tints the water with), else plan_colour(t, spec.diverging).
+glm::vec3 plan_colour(double t, const PlotSpec& spec);
 
 /// Where a plot goes in a W x H image (pixels from the top-left corner): the rectangle keeping
 /// the aspect of width_m x height_m, leaving `reserve_right` pixels free on the right.

@@ -96,14 +96,13 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
   // the whole region in view, a 15 % margin: its four corners at the rest level within 1/1.15 of
   // the image's half sizes (in perspective its near edge is wider and lower on screen than the
   // far one: the far-near extent foreshortened by sin(pitch) alone cut the near sixth of a square
-  // region off at 16:9)
+  // region off at 16:9); a slab, seen from low along its short side: its long side's width
   const double t = std::tan(0.5 * c.fov_y);
   const double across = c.yaw == 0.0 ? H : W, along = c.yaw == 0.0 ? W : H;
   const std::array<glm::dvec3, 4> corners{glm::dvec3(g.x(0), g.y(0), 0.0), glm::dvec3(g.x(g.cols - 1), g.y(0), 0.0),
                                           glm::dvec3(g.x(0), g.y(g.rows - 1), 0.0),
                                           glm::dvec3(g.x(g.cols - 1), g.y(g.rows - 1), 0.0)};
-  c.distance = frame_distance(c, corners, aspect, 1.0 / 1.15);
-  if (slab) c.distance = 1.15 * across / (2.0 * t * aspect);
+  c.distance = slab ? 1.15 * across / (2.0 * t * aspect) : frame_distance(c, corners, aspect, 1.0 / 1.15);
   if (slab && view.particle_box) {
     // a particle solver's slab: its container's side, floor to lid, looked at across the slab
     // from 10 degrees up (20 for a tank over a fifth as wide as long, so its surface shows too),
