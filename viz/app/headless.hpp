@@ -36,7 +36,7 @@ struct HeadlessOptions {
   /// The plan view (render_plan_view) instead of the perspective picture, and what it shows.
   bool plan = false;
   PlanQuantity plan_quantity = PlanQuantity::level;
-  /// The scene's frames carry a velocity (solver_has_velocity): the perspective picture shows
+  /// The scene's frames carry a velocity (Solver::velocity not empty): the perspective picture shows
   /// the dye and the foam it carries from t = 0 (RenderSettings::dye, foam).
   bool flow = false;
 };

@@ -161,7 +161,7 @@ int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& set
   opt.settings = settings;
   opt.plan = plan;
   opt.plan_quantity = quantity;
-  opt.flow = solver_has_velocity(*vs.solver);
+  opt.flow = !vs.solver->velocity().empty();
   const std::string name = vs.name;
   const HeadlessResult r = render_headless(std::move(vs), opt);
   gl::write_png(o.screenshot, r.image);
@@ -217,12 +217,8 @@ BenchmarkRows benchmark_row(WaterRenderer& renderer, const OrbitCamera& cam, con
 // pass draws them as in the app. {0, 0} when the solver has no velocity on the visible grid.
 std::pair<double, double> flow_step_times(Solver& solver, const ViewerSolver& vs, const SceneView& view,
                                           WaterRenderer& renderer, DyeField& dye, FoamField& foam) {
-  const std::vector<OutputField> outs = solver.outputs();
-  const std::size_t n = view.grid.rows * view.grid.cols;
-  std::span<const float> u;
-  for (const OutputField& f : outs)
-    if (f.name == "u" && f.data.size() == 2 * n) u = f.data;
-  if (u.empty()) return {0.0, 0.0};
+  const std::span<const float> u = solver.velocity();
+  if (u.size() != 2 * view.grid.rows * view.grid.cols) return {0.0, 0.0};
   const std::span<const float> eta = solver.height();
   using clock = std::chrono::steady_clock;
   std::vector<double> d_ms, f_ms;
@@ -359,7 +355,7 @@ int run(CliOptions o) {
                                 : o.view == "particles" ? PlanQuantity::particles
                                                         : PlanQuantity::level;
   if ((quantity == PlanQuantity::speed || quantity == PlanQuantity::dye || quantity == PlanQuantity::foam) &&
-      !solver_has_velocity(*vs.solver))
+      vs.solver->velocity().empty())
     throw UsageError("--view " + o.view + " needs a flow's velocity: the LBM scenes (dam_break, channel, flood)");
   if (quantity == PlanQuantity::particles && !vs.info.particle_box_m)
     throw UsageError("--view particles needs a particle solver: an SPH scene (pool, sph_dam_break, sph_wedge)");

@@ -299,14 +299,6 @@ void render_plan_view(WaterRenderer& renderer, const SceneView& view, const Plan
   renderer.render_plan(v, view.plan_depth ? "depth" : "height", scale, unit, !view.plan_depth, label, target);
 }
 
-bool solver_has_velocity(Solver& solver) {
-  for (const OutputField& f : solver.outputs())
-    if (f.name == "u" && f.shape.size() == 3 && f.shape[0] == solver.height_rows() &&
-        f.shape[1] == solver.height_cols() && f.shape[2] == 2)
-      return true;
-  return false;
-}
-
 ViewerSolver open_viewer_solver(const std::string& arg, const RunOptions& options) {
   ViewerSolver v;
   v.scene = open_scene(arg, &v.name);

@@ -133,8 +133,4 @@ struct PlanData {
 void render_plan_view(WaterRenderer& renderer, const SceneView& view, const PlanData& data, PlanQuantity quantity,
                       double t_s, const std::string& name, const RenderTarget& target);
 
-/// True when the solver's outputs include a velocity on the visible grid (an LBM's "u"): its
-/// frames carry it (Frame::velocity) for the speed, dye and foam views.
-bool solver_has_velocity(Solver& solver);
-
 }  // namespace huygens

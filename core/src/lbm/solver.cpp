@@ -49,7 +49,7 @@ class LbmSolver final : public Solver {
   double time_bound(int k) const override { return static_cast<double>(sim_.steps() + k) * sim_.params().dt_s; }
   std::vector<OutputField> outputs() override {
     refresh();
-    sim_.velocity(u_);
+    velocity();
     const std::size_t r = height_rows(), c = height_cols();
     if (ranks_ == 1) return {{"h", {r, c}, h_}, {"u", {r, c, 2}, u_}, {"eta", {r, c}, eta_}};
     const std::size_t rg = static_cast<std::size_t>(sim_.params().rows), r0 = sim_.slab().row0;
@@ -73,6 +73,10 @@ class LbmSolver final : public Solver {
             {"dry_cells", "wetting and drying: h < min_depth_m is dry and passes no water on"}};
   }
   const StageStats& stats() const override { return sim_.stats(); }
+  std::span<const float> velocity() override {
+    sim_.velocity(u_);
+    return u_;
+  }
   std::span<const float> height() override {
     refresh();
     return eta_;

@@ -22,16 +22,6 @@ void sleep_s(double s) {
   std::this_thread::sleep_for(std::chrono::nanoseconds(static_cast<std::int64_t>(std::max(s, 0.0) * 1e9)));
 }
 
-// The solver's depth-averaged velocity (an output "u" of rows x cols x 2 on the visible grid,
-// the LBM's), or an empty span: the frames carry it for flow visualisation.
-std::span<const float> velocity_output(Solver& s) {
-  for (const OutputField& f : s.outputs())
-    if (f.name == "u" && f.shape.size() == 3 && f.shape[0] == s.height_rows() && f.shape[1] == s.height_cols() &&
-        f.shape[2] == 2)
-      return f.data;
-  return {};
-}
-
 }  // namespace
 
 std::int64_t runner_now_ns() {
@@ -46,7 +36,7 @@ Runner::Runner(std::unique_ptr<Solver> solver, RunnerParams params, Factory rese
       commands_(params.command_capacity),
       refused_(params.command_capacity),
       ring_(solver_->height_rows(), solver_->height_cols(), solver_->stats().all().size(), params.frame_slots,
-            !solver_->height_rate().empty(), !velocity_output(*solver_).empty(), solver_->particles().size()) {
+            !solver_->height_rate().empty(), !solver_->velocity().empty(), solver_->particles().size()) {
   if (!(params.time_scale > 0) || !std::isfinite(params.time_scale))
     throw std::invalid_argument("Runner: time_scale must be a positive number");
   if (!(params.poll_s > 0)) throw std::invalid_argument("Runner: poll_s must be positive");
@@ -175,7 +165,7 @@ void Runner::publish() {
   // where the solver has its ships (a steered ship is not where its scene path says)
   info.ship_count = static_cast<std::uint32_t>(std::min(solver_->ship_poses(info.ships), info.ships.size()));
   // (a solver with a velocity output: the frames' buffers exist, Runner's constructor)
-  const std::span<const float> velocity = ring_.with_velocity() ? velocity_output(*solver_) : std::span<const float>{};
+  const std::span<const float> velocity = ring_.with_velocity() ? solver_->velocity() : std::span<const float>{};
   // (a particle solver: the frames' buffers have its size, unless a reset changed the count)
   std::span<const float> particles = ring_.particle_floats() > 0 ? solver_->particles() : std::span<const float>{};
   if (particles.size() != ring_.particle_floats()) particles = {};

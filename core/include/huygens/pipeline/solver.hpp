@@ -76,6 +76,10 @@ class Solver {
   /// |v| (unit: m/s), 4 floats per particle, in storage the solver sized at construction (filled
   /// on each call, valid until the next step; the same size every call). Empty for grid solvers.
   virtual std::span<const float> particles() { return {}; }
+  /// Depth-averaged velocity (u_x, u_y) on height()'s grid, interleaved (rows, cols, 2) (unit: m/s),
+  /// in storage the solver sized at construction (filled on each call, valid until the next step);
+  /// empty when the solver has none (the default). The runner calls it for every frame: no allocation.
+  virtual std::span<const float> velocity() { return {}; }
   /// Applies a UI command (drop, ship target, parameter, feature) between steps, never inside
   /// step(); returns false when the solver does not support it (the default: none).
   virtual bool apply(const Command&) { return false; }
