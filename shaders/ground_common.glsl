@@ -25,6 +25,15 @@ uniform vec3 u_sky;
 uniform vec3 u_sky_zenith;
 uniform int u_sky_gradient;
 uniform vec3 u_sun_dir;
+uniform int u_fresnel;          // 0 off, 1 paper, 2 Schlick
+uniform int u_glint;            // 0 off, 1 the paper's, 2 the sun's disc
+uniform vec3 u_sun_colour;
+uniform float u_sun_cos;        // cos of the glint disc's angular radius
+uniform float u_sun_intensity;  // the sun's radiance relative to the sky
+uniform int u_far;              // 1: the sea beyond the region has the ambient sea's slopes
+uniform sampler2D u_far_slopes; // RG32F: d eta/dx, d eta/dy of the ambient sea, repeated
+uniform vec2 u_far_origin;      // world position of texture coordinate (0, 0) (m)
+uniform float u_far_length;     // the ambient sea's period (m)
 
 // The sky in direction r: u_sky at the horizon to u_sky_zenith overhead, or uniform.
 vec3 sky(vec3 r) {
@@ -46,12 +55,33 @@ float schlick(float nv) {
   return r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - clamp(nv, 0.0, 1.0), 5.0);
 }
 
-// The flat sea at a point P of z = 0 outside the simulated region (open ocean look).
+// The reflectance for the cosine nv between the normal and the way to the eye (u_fresnel).
+float fresnel(float nv) {
+  if (u_fresnel == 1) return clamp(1.0 - 2.5 * nv, 0.0, 1.0);
+  return u_fresnel == 2 ? schlick(nv) : 0.0;
+}
+
+// The sun's glint on a surface of normal n seen along dir (u_glint): the paper's clamp(100 n.h -
+// 98.95), or the sun's disc in the mirror direction r with Schlick's F, its edge soft over half
+// the disc's radius and at least the change of r.sun over one pixel (fwidth: the share of the
+// pixel that sees the disc), so a fleck of glint fades over a pixel instead of ending hard.
+vec3 glint(vec3 n, vec3 dir) {
+  vec3 sun = normalize(u_sun_dir);
+  if (u_glint == 1) return clamp(100.0 * dot(n, normalize(sun - dir)) - 98.95, 0.0, 1.0) * u_sun_colour;
+  if (u_glint != 2) return vec3(0.0);
+  float c = dot(reflect(dir, n), sun), half_edge = 0.5 * max(1.0 - u_sun_cos, fwidth(c));
+  return schlick(dot(n, -dir)) * u_sun_intensity * smoothstep(u_sun_cos - half_edge, u_sun_cos + half_edge, c) *
+         u_sun_colour;
+}
+
+// The sea at a point P of z = 0 outside the simulated region (open ocean look): flat, or with the
+// ambient sea's slopes (u_far; mipmapped, so far away they average out towards flat water).
 vec3 flat_sea(vec3 P) {
   vec3 dir = u_ortho != 0 ? u_view_dir : normalize(P - u_eye);
   vec3 n = vec3(0.0, 0.0, 1.0);
-  float F = schlick(-dir.z);
-  return mix(deep_water_colour(n), sky(reflect(dir, n)), F);
+  if (u_far != 0) n = normalize(vec3(-texture(u_far_slopes, (P.xy - u_far_origin) / u_far_length).rg, 1.0));
+  if (u_far == 0) return mix(deep_water_colour(n), sky(reflect(dir, n)), schlick(-dir.z));
+  return mix(deep_water_colour(n), sky(reflect(dir, n)), fresnel(max(dot(n, -dir), 0.0))) + glint(n, dir);
 }
 
 vec3 lit_ground(vec2 G) {

@@ -30,13 +30,9 @@ uniform vec2 u_grid_size;   // cols, rows
 uniform float u_dx;
 uniform float u_ground_z;
 uniform int u_exact;
-uniform int u_fresnel;      // 0 off, 1 paper, 2 Schlick
-uniform int u_glint;
 uniform int u_absorption;
 uniform vec3 u_absorb;
-uniform vec3 u_sun_colour;
-uniform float u_sun_cos;        // cos of the glint disc's angular radius
-uniform float u_sun_intensity;  // the sun's radiance relative to the sky
+// (u_fresnel, u_glint, u_sun_colour, u_sun_cos, u_sun_intensity: ground_common.glsl)
 
 // Value noise in [0, 1] at p (grid points): an integer hash per lattice corner, smooth blend.
 float hash(ivec2 c) {
@@ -85,30 +81,9 @@ void main() {
   // dye carried by the flow (paper 002; viz/app/dye.hpp), in the water at this point
   if (u_use_dye != 0) refr = mix(refr, u_dye_colour, 0.7 * texture(u_dye, tc).r);
 
-  vec3 v = -dir;
-  float nv = max(dot(n, v), 0.0);
-  float F = 0.0;
-  if (u_fresnel == 1) {
-    F = clamp(1.0 - 2.5 * nv, 0.0, 1.0);
-  } else if (u_fresnel == 2) {
-    float r0 = (u_index - 1.0) / (u_index + 1.0);
-    F = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - nv, 5.0);
-  }
-  vec3 r = reflect(dir, n);
-  vec3 col = mix(refr, sky(r), F);
+  float nv = max(dot(n, -dir), 0.0);
+  vec3 col = mix(refr, sky(reflect(dir, n)), fresnel(nv)) + glint(n, dir);
   vec3 sun = normalize(u_sun_dir);
-  if (u_glint == 1) {
-    vec3 h = normalize(v + sun);
-    col += clamp(100.0 * dot(n, h) - 98.95, 0.0, 1.0) * u_sun_colour;
-  } else if (u_glint == 2) {
-    float r0 = (u_index - 1.0) / (u_index + 1.0);
-    float Fs = r0 * r0 + (1.0 - r0 * r0) * pow(1.0 - nv, 5.0);
-    // soft edge: half the disc's radius wide, and at least the change of c over one pixel
-    // (fwidth: the share of the pixel that sees the disc), so a fleck of glint fades over a pixel
-    // instead of ending hard (anti-aliasing)
-    float c = dot(r, sun), half_edge = 0.5 * max(1.0 - u_sun_cos, fwidth(c));
-    col += Fs * u_sun_intensity * smoothstep(u_sun_cos - half_edge, u_sun_cos + half_edge, c) * u_sun_colour;
-  }
   if (u_use_foam != 0) {
     vec2 gp = (v_pos.xy - u_grid_origin) / u_dx;
     float q = 0.6 * value_noise(gp / 4.0) + 0.4 * value_noise(gp / 2.0 + 57.0);

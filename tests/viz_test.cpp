@@ -1317,6 +1317,54 @@ TEST_F(VizRender, OceanGlintFadesOverAPixel) {
   if (::testing::Test::HasFailure()) write_debug("ocean_glint.png", img);
 }
 
+// The open ocean goes on beyond the simulated region with the ambient sea's slopes
+// (WaterRenderer::set_ambient_sea): at 640 x 360, t = 1 s, a crop of the sea left of the region
+// (x 10-120, y 20-120) against one inside it on the same rows (x 500-600), glints (mean channel
+// >= 80) left out. Texture: the mean |difference| of horizontal neighbours, measured 1.75 beyond
+// and 3.59 inside (the beyond has no Stokes part and is mip-averaged), 0.025 with the flat sea of
+// before (ambient_sea off, as when the wind is switched off); brightness 37.4 beyond, 37.1 inside.
+TEST_F(VizRender, OceanGoesOnBeyondTheRegionWithTheAmbientSea) {
+  struct Crop {
+    double mean = 0, texture = 0;
+  };
+  const auto crop = [](const gl::Image8& img, int x0, int x1, int y0, int y1) {
+    const auto v = [&](int x, int y) {
+      double m = 0;
+      for (int c = 0; c < 3; ++c) m += img.pixels[4 * (static_cast<std::size_t>(y) * img.width + x) + c] / 3.0;
+      return m;
+    };
+    Crop r;
+    long n = 0, nd = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        if (v(x, y) >= 80) continue;
+        r.mean += v(x, y), ++n;
+        if (x + 1 < x1 && v(x + 1, y) < 80) r.texture += std::fabs(v(x + 1, y) - v(x, y)), ++nd;
+      }
+    r.mean /= static_cast<double>(n);
+    r.texture /= static_cast<double>(nd);
+    return r;
+  };
+  const std::string file = (std::filesystem::path(huygens::test::scenes_dir()) / "ocean.json").string();
+  HeadlessOptions o;
+  o.time = 1.0;
+  o.width = 640, o.height = 360;
+  ViewerSolver vs = viewer_solver(file);
+  o.settings = view_setup(vs, 640.0 / 360.0).settings;
+  const gl::Image8 sea = render_headless(std::move(vs), o).image;
+  o.settings.ambient_sea = false;
+  const gl::Image8 flat = render_headless(viewer_solver(file), o).image;
+  const Crop beyond = crop(sea, 10, 120, 20, 120), inside = crop(sea, 500, 600, 20, 120);
+  const Crop flat_beyond = crop(flat, 10, 120, 20, 120);
+  EXPECT_LT(flat_beyond.texture, 0.1) << "the flat sea";
+  EXPECT_GT(beyond.texture, 0.3 * inside.texture)
+      << "the sea beyond has waves: " << beyond.texture << " against " << inside.texture << " inside";
+  EXPECT_NEAR(beyond.mean, inside.mean, 0.1 * inside.mean) << "no step in tone at the region's edge";
+  std::printf("texture beyond %.3f (flat %.3f), inside %.3f; brightness beyond %.1f, inside %.1f\n", beyond.texture,
+              flat_beyond.texture, inside.texture, beyond.mean, inside.mean);
+  if (::testing::Test::HasFailure()) write_debug("ocean_beyond.png", sea);
+}
+
 TEST(VizLook, SphLabTankWaterShowsThePoolsColourAtItsRestDepth) {
   // A tank 0.1 m deep at rest: its water transmits exp(-a_eff 0.1 m) per channel, what the pool
   // look's 3 m of clear water transmit, exp(-a 3 m). A pool look and SPH water over 3 m deep keep a.

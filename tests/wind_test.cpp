@@ -1,5 +1,6 @@
 // Wind sea: JONSWAP spectrum and its wavenumber-plane Jacobian, determinism by seed,
-// a progressive (downwind only) sea, the realised variance, and drift-free advancing.
+// a progressive (downwind only) sea, the realised variance, drift-free advancing, and the
+// ambient sea's slopes (ambient_slopes.hpp).
 #include "huygens/huygens/wind.hpp"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,8 @@
 #include <vector>
 
 #include "huygens/common/scene.hpp"
+#include "huygens/huygens/ambient_slopes.hpp"
+#include "huygens/huygens/stokes.hpp"
 
 using namespace huygens;
 using cd = std::complex<double>;
@@ -159,5 +162,55 @@ TEST(Wind, SceneBlockErrorsNameThePath) {
     FAIL() << "negative speed accepted";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.path(), "$.wind.speed_mps");
+  }
+}
+
+// AmbientSlopes against the first-order height the solver makes of the same sea (StokesHeight,
+// first order, the wind as its only spectrum), differentiated here by a direct DFT in double:
+// d eta/dx = sum_k i kx E(k) e^{i k.x}, E = the DFT of eta / n^2 (the Nyquist modes carry no wave).
+// At t = 0 and after 1000 s (the phase omega t in double), on a 32^2 grid of 100 m.
+TEST(Wind, AmbientSlopesAreTheDerivativesOfTheFirstOrderHeight) {
+  Water w;
+  WindParams p;
+  p.speed_mps = 6.0;
+  p.direction_deg = 20.0;
+  const int n = 32;
+  const double L = 100.0;
+  WindSea sea(p, w, n, L, 0.05);
+  StokesHeight height(w, n, L, false, PlanEffort::estimate);
+  AmbientSlopes slopes(p, w, n, L);
+  std::vector<cfloat> zero(n * n), W(n * n);
+  std::vector<float> eta(n * n), etadot(n * n), s(2 * n * n);
+  for (const double t : {0.0, 1000.0}) {
+    sea.spectrum_at(t, W.data());
+    ASSERT_TRUE(height.compute(zero.data(), 1.0f, W.data(), eta.data(), etadot.data()));
+    slopes.compute(t, s);
+    // E(kx, ky) = sum eta e^{-i k.x} / n^2, separably: rows first
+    std::vector<cd> row(n * n), E(n * n);
+    const auto e = [&](int a, int b) { return std::polar(1.0, -2 * kPi * a * b / n); };
+    for (int r = 0; r < n; ++r)
+      for (int kc = 0; kc < n; ++kc)
+        for (int c = 0; c < n; ++c) row[r * n + kc] += double(eta[r * n + c]) * e(kc, c);
+    for (int kr = 0; kr < n; ++kr)
+      for (int kc = 0; kc < n; ++kc)
+        for (int r = 0; r < n; ++r) E[kr * n + kc] += row[r * n + kc] * e(kr, r) / double(n * n);
+    double worst = 0, largest = 0;
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c) {
+        cd sx = 0, sy = 0;
+        for (int kr = 0; kr < n; ++kr)
+          for (int kc = 0; kc < n; ++kc) {
+            if (2 * kr == n || 2 * kc == n) continue;
+            const cd v = E[kr * n + kc] * std::conj(e(kc, c) * e(kr, r)) * cd(0, 1);
+            sx += v * fft_wavenumber(kc, n, L);
+            sy += v * fft_wavenumber(kr, n, L);
+          }
+        worst =
+            std::max({worst, std::abs(sx.real() - s[2 * (r * n + c)]), std::abs(sy.real() - s[2 * (r * n + c) + 1])});
+        largest = std::max({largest, std::abs(sx.real()), std::abs(sy.real())});
+      }
+    EXPECT_GT(largest, 0.02) << "a sea with slopes";
+    EXPECT_LT(worst, 1e-4 * largest) << "t = " << t << " s";
+    std::printf("t = %g s: largest slope %.4f, largest difference %.2e\n", t, largest, worst);
   }
 }

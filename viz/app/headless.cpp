@@ -70,6 +70,7 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     if (k < skipped) continue;                    // the dye's history: not drawn
     frames.sample(runner.display_time(), field);  // the newest frame (the clock never runs ahead of it)
     renderer.set_heights(field);
+    renderer.set_sea_time(runner.display_time());
     frame_ships(view, frames, runner.display_time(), ships);  // where the solver has them
     renderer.set_ships(ships);
     if (dye_view && has_velocity) renderer.set_dye(dye.values());

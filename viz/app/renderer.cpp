@@ -1,6 +1,7 @@
 #include "renderer.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -430,6 +431,33 @@ void WaterRenderer::build_ground_texture(const RenderSettings& s) {
   ground_tex_.set_wrap(GL_REPEAT);
 }
 
+void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
+  sea_ = std::make_unique<AmbientSlopes>(sea.wind, sea.water, sea.n, sea.length_m);
+  sea_slopes_.assign(2 * static_cast<std::size_t>(sea.n) * sea.n, 0.0f);
+  sea_time_ = std::numeric_limits<double>::quiet_NaN();
+  // every level down to 1 x 1: far away a texel averages the slopes (the sea flattens to its mean
+  // colour instead of aliasing); anisotropic where the driver offers it (grazing views)
+  sea_tex_ = gl::Texture(sea.n, sea.n, GL_RG32F, static_cast<int>(std::bit_width(static_cast<unsigned>(sea.n))));
+  sea_tex_.set_filter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+  sea_tex_.set_wrap(GL_REPEAT);
+  if (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic")) {
+    GLfloat most = 1.0f;
+    glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &most);
+    glBindTexture(GL_TEXTURE_2D, sea_tex_.id());
+    glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(most, 16.0f));
+  }
+  set_sea_time(0.0);
+}
+
+void WaterRenderer::set_sea_time(double t) {
+  if (!sea_ || t == sea_time_ || !std::isfinite(t)) return;
+  sea_->compute(t, sea_slopes_);
+  sea_tex_.upload(sea_slopes_.data(), GL_RG, GL_FLOAT, 0);
+  glBindTexture(GL_TEXTURE_2D, sea_tex_.id());
+  glGenerateMipmap(GL_TEXTURE_2D);
+  sea_time_ = t;
+}
+
 // A mesh obstacle (RenderObstacle::Kind::mesh): its triangles among the solids, and per grid
 // point the highest z of the mesh above it (mesh_top_; the water surface is kept at least that
 // high, set_heights) and the outline of its footprint (mesh_outline_, grey in the plan view).
@@ -676,6 +704,22 @@ void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettin
   glUniform4f(p.loc("u_floor_rect"), static_cast<float>(grid_.x(0)), static_cast<float>(grid_.y(0)),
               static_cast<float>(grid_.x(grid_.cols - 1)), static_cast<float>(grid_.y(grid_.rows - 1)));
   glUniform1i(p.loc("u_deck"), s.pool_deck ? 1 : 0);
+  glUniform1i(p.loc("u_fresnel"), static_cast<int>(s.fresnel));
+  glUniform1i(p.loc("u_glint"), !s.sun_glint ? 0 : s.paper_glint ? 1 : 2);
+  glUniform1f(p.loc("u_sun_cos"), std::cos(s.sun_radius_rad));
+  glUniform1f(p.loc("u_sun_intensity"), s.sun_intensity);
+  glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
+  // the sea beyond the region: the ambient sea's slopes, repeated every length_m from the full
+  // grid's origin (texel centres at the grid points)
+  const bool far = sea_ && s.deep_water && s.ambient_sea;
+  glUniform1i(p.loc("u_far"), far ? 1 : 0);
+  glUniform1i(p.loc("u_far_slopes"), 7);
+  if (far) {
+    sea_tex_.bind(7);
+    const float L = static_cast<float>(sea_->length_m()), h = 0.5f * L / static_cast<float>(sea_->n());
+    glUniform2f(p.loc("u_far_origin"), -h, -h);
+    glUniform1f(p.loc("u_far_length"), L);
+  }
 }
 
 // The water surface: the subsampled mesh with per-pixel normals, refraction, Fresnel, glint.
@@ -706,13 +750,8 @@ void WaterRenderer::draw_surface(const OrbitCamera& camera, const RenderSettings
   glUniform2f(p.loc("u_grid_size"), static_cast<float>(grid_.cols), static_cast<float>(grid_.rows));
   glUniform1f(p.loc("u_dx"), static_cast<float>(grid_.dx));
   glUniform1i(p.loc("u_exact"), s.exact_refraction ? 1 : 0);
-  glUniform1i(p.loc("u_fresnel"), static_cast<int>(s.fresnel));
-  glUniform1i(p.loc("u_glint"), !s.sun_glint ? 0 : s.paper_glint ? 1 : 2);
-  glUniform1f(p.loc("u_sun_cos"), std::cos(s.sun_radius_rad));
-  glUniform1f(p.loc("u_sun_intensity"), s.sun_intensity);
   glUniform1i(p.loc("u_absorption"), s.absorption ? 1 : 0);
   glUniform3fv(p.loc("u_absorb"), 1, glm::value_ptr(s.absorb_rgb));
-  glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
   glBindVertexArray(surface_vao_);
   glDrawElements(GL_TRIANGLES, surface_index_count_, GL_UNSIGNED_INT, nullptr);
 }

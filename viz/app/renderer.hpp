@@ -23,6 +23,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -31,6 +32,7 @@
 
 #include "camera.hpp"
 #include "gl.hpp"
+#include "huygens/huygens/ambient_slopes.hpp"
 #include "huygens/pipeline/render_info.hpp"
 #include "refraction.hpp"
 
@@ -54,6 +56,9 @@ struct RenderSettings {
   /// true: exact Snell per pixel; false: the paper's linearised texture coordinates.
   bool exact_refraction = false;
   FresnelModel fresnel = FresnelModel::schlick;
+  /// Open ocean with an ambient sea (WaterRenderer::set_ambient_sea): the sea beyond the region
+  /// takes its slopes (false: flat, as when the wind is switched off).
+  bool ambient_sea = true;
   /// Sun glint (the sun's disc in the mirror direction, or the paper's clamp(100 n.h - 98.95)).
   bool sun_glint = true;
   /// The paper's glint g = clamp(100 n.h - 98.95) instead of the sun's disc.
@@ -212,6 +217,13 @@ class WaterRenderer {
   /// so its heights are only kept from dropping below the mesh's top (a dry column then lies
   /// inside the solid), and the plan view shows its footprint's outline.
   void set_obstacles(std::span<const RenderObstacle> obstacles);
+  /// The ambient wind sea (deep_water looks): the flat sea beyond the visible region is shaded with
+  /// its slopes at the time set_sea_time gives (AmbientSlopes, n x n on its periodic grid, a
+  /// mipmapped texture repeated every length_m), so the sea goes on to the horizon.
+  void set_ambient_sea(const RenderAmbientSea& sea);
+  /// The ambient sea's time (unit: s; the display time of the heights): its slopes are computed
+  /// (one n x n inverse FFT, on this thread) and uploaded when it changes. No-op without a sea.
+  void set_sea_time(double t);
   /// A particle solver's container, the box (0, 0, 0)-(box_m) (m, before the height offset): its
   /// four side walls from the floor to the lid, pale, each left out while the eye is outside
   /// it (the tank seen through its near walls: a backdrop for a slab seen from the side).
@@ -276,6 +288,10 @@ class WaterRenderer {
   std::vector<std::uint32_t> fill_from_;    // per grid point: the point whose height it shows
   std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
+  std::unique_ptr<AmbientSlopes> sea_;      // set_ambient_sea
+  std::vector<float> sea_slopes_;
+  double sea_time_ = std::numeric_limits<double>::quiet_NaN();
+  gl::Texture sea_tex_;  // RG32F slopes, mipmapped, repeated
   gl::Program tone_prog_;
   GLuint empty_vao_ = 0;
   bool heights_dirty_ = true;

@@ -48,6 +48,7 @@ SceneView scene_view(const RenderInfo& info) {
       std::any_of(info.bed_m.begin(), info.bed_m.end(), [&](float b) { return b != info.bed_m[0]; }))
     v.bed = info.bed_m;
   v.particle_spacing = info.particle_spacing_m;
+  v.ambient_sea = info.ambient_sea;
   const RenderRequest& rq = info.request;
   if (rq.look) {
     v.look = *rq.look == LookRequest::ocean     ? Look::ocean
@@ -76,6 +77,7 @@ void place_scene(WaterRenderer& renderer, const SceneView& view) {
   renderer.set_bed(view.bed);
   renderer.set_obstacles(view.obstacles);
   if (view.slab && view.particle_box) renderer.set_tank(*view.particle_box);
+  if (view.look == Look::ocean && view.ambient_sea) renderer.set_ambient_sea(*view.ambient_sea);
 }
 
 namespace {

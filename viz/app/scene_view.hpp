@@ -38,6 +38,9 @@ struct SceneView {
   /// (WaterRenderer::set_bed); empty for a flat floor.
   std::vector<float> bed;
   double particle_spacing = 0.0;
+  /// The ambient wind sea (RenderInfo::ambient_sea): the open-ocean look draws the sea beyond the
+  /// region with its slopes (WaterRenderer::set_ambient_sea).
+  std::optional<RenderAmbientSea> ambient_sea;
   /// The kind of picture (RenderInfo's request, else from what the solver is: a height above
   /// a floor with an adaptive step is SPH, with a fixed step shallow water (LBM); an elevation
   /// field with a wind sea is the open ocean, without one a pool).
@@ -61,8 +64,9 @@ struct SceneView {
 
 SceneView scene_view(const RenderInfo& info);
 
-/// Gives the renderer what the view places in the scene: the rest level, the bed, the obstacles
-/// and, for a particle solver's slab, its container's walls (WaterRenderer::set_tank).
+/// Gives the renderer what the view places in the scene: the rest level, the bed, the obstacles,
+/// for a particle solver's slab its container's walls (WaterRenderer::set_tank), and for the
+/// open-ocean look the ambient sea beyond the region (WaterRenderer::set_ambient_sea).
 void place_scene(WaterRenderer& renderer, const SceneView& view);
 
 /// The ships of a frame pair at display time t (FramePair::ship), each with its hull.

@@ -496,6 +496,7 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
   if (fp) {
     fp.sample(t, a.field);
     renderer.set_heights(a.field);
+    renderer.set_sea_time(std::min(t, fp.newest->info.time_s));
   }
   // the hulls at the same display time as the heights, where the solver has them (a dragged ship
   // is where the simulation has steered it, not where the cursor is)
@@ -514,6 +515,8 @@ void draw_frame(App& a, WaterRenderer& renderer, RenderTarget& target, double fp
     renderer.set_foam(a.foam->values());
   }
   renderer.set_ships(a.ships_drawn);
+  for (const RenderToggle& g : a.toggles)  // the sea beyond the region goes with the wind's
+    if (g.name == "wind") a.settings.ambient_sea = g.on;
   int fw, fh;
   glfwGetFramebufferSize(a.window, &fw, &fh);
   if (fw > 0 && fh > 0) {

@@ -540,6 +540,7 @@ RenderInfo HuygensSolver::render_info() {
   r.frame_dt_s = p.dt_s / scene_.display_per_step;
   r.toggles.push_back(RenderToggle{"stokes", "Stokes (2nd order)", stokes_ && stokes_->second_order()});
   if (wind_) r.toggles.push_back(RenderToggle{"wind", "wind", wind_on_});
+  if (wind_) r.ambient_sea = RenderAmbientSea{scene_.wind, p.water, p.n, p.length_m};
   r.request = scene_.render;
   return r;
 }

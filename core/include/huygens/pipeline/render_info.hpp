@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "huygens/common/scene.hpp"
+#include "huygens/huygens/wind.hpp"
 
 namespace huygens {
 
@@ -111,6 +112,17 @@ struct RenderToggle {
   bool on = false;
 };
 
+/// The ambient wind sea of a Huygens scene (wind.hpp): its modes on the periodic grid of n x n
+/// points and side length_m whose point (0, 0) is at the origin of the full grid's frame. A viewer
+/// draws the sea beyond the visible region with its slopes (AmbientSlopes): the same sea, without
+/// the ships' and the drops' waves and without the second-order (Stokes) part.
+struct RenderAmbientSea {
+  WindParams wind;
+  Water water;
+  int n = 0;
+  double length_m = 0.0;
+};
+
 struct RenderInfo {
   RenderGrid grid;
   /// Level of the water at rest in height() (unit: m): 0 for an elevation field (Huygens), the
@@ -139,6 +151,9 @@ struct RenderInfo {
   /// Features cmd::Toggle switches; anything else is refused (no control for it).
   std::vector<RenderToggle> toggles;
   RenderRequest request;
+  /// The ambient sea (a Huygens scene with a wind block); nullopt otherwise. It is on while the
+  /// "wind" toggle is.
+  std::optional<RenderAmbientSea> ambient_sea;
 };
 
 /// The mean of a height field (unit: m): RenderInfo::rest_level_m of a solver whose height() is a

@@ -1,0 +1,43 @@
+#pragma once
+// The slopes of the ambient wind sea alone (wind.hpp), first order, on its periodic n x n grid at
+// any time t: what the sea looks like beyond the simulated region, where the solver has no grid
+// (the viewer's open-ocean look continues the surface with it; docs/viz.md "The sea beyond").
+// From paper 004 eq. 3 at first order, eta1 = Re IFFT[i k/omega Z^] with Z^ = W^(0) e^{-i omega t}:
+//   (d eta1/dx)^ = i kx (i k/omega) Z^ = -kx k/omega Z^,   likewise y with ky.
+// Re IFFT[A] = IFFT[(A(k) + conj A(-k)) / 2] (a real field), and both slopes are real, so one
+// inverse transform of X(k) = (kx + i ky) D(k), D(k) = -(k/omega) (Z^(k) - conj Z^(-k)) / 2 gives
+// d eta1/dx as its real part and d eta1/dy as its imaginary part.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "huygens/common/dispersion.hpp"
+#include "huygens/common/fft.hpp"
+#include "huygens/huygens/wind.hpp"
+
+namespace huygens {
+
+class AmbientSlopes {
+ public:
+  /// The sea of `wind` on an n x n grid of side length_m (the solver's grid: the same modes, keyed
+  /// by their signed indices, so the same sea).
+  AmbientSlopes(const WindParams& wind, const Water& water, int n, double length_m,
+                PlanEffort effort = PlanEffort::estimate);
+  /// Slopes (d eta1/dx, d eta1/dy) at time t (unit: s) at grid point (row r = y, column c = x),
+  /// interleaved, row-major: out[2 (r n + c) + {0, 1}] (unit: 1); out holds 2 n^2 floats.
+  /// No allocation.
+  void compute(double t, std::span<float> out);
+  int n() const { return n_; }
+  double length_m() const { return length_m_; }
+
+ private:
+  int n_;
+  double length_m_;
+  AlignedBuffer<cfloat> c_;      // -(k/omega) W^(0) per mode (FFTW order)
+  std::vector<double> omega_;    // per mode (unit: rad/s)
+  std::vector<float> kx_, ky_;   // per column / row (unit: rad/m)
+  AlignedBuffer<cfloat> z_, x_;  // Z^(t) scaled by -k/omega, and the transform's input / output
+  Fft2D fft_;
+};
+
+}  // namespace huygens
