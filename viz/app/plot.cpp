@@ -143,7 +143,8 @@ void draw_axes(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpe
 }
 
 // The colour bar right of the plot (colour_bar_layout): one row per pixel through the map,
-// ticks at spec.step.
+// ticks at spec.step. The ticks point into the bar from its right edge: a tick outside it, just
+// left of its label, read as a minus sign (+5 as "-5", -1 as "--1").
 void draw_colour_bar(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpec& spec, double s, int H) {
   const ColourBar b = colour_bar_layout(r, spec, H);
   const double lw = std::max(1.0, s * 0.5);
@@ -151,8 +152,8 @@ void draw_colour_bar(const Painter& p, const WaterRenderer::PlanPlot& r, const P
     p.rect(b.x, b.y + b.height - row - 1, b.width, 1, plan_colour((row + 0.5) / b.height, spec));
   for (double v = spec.lo; v <= spec.hi + 1e-9 * spec.step; v += spec.step) {
     const double y = b.y + b.height - (v - spec.lo) / (spec.hi - spec.lo) * b.height;
-    p.rect(b.x + b.width, y - 0.5 * lw, 3 * s, lw, glm::vec3(0.0f));
-    p.text(b.x + b.width + 5 * s, y - 3 * s, tick_label(v, spec.step), s);
+    p.rect(b.x + b.width - 3 * s, y - 0.5 * lw, 3 * s, lw, glm::vec3(0.0f));
+    p.text(b.x + b.width + 3 * s, y - 3 * s, tick_label(v, spec.step), s);
   }
   p.text(b.x, b.y - 12 * s, spec.quantity + " (" + spec.unit + ")", s);
 }
