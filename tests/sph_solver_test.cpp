@@ -149,6 +149,20 @@ TEST(SphScene, ErrorsNameTheJsonPath) {
       "$.description");
 }
 
+// The "render" block, as in the other solvers' scenes: its camera reaches the viewer's RenderInfo,
+// a bad key names its path.
+TEST(SphScene, TheRenderBlockReachesTheViewer) {
+  const std::string scene = R"({"solver": "sph", "render": {"camera": {"pitch_deg": 35}}, "sph": {"spacing_m": 0.01,
+      "container_m": [0.1, 0.1, 0.1], )" +
+                            kOkFluid + "}}";
+  EXPECT_EQ(parse_sph_scene(parse_scene_text(scene)).render.camera.pitch_deg, 35.0);
+  EXPECT_EQ(make_solver(parse_scene_text(scene))->render_info().request.camera.pitch_deg, 35.0);
+  EXPECT_EQ(path_of(R"({"solver": "sph", "render": {"camera": {"pitch": 35}}, "sph": {"spacing_m": 0.01,
+      "container_m": [0.1, 0.1, 0.1], )" +
+                    kOkFluid + "}}"),
+            "$.render.camera.pitch");
+}
+
 // A scene that would run with no water, or with an obstacle that is not there, is refused: these ran
 // to exit 0 with empty heightfields (fluid inside an obstacle, fluid thinner than the spacing) or
 // without the obstacle (one outside the container).

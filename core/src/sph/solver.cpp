@@ -193,6 +193,7 @@ class SphSolver final : public Solver {
     const auto& box = sys_.params().container_m;
     r.particle_box_m = std::array<double, 3>{box[0], box[1], box[2]};
     r.particle_spacing_m = sys_.params().spacing_m;
+    r.request = scene_.render;
     return r;
   }
 
@@ -410,7 +411,7 @@ double boundary_estimate(const SphParams& p) {
 
 SphScene parse_sph_scene(const Scene& scene) {
   const JsonIn root = scene.root();
-  root.allow_only({"solver", "sph", "description"});
+  root.allow_only({"solver", "sph", "description", "render"});
   root.string("description", "");  // a string, as in the Huygens scene
   const JsonIn s = root.object("sph");
   s.reject_renamed({{"viscosity_m2ps", "viscosity_m2s"}});
@@ -437,6 +438,7 @@ SphScene parse_sph_scene(const Scene& scene) {
            "the walls and obstacles would take about " + std::to_string(long(nb)) +
                " boundary particles; more than 2e7 is refused (memory)");
   out.surface = parse_surface(s, p);
+  out.render = parse_render_request(root);
   require_memory(sph_memory(out));
   return out;
 }

@@ -16,6 +16,7 @@
 
 #include "huygens/common/memory.hpp"
 #include "huygens/common/scene.hpp"
+#include "huygens/pipeline/render_info.hpp"
 #include "huygens/sph/params.hpp"
 #include "huygens/sph/surface.hpp"
 
@@ -30,6 +31,8 @@ struct SphScene {
   SphParams params;
   /// Heightfield extraction; iso defaults to sph_flat_iso(radius_m, spacing_m).
   SphSurfaceParams surface;
+  /// The scene's optional "render" block (render_info.hpp), as the other solvers' scenes have it.
+  RenderRequest render;
 };
 
 /// Parses and checks the scene's "sph" block (throws SceneError naming the JSON path).
