@@ -27,7 +27,7 @@ shots=(
   "sph_wedge 0.4 particles"
   "dam_break 6 perspective"
   "dam_break 10 plan,dye"
-  "channel 20 perspective,plan,speed,dye,foam"
+  "channel 40 perspective,plan,speed,dye,foam"
   "flood 12 perspective,plan,foam"
 )
 for shot in "${shots[@]}"; do

@@ -141,11 +141,12 @@ void append_hull(const ShipPose& s, std::vector<float>& out) {
     out.push_back(static_cast<float>(s.y + sh * lx + ch * ly));
     out.push_back(static_cast<float>(z));
   };
-  // half-width at station x in [-L/2, L/2] and height z in [-T, F]
+  // half-width at station x in [-L/2, L/2] and height z in [-T, F]: the Wigley hull below the
+  // waterline, topsides flaring out by 12 % to the deck (so that they show from above)
   auto half = [&](double lx, double z) {
     const double xi = 2.0 * lx / s.length;
-    const double zz = z < 0.0 ? z / s.draft : 0.0;
-    return 0.5 * s.beam * (1.0 - xi * xi) * (1.0 - zz * zz);
+    const double zz = z < 0.0 ? z / s.draft : 0.0, flare = z > 0.0 ? 1.0 + 0.12 * z / freeboard : 1.0;
+    return 0.5 * s.beam * (1.0 - xi * xi) * (1.0 - zz * zz) * flare;
   };
   auto px = [&](int i) { return -0.5 * s.length + s.length * i / ns; };
   auto pz = [&](int k) { return -s.draft + (s.draft + freeboard) * k / nz; };
@@ -159,12 +160,17 @@ void append_hull(const ShipPose& s, std::vector<float>& out) {
       }
     }
   }
-  // deck at the freeboard height
+  // deck at the freeboard height, crowned: its centre line 8 % of the beam higher (two faces
+  // across, lit differently)
+  const double crown = 0.08 * s.beam;
   for (int i = 0; i < ns; ++i) {
     const double x0 = px(i), x1 = px(i + 1), f = freeboard;
     const double w0 = half(x0, f), w1 = half(x1, f);
-    world(x0, -w0, f), world(x1, -w1, f), world(x1, w1, f);
-    world(x0, -w0, f), world(x1, w1, f), world(x0, w0, f);
+    const double c0 = f + crown * (1.0 - std::pow(2.0 * x0 / s.length, 2)), c1 = f + crown * (1.0 - std::pow(2.0 * x1 / s.length, 2));
+    for (int side = -1; side <= 1; side += 2) {
+      world(x0, side * w0, f), world(x1, side * w1, f), world(x1, 0.0, c1);
+      world(x0, side * w0, f), world(x1, 0.0, c1), world(x0, 0.0, c0);
+    }
   }
 }
 
