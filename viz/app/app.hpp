@@ -11,6 +11,9 @@ namespace huygens {
 struct WindowOptions {
   int width = 1280, height = 720;
   int subsample = 4;
+  /// Samples per pixel (RenderTarget; 1 = no anti-aliasing); 0: RenderTarget::kDefaultSamples on a
+  /// GPU, 1 on a software renderer (llvmpipe: 4 samples take twice the frame time there).
+  int samples = 0;
   RenderSettings settings;
   /// Smoke-test automation: after this many frames press S (screenshot) and then quit
   /// through the same key path a user takes; 0 = run until the window is closed.

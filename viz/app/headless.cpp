@@ -19,7 +19,7 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   const std::string name = scene.name;
   OrbitCamera cam = opt.custom_camera ? opt.camera : start_camera(view, aspect, nullptr);
   bool camera_placed = opt.custom_camera;
-  RenderTarget target(opt.width, opt.height);
+  RenderTarget target(opt.width, opt.height, opt.samples);
 
   // the window's path with the manual clock: the runner computes every step at or before the
   // display time and publishes the last two into the frame ring (the pair the window would hold),

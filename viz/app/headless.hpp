@@ -28,6 +28,8 @@ struct HeadlessOptions {
   int width = 256, height = 256;
   /// Mesh subsampling factor (unit: grid points per vertex spacing).
   int subsample = 4;
+  /// Samples per pixel (RenderTarget; 1 = no anti-aliasing).
+  int samples = RenderTarget::kDefaultSamples;
   RenderSettings settings;
   /// Camera; unset = the scene's start-up camera (start_camera), following its first ship when
   /// the scene's view does.

@@ -45,6 +45,9 @@ void usage(std::FILE* f) {
                "  --screenshot FILE.png where the headless image (or the S key's image) goes\n"
                "  --size WxH            image / window size in pixels (default 1280x720; headless 256x256)\n"
                "  --subsample F         surface mesh subsampling factor (default 4)\n"
+               "  --msaa N              samples per pixel (multisample anti-aliasing; default 4, 1 = off;\n"
+               "                        a window on a software renderer such as llvmpipe: 1, since there\n"
+               "                        4 samples take twice the frame time)\n"
                "  --exact               exact per-pixel Snell refraction (default: linearised coordinates)\n"
                "  --schlick             Schlick Fresnel (the default; --paper-fresnel: clamp(1 - 2.5 n.v))\n"
                "  --paper-fresnel       the paper's Fresnel f = clamp(1 - 2.5 n.v) and glint\n"
@@ -72,7 +75,7 @@ struct CliOptions {
   std::string scene;  // "" = built-in default.json
   std::string screenshot;
   bool headless = false, benchmark = false, size_given = false;
-  int frames = 1, w = 1280, h = 720, subsample = 4, auto_frames = 0;
+  int frames = 1, w = 1280, h = 720, subsample = 4, auto_frames = 0, samples = 0;  // samples 0: the default
   /// Display time of the first headless frame (unit: s).
   double time = 0.0;
   bool exact = false, schlick = false, paper_fresnel = false, no_caustics = false, no_foam = false;
@@ -109,6 +112,8 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
       o.size_given = true;
     } else if (a == "--subsample") {
       o.subsample = static_cast<int>(parse_int_arg(a, next(), 1, 64));
+    } else if (a == "--msaa") {
+      o.samples = static_cast<int>(parse_int_arg(a, next(), 1, 16));
     } else if (a == "--exact" || a == "--schlick" || a == "--no-caustics" || a == "--benchmark") {
       (a == "--exact"         ? o.exact
        : a == "--schlick"     ? o.schlick
@@ -158,6 +163,7 @@ int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& set
   opt.width = o.size_given ? o.w : 256;
   opt.height = o.size_given ? o.h : 256;
   opt.subsample = o.subsample;
+  opt.samples = o.samples > 0 ? o.samples : RenderTarget::kDefaultSamples;
   opt.settings = settings;
   opt.plan = plan;
   opt.plan_quantity = quantity;
@@ -183,8 +189,8 @@ struct BenchmarkRows {
   std::vector<std::string> wall, cpu;
 };
 BenchmarkRows benchmark_row(WaterRenderer& renderer, const OrbitCamera& cam, const RenderSettings& settings,
-                            std::span<const float> heights, int w, int h, double sim_per_frame) {
-  RenderTarget target(w, h);
+                            std::span<const float> heights, int w, int h, double sim_per_frame, int samples) {
+  RenderTarget target(w, h, samples);
   renderer.times.enabled = true;
   std::vector<double> pr, up, ca, gr, su, sh, tm, tot;
   std::vector<double> cup, cca, cgr, csu, csh, ctm, ctot;
@@ -237,7 +243,7 @@ std::pair<double, double> flow_step_times(Solver& solver, const ViewerSolver& vs
 
 // Per-pass render times (median of repeated frames, glFinish around each pass) and the
 // simulation's share of a frame: one full step per display_per_step frames.
-int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample) {
+int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample, int samples) {
   const ViewSetup setup = view_setup(vs, 1280.0 / 720.0);
   using clock = std::chrono::steady_clock;
   gl::HeadlessContext ctx;
@@ -252,9 +258,9 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   const double step_ms = median(steps_ms), sim_per_frame = step_ms / vs.info.display_per_step;
   std::printf("huygens-viz --benchmark: scene %s, renderer %s\n", vs.name.c_str(), ctx.renderer().c_str());
   std::printf(
-      "visible field %zux%zu, mesh subsampling %d, simulation step %.2f ms (median of 9), "
+      "visible field %zux%zu, mesh subsampling %d, %d samples per pixel, simulation step %.2f ms (median of 9), "
       "%d displayed frames per step\n\n",
-      view.grid.rows, view.grid.cols, subsample, step_ms, vs.info.display_per_step);
+      view.grid.rows, view.grid.cols, subsample, samples, step_ms, vs.info.display_per_step);
   WaterRenderer renderer(view.grid, view.ground_z, subsample);
   place_scene(renderer, view);
   std::array<ShipState, kMaxFrameShips> states{};
@@ -273,7 +279,7 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   Table tc({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship+solids", "tone map",
             "render total", "caustics / rest"});
   for (auto [w, h] : {std::pair{1280, 720}, std::pair{640, 360}}) {
-    BenchmarkRows rows = benchmark_row(renderer, cam, settings, solver.height(), w, h, sim_per_frame);
+    BenchmarkRows rows = benchmark_row(renderer, cam, settings, solver.height(), w, h, sim_per_frame, samples);
     t.add(std::move(rows.wall));
     tc.add(std::move(rows.cpu));
   }
@@ -359,12 +365,15 @@ int run(CliOptions o) {
     throw UsageError("--view " + o.view + " needs a flow's velocity: the LBM scenes (dam_break, channel, flood)");
   if (quantity == PlanQuantity::particles && !vs.info.particle_box_m)
     throw UsageError("--view particles needs a particle solver: an SPH scene (pool, sph_dam_break, sph_wedge)");
-  if (o.benchmark) return run_benchmark(std::move(vs), settings, o.subsample);
+  if (o.benchmark)
+    return run_benchmark(std::move(vs), settings, o.subsample,
+                         o.samples > 0 ? o.samples : RenderTarget::kDefaultSamples);
   if (o.headless) return run_headless(std::move(vs), o, settings, plan, quantity);
   WindowOptions wo;
   wo.width = o.w;
   wo.height = o.h;
   wo.subsample = o.subsample;
+  wo.samples = o.samples;
   wo.settings = settings;
   wo.auto_frames = o.auto_frames;
   wo.screenshot = o.screenshot;

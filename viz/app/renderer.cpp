@@ -20,19 +20,34 @@ namespace huygens {
 // ---------------------------------------------------------------------------------
 // RenderTarget
 
-RenderTarget::RenderTarget(int width, int height)
+RenderTarget::RenderTarget(int width, int height, int samples)
     : color_(width, height, GL_RGBA8), hdr_(width, height, GL_RGBA16F), w_(width), h_(height) {
   color_.set_filter(GL_LINEAR, GL_LINEAR);
   hdr_.set_filter(GL_NEAREST, GL_NEAREST);
+  GLint most = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &most);
+  samples_ = std::clamp(samples, 1, static_cast<int>(most));
+  const GLsizei n = samples_;
   glGenRenderbuffers(1, &depth_);
   glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples_ > 1 ? n : 0, GL_DEPTH_COMPONENT24, width, height);
   glGenFramebuffers(1, &hdr_fbo_);
   glBindFramebuffer(GL_FRAMEBUFFER, hdr_fbo_);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, hdr_.id(), 0);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  if (samples_ == 1) glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     throw gl::GlError("RenderTarget: incomplete half-float framebuffer");
+  if (samples_ > 1) {
+    glGenRenderbuffers(1, &ms_color_);
+    glBindRenderbuffer(GL_RENDERBUFFER, ms_color_);
+    glRenderbufferStorageMultisample(GL_RENDERBUFFER, n, GL_RGBA16F, width, height);
+    glGenFramebuffers(1, &ms_fbo_);
+    glBindFramebuffer(GL_FRAMEBUFFER, ms_fbo_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, ms_color_);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw gl::GlError("RenderTarget: incomplete multisampled framebuffer");
+  }
   glGenFramebuffers(1, &fbo_);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
@@ -42,11 +57,16 @@ RenderTarget::RenderTarget(int width, int height)
   gl::check("RenderTarget");
 }
 
-RenderTarget::~RenderTarget() {
+void RenderTarget::release() {
   if (fbo_) glDeleteFramebuffers(1, &fbo_);
   if (hdr_fbo_) glDeleteFramebuffers(1, &hdr_fbo_);
+  if (ms_fbo_) glDeleteFramebuffers(1, &ms_fbo_);
   if (depth_) glDeleteRenderbuffers(1, &depth_);
+  if (ms_color_) glDeleteRenderbuffers(1, &ms_color_);
+  depth_ = fbo_ = hdr_fbo_ = ms_fbo_ = ms_color_ = 0;
 }
+
+RenderTarget::~RenderTarget() { release(); }
 
 RenderTarget::RenderTarget(RenderTarget&& o) noexcept
     : color_(std::move(o.color_)),
@@ -54,31 +74,43 @@ RenderTarget::RenderTarget(RenderTarget&& o) noexcept
       depth_(o.depth_),
       fbo_(o.fbo_),
       hdr_fbo_(o.hdr_fbo_),
+      ms_fbo_(o.ms_fbo_),
+      ms_color_(o.ms_color_),
       w_(o.w_),
-      h_(o.h_) {
-  o.depth_ = o.fbo_ = o.hdr_fbo_ = 0;
+      h_(o.h_),
+      samples_(o.samples_) {
+  o.depth_ = o.fbo_ = o.hdr_fbo_ = o.ms_fbo_ = o.ms_color_ = 0;
 }
 
 RenderTarget& RenderTarget::operator=(RenderTarget&& o) noexcept {
   if (this != &o) {
-    if (fbo_) glDeleteFramebuffers(1, &fbo_);
-    if (hdr_fbo_) glDeleteFramebuffers(1, &hdr_fbo_);
-    if (depth_) glDeleteRenderbuffers(1, &depth_);
+    release();
     color_ = std::move(o.color_);
     hdr_ = std::move(o.hdr_);
     depth_ = o.depth_;
     fbo_ = o.fbo_;
     hdr_fbo_ = o.hdr_fbo_;
+    ms_fbo_ = o.ms_fbo_;
+    ms_color_ = o.ms_color_;
     w_ = o.w_;
     h_ = o.h_;
-    o.depth_ = o.fbo_ = o.hdr_fbo_ = 0;
+    samples_ = o.samples_;
+    o.depth_ = o.fbo_ = o.hdr_fbo_ = o.ms_fbo_ = o.ms_color_ = 0;
   }
   return *this;
 }
 
 void RenderTarget::bind() const {
-  glBindFramebuffer(GL_FRAMEBUFFER, hdr_fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, ms_fbo_ ? ms_fbo_ : hdr_fbo_);
   glViewport(0, 0, w_, h_);
+}
+
+void RenderTarget::resolve_scene() const {
+  if (!ms_fbo_) return;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, ms_fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, hdr_fbo_);
+  glBlitFramebuffer(0, 0, w_, h_, 0, 0, w_, h_, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 gl::Image8 RenderTarget::read() const {
@@ -166,7 +198,8 @@ void append_hull(const ShipPose& s, std::vector<float>& out) {
   for (int i = 0; i < ns; ++i) {
     const double x0 = px(i), x1 = px(i + 1), f = freeboard;
     const double w0 = half(x0, f), w1 = half(x1, f);
-    const double c0 = f + crown * (1.0 - std::pow(2.0 * x0 / s.length, 2)), c1 = f + crown * (1.0 - std::pow(2.0 * x1 / s.length, 2));
+    const double c0 = f + crown * (1.0 - std::pow(2.0 * x0 / s.length, 2)),
+                 c1 = f + crown * (1.0 - std::pow(2.0 * x1 / s.length, 2));
     for (int side = -1; side <= 1; side += 2) {
       world(x0, side * w0, f), world(x1, side * w1, f), world(x1, 0.0, c1);
       world(x0, side * w0, f), world(x1, 0.0, c1), world(x0, 0.0, c0);
@@ -859,6 +892,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
   lap(times.ground, times.cpu.ground);
+  target.resolve_scene();
   tone_map(s, target);
   lap(times.tonemap, times.cpu.tonemap);
 
