@@ -1405,6 +1405,41 @@ TEST_F(VizRender, OceanGoesOnBeyondTheRegionWithTheAmbientSea) {
   if (::testing::Test::HasFailure()) write_debug("ocean_beyond.png", sea);
 }
 
+// A hull afloat (float_ship): on a tilted plane eta = 0.1 + 0.02 x - 0.01 y it takes the plane's
+// height at its centre and its slopes along and across its heading (30 deg); on waves a quarter
+// of its length long it stays nearly level (heave and slopes under 5 % of the waves' amplitude and
+// slope); on a plane steeper than 0.3 its slope is held at 0.3; with its rings off the grid it is
+// level at 0.
+TEST(VizLook, HullFloatsOnThePlaneOfTheWavesLongerThanItself) {
+  GridPlacement g;
+  g.rows = g.cols = 201;
+  g.dx = 0.1;
+  const double xs = 10.3, ys = 9.7, h = std::numbers::pi / 6;
+  const auto field = [&](auto f) {
+    std::vector<float> eta(g.rows * g.cols);
+    for (std::size_t i = 0; i < g.rows; ++i)
+      for (std::size_t j = 0; j < g.cols; ++j) eta[i * g.cols + j] = static_cast<float>(f(g.x(j), g.y(i)));
+    return eta;
+  };
+  ShipPose s;
+  s.x = xs, s.y = ys, s.heading = h, s.length = 4.0, s.beam = 1.0;
+  float_ship(g, field([](double x, double y) { return 0.1 + 0.02 * x - 0.01 * y; }), s);
+  EXPECT_NEAR(s.heave, 0.1 + 0.02 * xs - 0.01 * ys, 1e-6);
+  EXPECT_NEAR(s.slope_along, 0.02 * std::cos(h) - 0.01 * std::sin(h), 1e-6);
+  EXPECT_NEAR(s.slope_across, -0.02 * std::sin(h) - 0.01 * std::cos(h), 1e-6);
+  const double k = 2 * std::numbers::pi / 1.0, a = 0.05;  // 1 m waves under a 4 m hull
+  float_ship(g, field([&](double x, double y) { return a * std::cos(k * (0.8 * x + 0.6 * y)); }), s);
+  EXPECT_LT(std::abs(s.heave), 0.05 * a);
+  EXPECT_LT(std::hypot(s.slope_along, s.slope_across), 0.05 * k * a);
+  float_ship(g, field([](double x, double) { return 0.5 * x; }), s);
+  EXPECT_DOUBLE_EQ(s.slope_along, 0.3) << "0.5 cos 30 deg = 0.433, held at 0.3";
+  EXPECT_NEAR(s.slope_across, -0.5 * std::sin(h), 1e-6) << "-0.25: within the bound";
+  s.x = -100.0;
+  float_ship(g, field([](double, double) { return 1.0; }), s);
+  EXPECT_EQ(s.heave, 0.0);
+  EXPECT_EQ(s.slope_along, 0.0);
+}
+
 TEST(VizLook, SphLabTankWaterShowsThePoolsColourAtItsRestDepth) {
   // A tank 0.1 m deep at rest: its water transmits exp(-a_eff 0.1 m) per channel, what the pool
   // look's 3 m of clear water transmit, exp(-a 3 m). A pool look and SPH water over 3 m deep keep a.

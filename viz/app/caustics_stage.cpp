@@ -80,7 +80,7 @@ class PaperCaustics final : public CausticsStage {
       shadow = viz::make_ellipse_hull(static_cast<float>(p.x - grid_.x0), static_cast<float>(p.y - grid_.y0),
                                       static_cast<float>(p.heading), static_cast<float>(p.length),
                                       static_cast<float>(p.beam));
-      shadow.height_m = static_cast<float>(std::max(0.6 * p.draft, 0.04 * p.length));
+      shadow.height_m = static_cast<float>(hull_freeboard(p));
       ship = &shadow;
     }
     caustics_->render(field, ship);

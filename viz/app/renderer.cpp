@@ -166,12 +166,12 @@ double elapsed_ms(std::chrono::steady_clock::time_point t0) {
 // Wigley hull triangles (world coordinates) of one ship, appended to `out` (x, y, z triples).
 void append_hull(const ShipPose& s, std::vector<float>& out) {
   constexpr int ns = 24, nz = 6;
-  const double freeboard = std::max(0.6 * s.draft, 0.04 * s.length);
+  const double freeboard = hull_freeboard(s);
   const double ch = std::cos(s.heading), sh = std::sin(s.heading);
-  auto world = [&](double lx, double ly, double z) {
+  auto world = [&](double lx, double ly, double z) {  // afloat: sheared onto the plane of float_ship
     out.push_back(static_cast<float>(s.x + ch * lx - sh * ly));
     out.push_back(static_cast<float>(s.y + sh * lx + ch * ly));
-    out.push_back(static_cast<float>(z));
+    out.push_back(static_cast<float>(z + s.heave + s.slope_along * lx + s.slope_across * ly));
   };
   // half-width at station x in [-L/2, L/2] and height z in [-T, F]: the Wigley hull below the
   // waterline, topsides flaring out by 12 % to the deck (so that they show from above)
@@ -226,6 +226,39 @@ void mark_hulls(const GridPlacement& g, std::span<const ShipPose> ships, std::ve
 }
 
 }  // namespace
+
+void float_ship(const GridPlacement& g, std::span<const float> eta, ShipPose& s) {
+  // eta at (x, y), bilinear; false outside the grid's points
+  const auto at = [&](double x, double y, double& v) {
+    const double fx = (x - g.x0) / g.dx, fy = (y - g.y0) / g.dx;
+    if (!(fx >= 0.0 && fy >= 0.0 && fx <= g.cols - 1.0 && fy <= g.rows - 1.0)) return false;
+    const std::size_t c = std::min(static_cast<std::size_t>(fx), g.cols - 2),
+                      r = std::min(static_cast<std::size_t>(fy), g.rows - 2);
+    const double tx = fx - c, ty = fy - r;
+    const auto e = [&](std::size_t i, std::size_t j) { return static_cast<double>(eta[i * g.cols + j]); };
+    v = (1 - ty) * ((1 - tx) * e(r, c) + tx * e(r, c + 1)) + ty * ((1 - tx) * e(r + 1, c) + tx * e(r + 1, c + 1));
+    return true;
+  };
+  // eta = a + b u + c w in the ship's frame (u along the heading, w across), normal equations
+  double n = 0, su = 0, sw = 0, se = 0, suu = 0, sww = 0, suw = 0, sue = 0, swe = 0;
+  const double ch = std::cos(s.heading), sh = std::sin(s.heading);
+  for (const double rho : {0.6, 0.7, 0.8})
+    for (int k = 0; k < 48; ++k) {
+      const double phi = 2.0 * std::numbers::pi * k / 48, u = rho * s.length * std::cos(phi),
+                   w = rho * s.length * std::sin(phi);
+      double v = 0.0;
+      if (!at(s.x + ch * u - sh * w, s.y + sh * u + ch * w, v)) continue;
+      n += 1, su += u, sw += w, se += v, suu += u * u, sww += w * w, suw += u * w, sue += u * v, swe += w * v;
+    }
+  s.heave = s.slope_along = s.slope_across = 0.0;
+  if (n < 3) return;
+  const glm::dmat3 m(n, su, sw, su, suu, suw, sw, suw, sww);  // symmetric
+  if (std::abs(glm::determinant(m)) < 1e-12 * n * n * n * std::pow(s.length, 4)) return;
+  const glm::dvec3 abc = glm::inverse(m) * glm::dvec3(se, sue, swe);
+  s.slope_along = std::clamp(abc.y, -0.3, 0.3);
+  s.slope_across = std::clamp(abc.z, -0.3, 0.3);
+  s.heave = abc.x;
+}
 
 // Surface mesh buffers: static (x, y), dynamic heights, per-view coefficients, triangle indices.
 void WaterRenderer::build_surface_mesh() {
@@ -812,7 +845,10 @@ void WaterRenderer::draw_terrain(const OrbitCamera& camera, const RenderSettings
 // The hulls at their poses (Wigley hulls below the waterline).
 void WaterRenderer::draw_ships(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
   std::vector<float> tri;
-  for (const ShipPose& sp : ships_) append_hull(sp, tri);
+  for (ShipPose sp : ships_) {
+    float_ship(grid_, eta_, sp);
+    append_hull(sp, tri);
+  }
   draw_flat(tri, FlatKind::hull, camera, s, mvp);
 }
 

@@ -20,6 +20,7 @@
 // Everything is drawn in a half-float target (no clamping: caustics and glints exceed 1) and
 // tone-mapped once at the end into the 8-bit image: identity up to the knee k, then
 // k + (1 - k)(1 - exp(-(x - k)/(1 - k))) (C1, saturates at 1).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -136,7 +137,23 @@ struct ShipPose {
   double x = 0.0, y = 0.0, heading = 0.0;
   /// Length, beam, draft (unit: m).
   double length = 1.0, beam = 0.3, draft = 0.05;
+  /// Afloat (float_ship): height of the rest waterline (unit: m) and the surface's slope along and
+  /// across the heading (unit: 1) the hull is drawn with; 0 = level at the rest level.
+  double heave = 0.0, slope_along = 0.0, slope_across = 0.0;
 };
+
+/// The drawn hull's freeboard, its deck's height above the waterline (unit: m): 0.08 of its length
+/// (small craft carry 0.07-0.1; the 8 m boat of ocean.json 0.64 m: with 0.04 the crests of its
+/// sea broke through the deck), at least 0.6 of its draft.
+inline double hull_freeboard(const ShipPose& s) { return std::max(0.6 * s.draft, 0.08 * s.length); }
+
+/// A hull afloat on the heights `eta` (rows x cols of `g`, m): the least-squares plane through the
+/// surface sampled on rings 0.6 to 0.8 hull lengths from the hull's centre (outside the hull, and
+/// a hull does not follow waves much shorter than itself) gives its heave and its slopes along and
+/// across the heading (each kept within +-0.3). Ring points outside the grid are left out; with
+/// none inside the hull stays level at 0. A drawing aid, not ship dynamics: the solver's hull is
+/// a pressure patch moving on its path.
+void float_ship(const GridPlacement& g, std::span<const float> eta, ShipPose& s);
 
 /// Where the scene is drawn: a half-float colour buffer + depth renderbuffer (bind()), with
 /// `samples` samples per pixel (multisample anti-aliasing: the edges of hulls, solids, the water's
