@@ -113,6 +113,33 @@ class VizRender : public ::testing::Test {
   void SetUp() override { context().make_current(); }
 };
 
+// Water left out as dry (RenderSettings::hide_dry, the SPH look: thinner than kDryDepth) leaves
+// out its sides too: a film 1 mm deep over the whole region draws exactly what a dry floor draws
+// (until 2026-12-03 a film's sides were dark lines along the floor, past a surge's toe).
+TEST_F(VizRender, ADryFilmHasNoSides) {
+  const GridPlacement g = test_grid();
+  const auto picture = [&](double depth) {
+    WaterRenderer r(g, -kDepth, 4);
+    r.set_heights(std::vector<float>(kN * kN, static_cast<float>(depth - kDepth)));
+    OrbitCamera cam = default_camera(g.x0, g.y0, kWidth, kWidth);
+    cam.pitch = 0.15;  // from low at the side, as a slab is seen
+    cam.distance = 9.0;
+    RenderSettings s = plain_settings();
+    s.hide_dry = true;
+    s.pool_deck = false;
+    return render(r, cam, s, 320, 180);
+  };
+  const gl::Image8 film = picture(0.001), dry = picture(0.0), wet = picture(0.01);
+  long differ = 0, wet_differ = 0;
+  for (std::size_t k = 0; k < film.pixels.size(); ++k) {
+    differ += film.pixels[k] != dry.pixels[k];
+    wet_differ += wet.pixels[k] != dry.pixels[k];
+  }
+  EXPECT_EQ(differ, 0) << "values that differ between a 1 mm film and a dry floor";
+  EXPECT_GT(wet_differ, 1000) << "1 cm of water is drawn, its sides too";
+  if (::testing::Test::HasFailure()) write_debug("dry_film.png", film);
+}
+
 // Multisample anti-aliasing (RenderTarget): a white triangle whose hypotenuse crosses a 64 x 64
 // target diagonally, resolved into the half-float scene texture. With 4 samples the pixels the
 // edge cuts are partly covered (values strictly between 0 and 1: about one per row), with 1

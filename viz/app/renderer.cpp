@@ -662,6 +662,9 @@ void WaterRenderer::draw_water_sides(const OrbitCamera& camera, const RenderSett
   std::vector<float> tri;
   auto edge = [&](std::size_t a, std::size_t b, double xa, double ya, double xb, double yb) {
     const float ha = mesh_h_[a], hb = mesh_h_[b], z0 = static_cast<float>(ground_z_);
+    // where the surface is left out as dry (thinner than kDryDepth), so is its side: a film's side
+    // was a dark line along the floor past the surge's toe
+    if (s.hide_dry && ha - z0 < kDryDepth && hb - z0 < kDryDepth) return;
     const float p[4][3] = {{static_cast<float>(xa), static_cast<float>(ya), z0},
                            {static_cast<float>(xb), static_cast<float>(yb), z0},
                            {static_cast<float>(xb), static_cast<float>(yb), hb},
