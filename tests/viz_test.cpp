@@ -1467,6 +1467,44 @@ TEST(VizLook, HullFloatsOnThePlaneOfTheWavesLongerThanItself) {
   EXPECT_EQ(s.slope_along, 0.0);
 }
 
+// The floor is a ruler: its tiles are the 1-2-5 length nearest an eighth of the visible region's
+// longer side (WaterRenderer::tile_m), and a headless perspective picture says so in its caption
+// (scene, time, region, tiles; HeadlessOptions::caption), drawn as white text on a dark band in the
+// top-left corner, left out with caption = false.
+TEST_F(VizRender, FloorTilesAreARoundLengthTheCaptionGives) {
+  const auto tile = [](std::size_t n, double dx) {
+    GridPlacement g;
+    g.rows = n, g.cols = n, g.dx = dx;
+    return WaterRenderer(g, -1.0, 4).tile_m();
+  };
+  EXPECT_DOUBLE_EQ(tile(384, 15.0 / 512), 1.0);  // default.json: 11.25 m, 1.41 m wanted
+  EXPECT_DOUBLE_EQ(tile(416, 0.1), 5.0);         // kelvin.json: 41.6 m, 5.2 m wanted
+  EXPECT_DOUBLE_EQ(tile(40, 0.005), 0.02);       // pool.json: 0.2 m, 0.025 m wanted
+  EXPECT_DOUBLE_EQ(tile(100, 0.032), 0.5);       // 3.2 m, 0.4 m wanted
+  const std::string file = (std::filesystem::path(huygens::test::scenes_dir()) / "kelvin.json").string();
+  HeadlessOptions o;
+  o.time = 0.1;
+  o.width = 320, o.height = 180;
+  ViewerSolver vs = viewer_solver(file);
+  o.settings = view_setup(vs, 320.0 / 180.0).settings;
+  const gl::Image8 with = render_headless(std::move(vs), o).image;
+  o.caption = false;
+  const gl::Image8 without = render_headless(viewer_solver(file), o).image;
+  long white = 0, band = 0, differ = 0;
+  for (int y = 0; y < 13; ++y)
+    for (int x = 0; x < 200; ++x) {
+      const std::uint8_t* p = &with.pixels[4 * (static_cast<std::size_t>(y) * with.width + x)];
+      white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+      band += std::abs(p[0] - 31) <= 1 && std::abs(p[1] - 36) <= 1 && std::abs(p[2] - 43) <= 1;
+    }
+  for (std::size_t k = 4 * 13 * static_cast<std::size_t>(with.width); k < with.pixels.size(); ++k)
+    differ += with.pixels[k] != without.pixels[k];
+  EXPECT_GT(white, 100) << "the caption's text";
+  EXPECT_GT(band, 1000) << "its band";
+  EXPECT_EQ(differ, 0) << "below the band the picture is the same";
+  if (::testing::Test::HasFailure()) write_debug("caption.png", with);
+}
+
 TEST(VizLook, SphLabTankWaterShowsThePoolsColourAtItsRestDepth) {
   // A tank 0.1 m deep at rest: its water transmits exp(-a_eff 0.1 m) per channel, what the pool
   // look's 3 m of clear water transmit, exp(-a 3 m). A pool look and SPH water over 3 m deep keep a.

@@ -1,14 +1,40 @@
 #include "headless.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "dye.hpp"
 #include "foam.hpp"
 #include "huygens/pipeline/runner.hpp"
+#include "plot.hpp"
 
 namespace huygens {
+namespace {
+
+std::string format(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+// The perspective picture's caption: the scene, the display time, the visible region's size and,
+// where the floor shows, its tiles' side; the first of these that fits the image's width.
+std::string perspective_caption(const std::string& name, double t, const SceneView& view, const RenderSettings& s,
+                                double tile_m, int width, int height) {
+  const std::string time = "t = " + format("%.2f", t) + " s";
+  const std::string region = "region " + format("%.3g", view.grid.cols * view.grid.dx) + " x " +
+                             format("%.3g", view.grid.rows * view.grid.dx) + " m";
+  const bool floor = !s.deep_water && s.ground == GroundPattern::tiles;
+  const std::string tiles = floor ? ", tiles " + format("%g", tile_m) + " m" : "";
+  for (const std::string& c : {name + "   " + time + "   " + region + tiles, time + "   " + region + tiles, time})
+    if (caption_width(c, height) <= width) return c;
+  return "";
+}
+
+}  // namespace
 
 HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   const SceneView view = scene_view(scene.info);
@@ -90,6 +116,10 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
           opt.plan_quantity, frames.newest->info.time_s, name, target);
     else
       renderer.render(cam, opt.settings, target);
+    if (!opt.plan && opt.caption)
+      draw_caption(perspective_caption(name, runner.display_time(), view, opt.settings, renderer.tile_m(), opt.width,
+                                       opt.height),
+                   target);
     res.steps = frames.newest->info.step;
     res.field_time = frames.newest->info.time_s;
   }

@@ -28,6 +28,8 @@ struct HeadlessOptions {
   int width = 256, height = 256;
   /// Mesh subsampling factor (unit: grid points per vertex spacing).
   int subsample = 4;
+  /// The perspective picture gets a caption: scene, time, the region's size, the floor tiles'.
+  bool caption = true;
   /// Samples per pixel (RenderTarget; 1 = no anti-aliasing).
   int samples = RenderTarget::kDefaultSamples;
   RenderSettings settings;

@@ -52,6 +52,8 @@ void usage(std::FILE* f) {
                "  --schlick             Schlick Fresnel (the default; --paper-fresnel: clamp(1 - 2.5 n.v))\n"
                "  --paper-fresnel       the paper's Fresnel f = clamp(1 - 2.5 n.v) and glint\n"
                "  --no-caustics         do not light the ground with caustics\n"
+               "  --no-caption          headless perspective images without their caption (scene, time,\n"
+               "                        the region's size, the floor tiles' side)\n"
                "  --no-foam             LBM: do not draw the foam the flow carries (default: drawn)\n"
                "  --caustics-mode M     conserving (default: explicit area, float), mip_paper (the paper's\n"
                "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8\n"
@@ -78,7 +80,7 @@ struct CliOptions {
   int frames = 1, w = 1280, h = 720, subsample = 4, auto_frames = 0, samples = 0;  // samples 0: the default
   /// Display time of the first headless frame (unit: s).
   double time = 0.0;
-  bool exact = false, schlick = false, paper_fresnel = false, no_caustics = false, no_foam = false;
+  bool exact = false, schlick = false, paper_fresnel = false, no_caustics = false, no_foam = false, no_caption = false;
   /// "" = the scene's; else perspective / plan.
   std::string view;
   /// "" = the scene's; else a CausticsMode name.
@@ -123,6 +125,8 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
       o.paper_fresnel = true;
     } else if (a == "--no-foam") {
       o.no_foam = true;
+    } else if (a == "--no-caption") {
+      o.no_caption = true;
     } else if (a == "--view") {
       o.view = nonempty_arg(a, next());
       if (o.view != "perspective" && o.view != "plan" && o.view != "speed" && o.view != "dye" && o.view != "foam" &&
@@ -164,6 +168,7 @@ int run_headless(ViewerSolver vs, const CliOptions& o, const RenderSettings& set
   opt.height = o.size_given ? o.h : 256;
   opt.subsample = o.subsample;
   opt.samples = o.samples > 0 ? o.samples : RenderTarget::kDefaultSamples;
+  opt.caption = !o.no_caption;
   opt.settings = settings;
   opt.plan = plan;
   opt.plan_quantity = quantity;

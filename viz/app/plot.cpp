@@ -80,6 +80,25 @@ struct Painter {
 
 }  // namespace
 
+double caption_width(const std::string& text, int height) {
+  const double s = std::max(1.0, std::round(height / 300.0));
+  return Painter::text_width(text, s) + 8 * s;
+}
+
+double draw_caption(const std::string& text, const RenderTarget& target) {
+  const int H = target.height();
+  const double s = std::max(1.0, std::round(H / 300.0)), w = caption_width(text, H);
+  glBindFramebuffer(GL_FRAMEBUFFER, target.fbo());
+  glViewport(0, 0, target.width(), H);
+  glEnable(GL_SCISSOR_TEST);
+  const Painter p{H};
+  p.rect(0, 0, w, 13 * s, glm::vec3(0.12f, 0.14f, 0.17f));
+  p.text(4 * s, 3 * s, text, s, glm::vec3(1.0f));
+  glDisable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return w;
+}
+
 WaterRenderer::PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right) {
   // pixels, y down: title on top, the plot keeping the aspect, the colour bar on the right,
   // axis labels left and below

@@ -67,6 +67,12 @@ void plot_range(double lo, double hi, bool diverging, PlotSpec& spec);
 void draw_plot(const WaterRenderer::PlanPlot& rect, const PlotSpec& spec, const std::vector<std::uint8_t>& rgba, int iw,
                int ih, const RenderTarget& target);
 
+/// A caption in the top-left corner of `target`'s image: white text on a dark band, the text
+/// scale as the plots' (glyphs ~7 px high up to 450 px of image height). Returns its width (px).
+double draw_caption(const std::string& text, const RenderTarget& target);
+/// The width (px) draw_caption would give `text` in an image `height` px high.
+double caption_width(const std::string& text, int height);
+
 /// A particle solver's particles (x, y, z, speed per particle: Solver::particles()) seen from the
 /// side (-y), as discs of `radius_m` coloured by speed, nearer particles over farther ones and
 /// shaded darker with distance, the obstacles as grey silhouettes at their depth (a mesh as its

@@ -385,7 +385,14 @@ WaterRenderer::~WaterRenderer() {
   if (GLenum e = glGetError(); e != GL_NO_ERROR) std::fprintf(stderr, "~WaterRenderer: GL error 0x%04X\n", e);
 }
 
-double WaterRenderer::ground_texel() const { return grid_.cols * grid_.dx / kGroundTexSize; }
+double WaterRenderer::tile_m() const {
+  const double want = static_cast<double>(std::max(grid_.cols, grid_.rows)) * grid_.dx / 8.0;
+  const double decade = std::pow(10.0, std::floor(std::log10(want)));
+  double best = decade;
+  for (const double m : {2.0, 5.0, 10.0})
+    if (std::abs(std::log(m * decade / want)) < std::abs(std::log(best / want))) best = m * decade;
+  return best;
+}
 
 void WaterRenderer::set_heights(std::span<const float> eta) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -761,9 +768,15 @@ void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettin
   glUniform1i(p.loc("u_deep"), s.deep_water ? 1 : 0);
   glUniform1i(p.loc("u_ground"), 0);
   glUniform1i(p.loc("u_caustics"), 1);
-  glUniform2f(p.loc("u_ground_origin"), static_cast<float>(grid_.x0), static_cast<float>(grid_.y0));
-  glUniform2f(p.loc("u_ground_extent"), static_cast<float>(grid_.cols * grid_.dx),
-              static_cast<float>(grid_.rows * grid_.dx));
+  if (s.ground == GroundPattern::tiles) {  // square tiles of tile_m() from the frame's origin
+    const float e = static_cast<float>(std::max(1, s.ground_squares) * tile_m());
+    glUniform2f(p.loc("u_ground_origin"), 0.0f, 0.0f);
+    glUniform2f(p.loc("u_ground_extent"), e, e);
+  } else {  // the pattern spans the visible region
+    glUniform2f(p.loc("u_ground_origin"), static_cast<float>(grid_.x0), static_cast<float>(grid_.y0));
+    glUniform2f(p.loc("u_ground_extent"), static_cast<float>(grid_.cols * grid_.dx),
+                static_cast<float>(grid_.rows * grid_.dx));
+  }
   glUniform1f(p.loc("u_ambient"), s.ambient);
   glUniform1f(p.loc("u_sun_light"), s.sun_light);
   const bool use_caustics = s.caustics && caustics_ && caustics_->available();

@@ -123,7 +123,8 @@ struct RenderSettings {
   bool foam = true;
   glm::vec3 foam_colour{0.95f, 0.96f, 0.97f};
   GroundPattern ground = GroundPattern::tiles;
-  /// Checker/tile squares across the visible region (unit: 1).
+  /// Checker squares across the visible region; for tiles, the tiles the texture holds, each
+  /// WaterRenderer::tile_m() wide (unit: 1).
   int ground_squares = 8;
   /// Colour of a uniform ground (unit: 1).
   glm::vec3 ground_uniform{0.8f, 0.7f, 0.5f};
@@ -220,8 +221,10 @@ class WaterRenderer {
   const GridPlacement& grid() const { return grid_; }
   double ground_z() const { return ground_z_; }
   int subsample() const { return subsample_; }
-  /// Texel size of the ground texture (unit: m): the visible width over 512.
-  double ground_texel() const;
+  /// The floor tiles' side (GroundPattern::tiles; unit: m): the 1-2-5 length nearest an eighth of
+  /// the visible region's longer side, the tiles square and aligned with the frame's origin, so
+  /// the floor is a ruler (a 20 cm tank and a 15 m pool no longer look alike).
+  double tile_m() const;
 
   /// New heights of the visible field (rows x cols, m): mesh by weighted average, differences.
   void set_heights(std::span<const float> eta);
