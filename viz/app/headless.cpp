@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,16 +21,17 @@ std::string format(const char* f, double v) {
   return b;
 }
 
-// The perspective picture's caption: the scene, the display time, the visible region's size and,
+// The perspective picture's caption: the scene's file name, the display time, the visible region's size and,
 // where the floor shows, its tiles' side; the first of these that fits the image's width.
 std::string perspective_caption(const std::string& name, double t, const SceneView& view, const RenderSettings& s,
                                 double tile_m, int width, int height) {
+  const std::string file = std::filesystem::path(name).filename().string();  // no folder of this machine
   const std::string time = "t = " + format("%.2f", t) + " s";
   const std::string region = "region " + format("%.3g", view.grid.cols * view.grid.dx) + " x " +
                              format("%.3g", view.grid.rows * view.grid.dx) + " m";
   const bool floor = !s.deep_water && s.ground == GroundPattern::tiles;
   const std::string tiles = floor ? ", tiles " + format("%g", tile_m) + " m" : "";
-  for (const std::string& c : {name + "   " + time + "   " + region + tiles, time + "   " + region + tiles, time})
+  for (const std::string& c : {file + "   " + time + "   " + region + tiles, time + "   " + region + tiles, time})
     if (caption_width(c, height) <= width) return c;
   return "";
 }
