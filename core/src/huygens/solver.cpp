@@ -540,7 +540,9 @@ RenderInfo HuygensSolver::render_info() {
   r.frame_dt_s = p.dt_s / scene_.display_per_step;
   r.toggles.push_back(RenderToggle{"stokes", "Stokes (2nd order)", stokes_ && stokes_->second_order()});
   if (wind_) r.toggles.push_back(RenderToggle{"wind", "wind", wind_on_});
-  if (wind_) r.ambient_sea = RenderAmbientSea{scene_.wind, p.water, p.n, p.length_m};
+  // the sea beyond, at most 1024^2 modes: the same sea's longest waves (modes are keyed by their
+  // signed indices), a 1024^2 transform per frame and 40 MB at most beside the solver's memory
+  if (wind_) r.ambient_sea = RenderAmbientSea{scene_.wind, p.water, std::min(p.n, kMaxAmbientModes), p.length_m};
   r.request = scene_.render;
   return r;
 }

@@ -113,9 +113,11 @@ struct RenderToggle {
 };
 
 /// The ambient wind sea of a Huygens scene (wind.hpp): its modes on the periodic grid of n x n
-/// points and side length_m whose point (0, 0) is at the origin of the full grid's frame. A viewer
+/// points (the solver's, at most kMaxAmbientModes a side: the sea's longest waves) and side
+/// length_m whose point (0, 0) is at the origin of the full grid's frame. A viewer
 /// draws the sea beyond the visible region with its slopes (AmbientSlopes): the same sea, without
 /// the ships' and the drops' waves and without the second-order (Stokes) part.
+constexpr int kMaxAmbientModes = 1024;
 struct RenderAmbientSea {
   WindParams wind;
   Water water;
