@@ -180,11 +180,11 @@ TEST(Wind, AmbientSlopesAreTheDerivativesOfTheFirstOrderHeight) {
   StokesHeight height(w, n, L, false, PlanEffort::estimate);
   AmbientSlopes slopes(p, w, n, L);
   std::vector<cfloat> zero(n * n), W(n * n);
-  std::vector<float> eta(n * n), etadot(n * n), s(2 * n * n);
+  std::vector<float> eta(n * n), etadot(n * n);
   for (const double t : {0.0, 1000.0}) {
     sea.spectrum_at(t, W.data());
     ASSERT_TRUE(height.compute(zero.data(), 1.0f, W.data(), eta.data(), etadot.data()));
-    slopes.compute(t, s);
+    const std::span<const float> s = slopes.compute(t);
     // E(kx, ky) = sum eta e^{-i k.x} / n^2, separably: rows first
     std::vector<cd> row(n * n), E(n * n);
     const auto e = [&](int a, int b) { return std::polar(1.0, -2 * kPi * a * b / n); };

@@ -15,23 +15,14 @@
 namespace huygens {
 namespace {
 
-std::string format(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
-// The perspective picture's caption: the scene's file name, the display time, the visible region's size and,
-// where the floor shows, its tiles' side; the first of these that fits the image's width.
-std::string perspective_caption(const std::string& name, double t, const SceneView& view, const RenderSettings& s,
-                                double tile_m, int width, int height) {
-  const std::string file = std::filesystem::path(name).filename().string();  // no folder of this machine
-  const std::string time = "t = " + format("%.2f", t) + " s";
-  const std::string region = "region " + format("%.3g", view.grid.cols * view.grid.dx) + " x " +
-                             format("%.3g", view.grid.rows * view.grid.dx) + " m";
-  const bool floor = !s.deep_water && s.ground == GroundPattern::tiles;
-  const std::string tiles = floor ? ", tiles " + format("%g", tile_m) + " m" : "";
-  for (const std::string& c : {file + "   " + time + "   " + region + tiles, time + "   " + region + tiles, time})
+// The perspective picture's caption: the scene's file name (no folder of this machine), the
+// display time and the picture's scale (scale_text); the first of these that fits the width.
+std::string perspective_caption(const std::string& name, double t, const std::string& scale, int width, int height) {
+  char b[32];
+  std::snprintf(b, sizeof b, "t = %.2f s", t);
+  const std::string time = b;
+  const std::string file = std::filesystem::path(name).filename().string();
+  for (const std::string& c : {file + "   " + time + "   " + scale, time + "   " + scale, time})
     if (caption_width(c, height) <= width) return c;
   return "";
 }
@@ -119,8 +110,8 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
     else
       renderer.render(cam, opt.settings, target);
     if (!opt.plan && opt.caption)
-      draw_caption(perspective_caption(name, runner.display_time(), view, opt.settings, renderer.tile_m(), opt.width,
-                                       opt.height),
+      draw_caption(perspective_caption(name, runner.display_time(), scale_text(view, opt.settings, renderer.tile_m()),
+                                       opt.width, opt.height),
                    target);
     res.steps = frames.newest->info.step;
     res.field_time = frames.newest->info.time_s;

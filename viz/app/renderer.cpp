@@ -512,7 +512,6 @@ void WaterRenderer::build_ground_texture(const RenderSettings& s) {
 
 void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
   sea_ = std::make_unique<AmbientSlopes>(sea.wind, sea.water, sea.n, sea.length_m);
-  sea_slopes_.assign(2 * static_cast<std::size_t>(sea.n) * sea.n, 0.0f);
   sea_time_ = std::numeric_limits<double>::quiet_NaN();
   // every level down to 1 x 1: far away a texel averages the slopes (the sea flattens to its mean
   // colour instead of aliasing); anisotropic where the driver offers it (grazing views)
@@ -530,8 +529,7 @@ void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
 
 void WaterRenderer::set_sea_time(double t) {
   if (!sea_ || t == sea_time_ || !std::isfinite(t)) return;
-  sea_->compute(t, sea_slopes_);
-  sea_tex_.upload(sea_slopes_.data(), GL_RG, GL_FLOAT, 0);
+  sea_tex_.upload(sea_->compute(t).data(), GL_RG, GL_FLOAT, 0);
   glBindTexture(GL_TEXTURE_2D, sea_tex_.id());
   glGenerateMipmap(GL_TEXTURE_2D);
   sea_time_ = t;

@@ -320,7 +320,6 @@ class WaterRenderer {
   std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
   std::unique_ptr<AmbientSlopes> sea_;      // set_ambient_sea
-  std::vector<float> sea_slopes_;
   double sea_time_ = std::numeric_limits<double>::quiet_NaN();
   gl::Texture sea_tex_;  // RG32F slopes, mipmapped, repeated
   gl::Program tone_prog_;

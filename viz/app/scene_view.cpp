@@ -205,6 +205,15 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
   return s;
 }
 
+std::string scale_text(const SceneView& view, const RenderSettings& s, double tile_m) {
+  char b[128];
+  const int n =
+      std::snprintf(b, sizeof b, "region %.3g x %.3g m", view.grid.cols * view.grid.dx, view.grid.rows * view.grid.dx);
+  if (!s.deep_water && s.ground == GroundPattern::tiles)
+    std::snprintf(b + n, sizeof b - static_cast<std::size_t>(n), ", tiles %g m", tile_m);
+  return b;
+}
+
 void frame_ships(const SceneView& view, const FramePair& frames, double t, std::vector<ShipPose>& out) {
   out.clear();
   ShipState s;

@@ -69,6 +69,11 @@ SceneView scene_view(const RenderInfo& info);
 /// open-ocean look the ambient sea beyond the region (WaterRenderer::set_ambient_sea).
 void place_scene(WaterRenderer& renderer, const SceneView& view);
 
+/// The picture's scale: the visible region's size and, where the floor's tiles show (not deep
+/// water), their side, e.g. "region 41.6 x 41.6 m, tiles 5 m" (WaterRenderer::tile_m): the
+/// headless caption's and the window panel's.
+std::string scale_text(const SceneView& view, const RenderSettings& s, double tile_m);
+
 /// The ships of a frame pair at display time t (FramePair::ship), each with its hull.
 void frame_ships(const SceneView& view, const FramePair& frames, double t, std::vector<ShipPose>& out);
 

@@ -429,12 +429,7 @@ void panel(App& a, const WaterRenderer& r, const FramePair& fp, double fps) {
   ImGui::SetNextWindowSize(ImVec2(width, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("huygens-viz");
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 11.0f);  // room for the longest label
-  const GridPlacement& g = a.view.grid;
-  if (!a.settings.deep_water && a.settings.ground == GroundPattern::tiles)
-    ImGui::Text("%s: region %.3g x %.3g m, floor tiles %g m", a.scene_name.c_str(), g.cols * g.dx, g.rows * g.dx,
-                r.tile_m());
-  else
-    ImGui::Text("%s: region %.3g x %.3g m", a.scene_name.c_str(), g.cols * g.dx, g.rows * g.dx);
+  ImGui::Text("%s: %s", a.scene_name.c_str(), scale_text(a.view, a.settings, r.tile_m()).c_str());
   ImGui::Text("t = %.3f s, step %lld, %.1f fps", fp ? fp.newest->info.time_s : 0.0,
               fp ? static_cast<long long>(fp.newest->info.step) : 0LL, fps);
   ImGui::Text("commands applied %llu, refused %llu", static_cast<unsigned long long>(a.runner->commands_applied()),

@@ -30,9 +30,8 @@ AmbientSlopes::AmbientSlopes(const WindParams& wind, const Water& water, int n, 
     }
 }
 
-void AmbientSlopes::compute(double t, std::span<float> out) {
+std::span<const float> AmbientSlopes::compute(double t) {
   const int n = n_;
-  if (out.size() != 2 * static_cast<std::size_t>(n) * n) throw std::invalid_argument("AmbientSlopes: out size");
   const long long total = static_cast<long long>(n) * n;
   // Z(k, t) -k/omega, in double for the phase omega t (t may be hours)
 #pragma omp parallel for schedule(static) if (total > 65536)
@@ -49,10 +48,8 @@ void AmbientSlopes::compute(double t, std::span<float> out) {
     }
   }
   fft_.execute();
-  for (long long m = 0; m < total; ++m) {
-    out[2 * m] = x_[m].real();
-    out[2 * m + 1] = x_[m].imag();
-  }
+  // std::complex<float> is two floats, real then imaginary ([complex.numbers.general])
+  return {reinterpret_cast<const float*>(x_.data()), 2 * static_cast<std::size_t>(total)};
 }
 
 }  // namespace huygens

@@ -24,9 +24,9 @@ class AmbientSlopes {
   AmbientSlopes(const WindParams& wind, const Water& water, int n, double length_m,
                 PlanEffort effort = PlanEffort::estimate);
   /// Slopes (d eta1/dx, d eta1/dy) at time t (unit: s) at grid point (row r = y, column c = x),
-  /// interleaved, row-major: out[2 (r n + c) + {0, 1}] (unit: 1); out holds 2 n^2 floats.
-  /// No allocation.
-  void compute(double t, std::span<float> out);
+  /// interleaved, row-major: [2 (r n + c) + {0, 1}] (unit: 1), 2 n^2 floats: the transform's own
+  /// output (real and imaginary parts), valid until the next call. No allocation.
+  std::span<const float> compute(double t);
   int n() const { return n_; }
   double length_m() const { return length_m_; }
 
