@@ -1401,11 +1401,15 @@ TEST_F(VizRender, OceanGlintFadesOverAPixel) {
 }
 
 // The open ocean goes on beyond the simulated region with the ambient sea's slopes
-// (WaterRenderer::set_ambient_sea): at 640 x 360, t = 1 s, a crop of the sea left of the region
-// (x 10-120, y 20-120) against one inside it on the same rows (x 500-600), glints (mean channel
-// >= 80) left out. Texture: the mean |difference| of horizontal neighbours, measured 1.75 beyond
-// and 3.58 inside (3.59 before anti-aliasing; the beyond has no Stokes part and is mip-averaged), 0.025 with the flat
-// sea of before (ambient_sea off, as when the wind is switched off); brightness 37.4 beyond, 37.1 inside.
+// (WaterRenderer::set_ambient_sea): at 640 x 360, t = 1 s, from the start-up camera 15 deg up
+// (the region's west edge crosses rows 150-190 at x 186-126), a crop of the sea left of the
+// region (x 50-120, y 150-190) against one inside it on the same rows (x 195-265), glints (mean
+// channel >= 80) left out. Texture: the mean |difference| of horizontal neighbours, measured
+// 2.70 beyond and 4.25 inside (the beyond has no Stokes part and is mip-averaged), 0.041 with
+// the flat sea of before (ambient_sea off, as when the wind is switched off); brightness 57.1
+// beyond and 53.9 inside.
+// (Until 2026-12-03 the camera stood 40 deg up: crops x 10-120 and 500-600 on rows 20-120,
+// texture 1.75 beyond, 3.58 inside, 0.025 flat.)
 TEST_F(VizRender, OceanGoesOnBeyondTheRegionWithTheAmbientSea) {
   struct Crop {
     double mean = 0, texture = 0;
@@ -1430,15 +1434,62 @@ TEST_F(VizRender, OceanGoesOnBeyondTheRegionWithTheAmbientSea) {
   };
   const auto [sea, flat] =
       render_twice("ocean.json", 1.0, 640, 360, [](HeadlessOptions& o) { o.settings.ambient_sea = false; });
-  const Crop beyond = crop(sea, 10, 120, 20, 120), inside = crop(sea, 500, 600, 20, 120);
-  const Crop flat_beyond = crop(flat, 10, 120, 20, 120);
+  const Crop beyond = crop(sea, 50, 120, 150, 190), inside = crop(sea, 195, 265, 150, 190);
+  const Crop flat_beyond = crop(flat, 50, 120, 150, 190);
   EXPECT_LT(flat_beyond.texture, 0.1) << "the flat sea";
   EXPECT_GT(beyond.texture, 0.3 * inside.texture)
       << "the sea beyond has waves: " << beyond.texture << " against " << inside.texture << " inside";
   EXPECT_NEAR(beyond.mean, inside.mean, 0.1 * inside.mean) << "no step in tone at the region's edge";
   std::printf("texture beyond %.3f (flat %.3f), inside %.3f; brightness beyond %.1f, inside %.1f\n", beyond.texture,
               flat_beyond.texture, inside.texture, beyond.mean, inside.mean);
-  if (::testing::Test::HasFailure()) write_debug("ocean_beyond.png", sea);
+  if (::testing::Test::HasFailure()) write_debug("ocean_beyond.png", sea), write_debug("ocean_flat.png", flat);
+}
+
+// The open sea reaches the horizon and the sky above it is graded (shaders/background.frag).
+// Still deep water (no glint, Schlick Fresnel) seen from 0.84 m up, 8 degrees down: every pixel
+// is a closed form of its view ray d, the water mix(0.7 W, S(r), F(-d_z)) below the horizon (the
+// region and the sea beyond alike, deep_water_colour of a level normal under a sun at any height)
+// and the sky S(d) above; S(v) = u_sky (uniform) or mix(sky, zenith, sqrt(v_z)) (graded), r the
+// mirrored ray (r_z = -d_z). The rows within 2.8 degrees of the horizon meet the sea beyond the
+// deck, 2 region sizes (8 m) past the region, that the sea used to end with: those rows showed
+// the uniform sky colour.
+TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam;
+  cam.target = glm::dvec3(g.x0 + 0.5 * kWidth, g.y0 + 0.5 * kWidth, 0.0);
+  cam.pitch = 8.0 * std::numbers::pi / 180.0;
+  cam.distance = 6.0;
+  RenderSettings s = plain_settings();
+  s.deep_water = true;
+  s.fresnel = FresnelModel::schlick;
+  const int W = 96, H = 180;
+  const double n = s.index, f0 = std::pow((n - 1) / (n + 1), 2);
+  for (bool graded : {false, true}) {
+    s.sky_gradient = graded;
+    const gl::Image8 img = render(r, cam, s, W, H);
+    int sea_rows = 0, far_rows = 0;
+    for (int y = 0; y < H; ++y) {
+      glm::dvec3 o, d;  // the ray through the pixel centre (image row 0 at the top)
+      cam.ray_through((2.0 * (W / 2) + 1.0) / W - 1.0, 1.0 - (2.0 * y + 1.0) / H, double(W) / H, o, d);
+      if (std::fabs(d.z) < 0.01) continue;  // the pixel the horizon cuts
+      const double F = f0 + (1 - f0) * std::pow(1.0 - std::max(-d.z, 0.0), 5);
+      for (int c = 0; c < 3; ++c) {
+        const auto S = [&](double rz) {  // the sky in a direction of height rz
+          return graded ? s.sky_colour[c] + (s.sky_zenith[c] - s.sky_colour[c]) * std::sqrt(rz) : s.sky_colour[c];
+        };
+        const double sky = S(std::max(d.z, 0.0)), sea = (1 - F) * 0.7 * s.water_colour[c] + F * S(std::max(-d.z, 0.0));
+        EXPECT_NEAR(channel(img, W / 2, y, c), d.z > 0 ? sky : sea, 1.5 / 255.0)
+            << (graded ? "graded" : "uniform") << " sky, row " << y << " channel " << c << ", d_z " << d.z;
+      }
+      sea_rows += d.z < 0;
+      far_rows += d.z < 0 && o.y - o.z / d.z * d.y > g.y0 + 3.0 * kWidth;
+    }
+    EXPECT_GT(far_rows, 5) << "rows that meet the sea beyond the old deck";
+    EXPECT_GT(sea_rows, far_rows + 20);
+    if (::testing::Test::HasFailure()) write_debug(graded ? "horizon_graded.png" : "horizon.png", img);
+  }
 }
 
 // A hull afloat (float_ship): on a tilted plane eta = 0.1 + 0.02 x - 0.01 y it takes the plane's

@@ -312,6 +312,7 @@ WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int sub
 
   surface_prog_ = load_program("surface.vert", "surface.frag", true);
   ground_prog_ = load_program("ground.vert", "ground.frag", true);
+  background_prog_ = load_program("background.vert", "background.frag", true);
   ship_prog_ = gl::program_from_shaders("ship.vert", "ship.frag");
 
   const int cols = static_cast<int>(grid_.cols), rows = static_cast<int>(grid_.rows);
@@ -856,6 +857,21 @@ void WaterRenderer::draw_terrain(const OrbitCamera& camera, const RenderSettings
   }
 }
 
+// What no geometry covered (drawn last, at the far plane): the sky, or for the open ocean the
+// sea out to the horizon (shaders/background.frag).
+void WaterRenderer::draw_background(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) const {
+  const gl::Program& p = background_prog_;
+  set_common_uniforms(p, s, camera);
+  glUniformMatrix4fv(p.loc("u_vp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniformMatrix4fv(p.loc("u_inv_vp"), 1, GL_FALSE, glm::value_ptr(glm::inverse(mvp)));
+  glUniform4f(p.loc("u_region"), static_cast<float>(grid_.x(0)), static_cast<float>(grid_.y(0)),
+              static_cast<float>(grid_.x(grid_.cols - 1)), static_cast<float>(grid_.y(grid_.rows - 1)));
+  glDepthFunc(GL_LEQUAL);
+  glBindVertexArray(empty_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthFunc(GL_LESS);
+}
+
 // The hulls at their poses (Wigley hulls below the waterline).
 void WaterRenderer::draw_ships(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
   std::vector<float> tri;
@@ -907,7 +923,6 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
-  glClearColor(s.clear_colour.r, s.clear_colour.g, s.clear_colour.b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   ground_tex_.bind(0);
   glActiveTexture(GL_TEXTURE1);
@@ -921,11 +936,11 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   draw_solids(camera, s, mvp);
   draw_tank(camera, s, mvp);
   lap(times.ship, times.cpu.ship);
-  // ground seen directly, drawn last so the depth test skips what the water and ships cover;
-  // deep water has no floor (the background is the clear colour)
+  // ground seen directly, drawn after the water and ships so the depth test skips what they
+  // cover; deep water has no floor (the background draws its sea out to the horizon)
   if (has_bed_) {
     draw_terrain(camera, s, mvp);
-  } else if (!s.deep_water || s.pool_deck) {
+  } else if (!s.deep_water) {
     set_common_uniforms(ground_prog_, s, camera);
     glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
     glUniform1i(ground_prog_.loc("u_terrain"), 0);
@@ -935,12 +950,12 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(2.0f, 2.0f);
     if (s.pool_deck)
-      glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,
-                   s.deep_water ? ground_vertex_count_ - 12 : ground_vertex_count_ - 6);
+      glDrawArrays(GL_TRIANGLES, 6, ground_vertex_count_ - 6);
     else
       glDrawArrays(GL_TRIANGLES, 0, 6);
     glDisable(GL_POLYGON_OFFSET_FILL);
   }
+  draw_background(camera, s, mvp);
   lap(times.ground, times.cpu.ground);
   target.resolve_scene();
   tone_map(s, target);

@@ -128,8 +128,6 @@ struct RenderSettings {
   int ground_squares = 8;
   /// Colour of a uniform ground (unit: 1).
   glm::vec3 ground_uniform{0.8f, 0.7f, 0.5f};
-  /// Background colour behind everything (unit: 1).
-  glm::vec3 clear_colour{0.33f, 0.55f, 0.85f};
 };
 
 /// A ship drawn as a Wigley hull y = B/2 (1 - (2x/L)^2)(1 - (z/T)^2) below the waterline.
@@ -290,6 +288,7 @@ class WaterRenderer {
   void add_mesh_solids(std::span<const RenderObstacle> obstacles);
   void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  void draw_background(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) const;
   void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   // the colours of ship.frag's u_solid
   enum class FlatKind { hull = 0, obstacle = 1, water_side = 2, tank_wall = 3 };
@@ -305,7 +304,7 @@ class WaterRenderer {
   std::vector<float> eta_, mesh_h_, diffs_;
   std::vector<ShipPose> ships_;
 
-  gl::Program surface_prog_, ground_prog_, ship_prog_;
+  gl::Program surface_prog_, ground_prog_, ship_prog_, background_prog_;
   gl::Texture diffs_tex_, coef_tex_, ground_tex_, flat_light_tex_, dye_tex_, foam_tex_, bed_tex_;
   bool has_dye_ = false, has_foam_ = false, has_bed_ = false;
   GLuint terrain_vao_ = 0, terrain_vbo_ = 0;

@@ -117,9 +117,10 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
   }
   if (view.follow_ship && ship) {
     // the ship and its wake from the side: a Kelvin wake (half-angle 19.5 deg) over about
-    // 8 hull lengths behind the ship; at sea from lower down, toward the sun's glitter
+    // 8 hull lengths behind the ship; at sea from low, 15 deg up, the sea out to the horizon in
+    // the picture's top fifth and the sun's glitter running towards the viewer
     const bool sea = view.look == Look::ocean;
-    c.pitch = (sea ? 40.0 : 55.0) * kDeg;
+    c.pitch = (sea ? 15.0 : 55.0) * kDeg;
     c.distance = std::min(c.distance, (sea ? 7.0 : 11.0) * ship->length);
     follow_ship(view, *ship, c);
   }
@@ -161,8 +162,7 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
     case Look::ocean: {
       // open ocean (paper 003): no floor, the deep water's colour, the sky and the sun's glint;
       // the sun ahead of the viewer, 35 degrees up, so its glitter path lies in the view
-      s.deep_water = true;
-      s.pool_deck = true;  // drawn as the flat sea beyond the simulated region
+      s.deep_water = true;  // the sea goes on beyond the region to the horizon (background.frag)
       s.caustics = false;
       s.water_colour = glm::vec3(0.03f, 0.16f, 0.25f);
       // the glint: the sun's disc widened by the slope spread of the waves shorter than the
@@ -200,7 +200,6 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
       }
       break;
   }
-  s.clear_colour = s.sky_colour;
   apply_render_request(request, s);
   return s;
 }
