@@ -1492,6 +1492,38 @@ TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
   }
 }
 
+// The ambient sea's slopes (one n x n inverse FFT per display time) are computed only for a
+// picture that draws them: with the wind switched off (ambient_sea false) or in a look without
+// the open sea, a new display time computes nothing; the first picture that draws the sea
+// computes them for the newest time, once.
+TEST_F(VizRender, AmbientSeaIsComputedOnlyForAPictureThatDrawsIt) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  RenderAmbientSea sea;
+  sea.n = 64, sea.length_m = 2.0 * kWidth;
+  r.set_ambient_sea(sea);
+  EXPECT_TRUE(std::isnan(r.sea_slopes_time())) << "nothing drawn yet";
+  OrbitCamera cam = default_camera(g.x0, g.y0, kWidth, kWidth);
+  RenderSettings s = plain_settings();
+  s.deep_water = true;
+  s.ambient_sea = false;
+  r.set_sea_time(1.5);
+  render(r, cam, s, 32, 32);
+  EXPECT_TRUE(std::isnan(r.sea_slopes_time())) << "the wind is off";
+  s.ambient_sea = true, s.deep_water = false;
+  render(r, cam, s, 32, 32);
+  EXPECT_TRUE(std::isnan(r.sea_slopes_time())) << "a look without the open sea";
+  s.deep_water = true;
+  r.set_sea_time(2.5);
+  render(r, cam, s, 32, 32);
+  EXPECT_EQ(r.sea_slopes_time(), 2.5);
+  s.ambient_sea = false;
+  r.set_sea_time(3.5);
+  render(r, cam, s, 32, 32);
+  EXPECT_EQ(r.sea_slopes_time(), 2.5) << "switched off again";
+}
+
 // A hull afloat (float_ship): on a tilted plane eta = 0.1 + 0.02 x - 0.01 y it takes the plane's
 // height at its centre and its slopes along and across its heading (30 deg); on waves a quarter
 // of its length long it stays nearly level (heave and slopes under 5 % of the waves' amplitude and

@@ -528,8 +528,11 @@ void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
   set_sea_time(0.0);
 }
 
-void WaterRenderer::set_sea_time(double t) {
-  if (!sea_ || t == sea_time_ || !std::isfinite(t)) return;
+// The ambient sea's slopes at the requested time, when this picture draws them and they are not
+// already there.
+void WaterRenderer::update_sea_slopes(const RenderSettings& s) {
+  const double t = sea_request_;
+  if (!sea_ || !s.deep_water || !s.ambient_sea || t == sea_time_ || !std::isfinite(t)) return;
   sea_tex_.upload(sea_->compute(t).data(), GL_RG, GL_FLOAT, 0);
   glBindTexture(GL_TEXTURE_2D, sea_tex_.id());
   glGenerateMipmap(GL_TEXTURE_2D);
@@ -899,6 +902,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   // upload: view-dependent coefficients, ground texture, the frame's heights
   update_linearisation(camera, s.index);
   build_ground_texture(s);
+  update_sea_slopes(s);
   if (heights_dirty_) {
     diffs_tex_.upload(diffs_.data(), GL_RG, GL_FLOAT);
     glBindBuffer(GL_ARRAY_BUFFER, surface_h_vbo_);

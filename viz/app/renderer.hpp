@@ -250,9 +250,13 @@ class WaterRenderer {
   /// its slopes at the time set_sea_time gives (AmbientSlopes, n x n on its periodic grid, a
   /// mipmapped texture repeated every length_m), so the sea goes on to the horizon.
   void set_ambient_sea(const RenderAmbientSea& sea);
-  /// The ambient sea's time (unit: s; the display time of the heights): its slopes are computed
-  /// (one n x n inverse FFT, on this thread) and uploaded when it changes. No-op without a sea.
-  void set_sea_time(double t);
+  /// The ambient sea's time (unit: s; the display time of the heights). Its slopes are computed
+  /// (one n x n inverse FFT, on this thread) and uploaded by the next render that draws them
+  /// (RenderSettings::deep_water and ambient_sea) when the time changed: none while the wind is
+  /// switched off.
+  void set_sea_time(double t) { sea_request_ = t; }
+  /// The time the ambient sea's slopes were last computed for (unit: s; NaN: never).
+  double sea_slopes_time() const { return sea_time_; }
   /// A particle solver's container, the box (0, 0, 0)-(box_m) (m, before the height offset): its
   /// four side walls from the floor to the lid, pale, each left out while the eye is outside
   /// it (the tank seen through its near walls: a backdrop for a slab seen from the side).
@@ -289,6 +293,7 @@ class WaterRenderer {
   void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_background(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) const;
+  void update_sea_slopes(const RenderSettings& s);
   void draw_water_sides(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   // the colours of ship.frag's u_solid
   enum class FlatKind { hull = 0, obstacle = 1, water_side = 2, tank_wall = 3 };
@@ -319,7 +324,7 @@ class WaterRenderer {
   std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
   std::unique_ptr<AmbientSlopes> sea_;      // set_ambient_sea
-  double sea_time_ = std::numeric_limits<double>::quiet_NaN();
+  double sea_time_ = std::numeric_limits<double>::quiet_NaN(), sea_request_ = 0.0;
   gl::Texture sea_tex_;  // RG32F slopes, mipmapped, repeated
   gl::Program tone_prog_;
   GLuint empty_vao_ = 0;
