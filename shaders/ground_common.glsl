@@ -97,6 +97,7 @@ vec3 lit_ground(vec2 G) {
 // The pool deck around the water: pale stone tiles (the ground texture, lightened), lit by the
 // sun without caustics.
 vec3 deck_colour(vec2 G) {
+  if (u_deep != 0) return flat_sea(vec3(G, 0.0));
   vec3 albedo = mix(texture(u_ground, (G - u_ground_origin) / u_ground_extent).rgb, vec3(0.85, 0.84, 0.80), 0.6);
   return albedo * (u_ambient + u_sun_light);
 }

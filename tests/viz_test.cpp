@@ -1490,6 +1490,40 @@ TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
     EXPECT_GT(sea_rows, far_rows + 20);
     if (::testing::Test::HasFailure()) write_debug(graded ? "horizon_graded.png" : "horizon.png", img);
   }
+  // the pool's deck, a uniform ground lit by ambient 1: its colour mix(ground, pale stone, 0.6)
+  // wherever the ray meets the rest level outside the region, out to the horizon (it used to end
+  // 2 region sizes out with the sky behind)
+  s.deep_water = false, s.pool_deck = true, s.sky_gradient = false;
+  s.ground = GroundPattern::uniform;
+  s.ground_uniform = glm::vec3(0.8f, 0.6f, 0.2f);
+  const gl::Image8 img = render(r, cam, s, W, H);
+  int far_deck_rows = 0;
+  for (int y = 0; y < H; ++y) {
+    glm::dvec3 o, d;
+    cam.ray_through((2.0 * (W / 2) + 1.0) / W - 1.0, 1.0 - (2.0 * y + 1.0) / H, double(W) / H, o, d);
+    const double py = o.y - o.z / d.z * d.y;
+    // left out: the pixel the horizon cuts, and the region from its rim (the water's near side,
+    // a pixel high at this view) to its far side
+    if (std::fabs(d.z) < 0.01 || (d.z < 0 && py >= g.y0 - 0.2)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double deck = s.ground_uniform[c] + 0.6 * (glm::vec3(0.85f, 0.84f, 0.80f)[c] - s.ground_uniform[c]);
+      EXPECT_NEAR(channel(img, W / 2, y, c), d.z > 0 ? s.sky_colour[c] : deck, 1.5 / 255.0)
+          << "deck, row " << y << " channel " << c << ", d_z " << d.z;
+    }
+  }
+  for (int y = 0; y < H; ++y) {
+    glm::dvec3 o, d;
+    cam.ray_through((2.0 * (W / 2) + 1.0) / W - 1.0, 1.0 - (2.0 * y + 1.0) / H, double(W) / H, o, d);
+    if (d.z < -0.01 && o.y - o.z / d.z * d.y > g.y0 + 3.0 * kWidth) {
+      ++far_deck_rows;
+      for (int c = 0; c < 3; ++c) {
+        const double deck = s.ground_uniform[c] + 0.6 * (glm::vec3(0.85f, 0.84f, 0.80f)[c] - s.ground_uniform[c]);
+        EXPECT_NEAR(channel(img, W / 2, y, c), deck, 1.5 / 255.0) << "far deck, row " << y << " channel " << c;
+      }
+    }
+  }
+  EXPECT_GT(far_deck_rows, 5);
+  if (::testing::Test::HasFailure()) write_debug("horizon_deck.png", img);
 }
 
 // The ambient sea's slopes (one n x n inverse FFT per display time) are computed only for a

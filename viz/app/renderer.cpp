@@ -860,15 +860,12 @@ void WaterRenderer::draw_terrain(const OrbitCamera& camera, const RenderSettings
   }
 }
 
-// What no geometry covered (drawn last, at the far plane): the sky, or for the open ocean the
-// sea out to the horizon (shaders/background.frag).
+// What no geometry covered (drawn last, at the far plane): the sky, or below the horizon the open
+// sea or the pool's deck going on to it (shaders/background.frag).
 void WaterRenderer::draw_background(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) const {
   const gl::Program& p = background_prog_;
   set_common_uniforms(p, s, camera);
-  glUniformMatrix4fv(p.loc("u_vp"), 1, GL_FALSE, glm::value_ptr(mvp));
   glUniformMatrix4fv(p.loc("u_inv_vp"), 1, GL_FALSE, glm::value_ptr(glm::inverse(mvp)));
-  glUniform4f(p.loc("u_region"), static_cast<float>(grid_.x(0)), static_cast<float>(grid_.y(0)),
-              static_cast<float>(grid_.x(grid_.cols - 1)), static_cast<float>(grid_.y(grid_.rows - 1)));
   glDepthFunc(GL_LEQUAL);
   glBindVertexArray(empty_vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -941,10 +938,10 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   draw_tank(camera, s, mvp);
   lap(times.ship, times.cpu.ship);
   // ground seen directly, drawn after the water and ships so the depth test skips what they
-  // cover; deep water has no floor (the background draws its sea out to the horizon)
+  // cover; deep water has no floor, only the sea (the deck) around the region
   if (has_bed_) {
     draw_terrain(camera, s, mvp);
-  } else if (!s.deep_water) {
+  } else if (!s.deep_water || s.pool_deck) {
     set_common_uniforms(ground_prog_, s, camera);
     glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
     glUniform1i(ground_prog_.loc("u_terrain"), 0);
@@ -954,7 +951,8 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(2.0f, 2.0f);
     if (s.pool_deck)
-      glDrawArrays(GL_TRIANGLES, 6, ground_vertex_count_ - 6);
+      glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,
+                   s.deep_water ? ground_vertex_count_ - 12 : ground_vertex_count_ - 6);
     else
       glDrawArrays(GL_TRIANGLES, 0, 6);
     glDisable(GL_POLYGON_OFFSET_FILL);

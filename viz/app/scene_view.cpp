@@ -162,7 +162,8 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
     case Look::ocean: {
       // open ocean (paper 003): no floor, the deep water's colour, the sky and the sun's glint;
       // the sun ahead of the viewer, 35 degrees up, so its glitter path lies in the view
-      s.deep_water = true;  // the sea goes on beyond the region to the horizon (background.frag)
+      s.deep_water = true;
+      s.pool_deck = true;  // the sea around the region, to the horizon (background.frag beyond it)
       s.caustics = false;
       s.water_colour = glm::vec3(0.03f, 0.16f, 0.25f);
       // the glint: the sun's disc widened by the slope spread of the waves shorter than the
