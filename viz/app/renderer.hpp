@@ -328,6 +328,7 @@ class WaterRenderer {
   gl::Texture sea_tex_;  // RG32F slopes, mipmapped, repeated
   gl::Program tone_prog_;
   GLuint empty_vao_ = 0;
+  GLuint sea_sampler_ = 0;  // the background's sampler of sea_tex_: trilinear, not anisotropic
   bool heights_dirty_ = true;
   float offset_ = 0.0f;
 
