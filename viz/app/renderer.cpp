@@ -526,8 +526,8 @@ void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
     glBindTexture(GL_TEXTURE_2D, sea_tex_.id());
     glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_MAX_ANISOTROPY_EXT, std::min(most, 16.0f));
   }
-  // the sea out to the horizon (background.frag) samples the slopes at its own mip level and
-  // without anisotropic filtering: at its footprints llvmpipe's took 1.4 s for a 1280x720 frame
+  // the sea out to the horizon (background.frag) samples the slopes without anisotropic
+  // filtering: at its footprints llvmpipe's took 1.4 s for a 1280x720 frame
   if (sea_sampler_ == 0) glGenSamplers(1, &sea_sampler_);
   glSamplerParameteri(sea_sampler_, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glSamplerParameteri(sea_sampler_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
