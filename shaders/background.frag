@@ -18,7 +18,7 @@ void main() {
   vec3 o = unproject(-1.0), d = normalize(unproject(1.0) - o);
   bool below = (u_deep != 0 || u_deck != 0) && d.z < 0.0 && o.z > 0.0;
   // the plane is shaded for every pixel, the sky's too, and picked at the end (uniform control
-  // flow: the texture lookups and the glint's fwidth take derivatives across the 2x2 pixel
+  // flow: the texture lookups and the glint's slope spread take derivatives across the 2x2 pixel
   // quad); at most 100 km out (the sea's slopes and the deck's tiles have long averaged out
   // there, and the texture coordinates stay small enough for the sampler)
   vec3 P = o + d * min(-o.z / min(d.z, -1e-6), 1e5);

@@ -26,12 +26,13 @@ uniform vec3 u_sky_zenith;
 uniform int u_sky_gradient;
 uniform vec3 u_sun_dir;
 uniform int u_fresnel;          // 0 off, 1 paper, 2 Schlick
-uniform int u_glint;            // 0 off, 1 the paper's, 2 the sun's disc
+uniform int u_glint;             // 0 off, 1 the paper's, 2 the sun reflected by a rough surface
 uniform vec3 u_sun_colour;
-uniform float u_sun_cos;        // cos of the glint disc's angular radius
-uniform float u_sun_intensity;  // the sun's radiance relative to the sky
+uniform float u_sun_radius;      // the sun's angular radius (rad)
+uniform float u_sun_irradiance;  // the sun's irradiance on a plane facing it over the sky's radiance (sr)
+uniform float u_slope_var;       // mean square slope of the waves shorter than the heightfield's grid
 uniform int u_far;              // 1: the sea beyond the region has the ambient sea's slopes
-uniform sampler2D u_far_slopes; // RG32F: d eta/dx, d eta/dy of the ambient sea, repeated
+uniform sampler2D u_far_slopes; // RGBA32F: d eta/dx, d eta/dy, their squares' sum, 0: the ambient sea
 uniform vec2 u_far_origin;      // world position of texture coordinate (0, 0) (m)
 uniform float u_far_length;     // the ambient sea's period (m)
 
@@ -61,27 +62,54 @@ float fresnel(float nv) {
   return u_fresnel == 2 ? schlick(nv) : 0.0;
 }
 
-// The sun's glint on a surface of normal n seen along dir (u_glint): the paper's clamp(100 n.h -
-// 98.95), or the sun's disc in the mirror direction r with Schlick's F, its edge soft over half
-// the disc's radius and at least the change of r.sun over one pixel (fwidth: the share of the
-// pixel that sees the disc), so a fleck of glint fades over a pixel instead of ending hard.
-vec3 glint(vec3 n, vec3 dir) {
-  vec3 sun = normalize(u_sun_dir);
+// Smith's masking of a Beckmann surface of mean square slope m2 seen at cos_t from its normal
+// (Walter, Marschner, Li & Torrance 2007, eq. 27: a = 1 / (sqrt(m2) tan t)).
+float smith_g1(float cos_t, float m2) {
+  float c = clamp(cos_t, 1e-4, 1.0), a = c / sqrt(m2 * (1.0 - c * c) + 1e-20);
+  return a >= 1.6 ? 1.0 : (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a);
+}
+
+// The sun reflected by a surface of mean normal n seen along dir (u_glint 2): the facets that
+// send the sun to the eye have the normal h = (s - dir) / |s - dir|; with their slopes Gaussian
+// about the mean slope, of mean square slope m2 (Cox & Munk 1954; the Beckmann distribution
+// D(h) = exp(-tan^2 t_h / m2) / (pi m2 cos^4 t_h), t_h the angle of h from n), the radiance is
+//   L = E_sun F(h.v) D(h) G1(n.v) G1(n.s) / (4 n.v)
+// (Cook & Torrance's microfacet BRDF times the irradiance E_sun n.s). m2 sums: the sun's disc
+// (radius a: a uniform disc of facet tilts a / 2, a^2 / 8), the waves shorter than the grid
+// (u_slope_var), the spread of the mean slope over the pixel (derivatives of a linear slope over
+// a unit square: (|dz/dx|^2 + |dz/dy|^2) / 12) and `extra_var` (a mipmap's slope variance).
+// A fleck of glint fades over its pixel, and far away where a pixel holds many waves the
+// flecks merge into the glitter path of their slope statistics (Bruneton, Neyret & Holzschuch
+// 2010). u_glint 1: the paper's clamp(100 n.h - 98.95).
+vec3 glint(vec3 n, vec3 dir, float extra_var) {
+  vec3 sun = normalize(u_sun_dir), v = -dir;
+  vec2 z = n.xy / max(n.z, 1e-3);  // minus the slope (its derivatives' lengths are the same)
+  vec2 zx = dFdx(z), zy = dFdy(z);
   if (u_glint == 1) return clamp(100.0 * dot(n, normalize(sun - dir)) - 98.95, 0.0, 1.0) * u_sun_colour;
   if (u_glint != 2) return vec3(0.0);
-  float c = dot(reflect(dir, n), sun), half_edge = 0.5 * max(1.0 - u_sun_cos, fwidth(c));
-  return schlick(dot(n, -dir)) * u_sun_intensity * smoothstep(u_sun_cos - half_edge, u_sun_cos + half_edge, c) *
-         u_sun_colour;
+  float m2 = u_sun_radius * u_sun_radius / 8.0 + u_slope_var + (dot(zx, zx) + dot(zy, zy)) / 12.0 + extra_var;
+  vec3 h = normalize(sun + v);
+  float nv = dot(n, v), ns = dot(n, sun), nh = max(dot(n, h), 1e-3);
+  if (nv <= 0.0 || ns <= 0.0) return vec3(0.0);
+  float tan2 = (1.0 - nh * nh) / (nh * nh);
+  float D = exp(-tan2 / m2) / (3.14159265 * m2 * nh * nh * nh * nh);
+  float G = smith_g1(nv, m2) * smith_g1(ns, m2);
+  return u_sun_irradiance * schlick(dot(h, v)) * D * G / (4.0 * nv) * u_sun_colour;
 }
 
 // The sea at a point P of z = 0 outside the simulated region (open ocean look): flat, or with the
-// ambient sea's slopes (u_far; mipmapped, so far away they average out towards flat water).
+// ambient sea's slopes (u_far; mipmapped, so far away they average out towards flat water and
+// their variance in the texel goes to the glint, which spreads into the glitter path).
 vec3 flat_sea(vec3 P) {
   vec3 dir = u_ortho != 0 ? u_view_dir : normalize(P - u_eye);
   vec3 n = vec3(0.0, 0.0, 1.0);
-  if (u_far != 0) n = normalize(vec3(-texture(u_far_slopes, (P.xy - u_far_origin) / u_far_length).rg, 1.0));
-  if (u_far == 0) return mix(deep_water_colour(n), sky(reflect(dir, n)), schlick(-dir.z));
-  return mix(deep_water_colour(n), sky(reflect(dir, n)), fresnel(max(dot(n, -dir), 0.0))) + glint(n, dir);
+  float var = 0.0;  // the slopes' variance in the mipmap's texel (E |s|^2 - |E s|^2)
+  if (u_far != 0) {
+    vec4 t = texture(u_far_slopes, (P.xy - u_far_origin) / u_far_length);
+    n = normalize(vec3(-t.rg, 1.0));
+    var = max(t.b - dot(t.rg, t.rg), 0.0);
+  }
+  return mix(deep_water_colour(n), sky(reflect(dir, n)), fresnel(max(dot(n, -dir), 0.0))) + glint(n, dir, var);
 }
 
 vec3 lit_ground(vec2 G) {

@@ -6,8 +6,8 @@
 //   G = (u0, v0) + eta (a, b) + [c d; e f] (eta_u, eta_v)
 // or exact (Snell: t = refract(d, n, 1/index), followed to z = ground_z);
 // then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S(r) + g L, T = exp(-a_rgb d)
-// (deep water: W alone); the glint g is the paper's clamp(100 n.h - 98.95) or the sun's disc
-// in the mirror direction r, F E_sun (1 - smoothstep over the disc's edge) (renderer.hpp).
+// (deep water: W alone); the glint g is the paper's clamp(100 n.h - 98.95) or the sun reflected
+// by the facets of the surface's slope spread (ground_common.glsl, glint).
 in vec3 v_pos;
 in vec2 v_base;
 out vec4 o_color;
@@ -32,7 +32,7 @@ uniform float u_ground_z;
 uniform int u_exact;
 uniform int u_absorption;
 uniform vec3 u_absorb;
-// (u_fresnel, u_glint, u_sun_colour, u_sun_cos, u_sun_intensity: ground_common.glsl)
+// (u_fresnel, u_glint, u_sun_*, u_slope_var: ground_common.glsl)
 
 // Value noise in [0, 1] at p (grid points): an integer hash per lattice corner, smooth blend.
 float hash(ivec2 c) {
@@ -82,7 +82,7 @@ void main() {
   if (u_use_dye != 0) refr = mix(refr, u_dye_colour, 0.7 * texture(u_dye, tc).r);
 
   float nv = max(dot(n, -dir), 0.0);
-  vec3 col = mix(refr, sky(reflect(dir, n)), fresnel(nv)) + glint(n, dir);
+  vec3 col = mix(refr, sky(reflect(dir, n)), fresnel(nv)) + glint(n, dir, 0.0);
   vec3 sun = normalize(u_sun_dir);
   if (u_use_foam != 0) {
     vec2 gp = (v_pos.xy - u_grid_origin) / u_dx;

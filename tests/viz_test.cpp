@@ -58,6 +58,15 @@ RenderSettings plain_settings() {
   return s;
 }
 
+// Deep water (no floor) with Schlick's Fresnel, otherwise plain_settings; glint on or off.
+RenderSettings deep_sea_settings(bool glint) {
+  RenderSettings s = plain_settings();
+  s.deep_water = true;
+  s.fresnel = FresnelModel::schlick;
+  s.sun_glint = glint;
+  return s;
+}
+
 // Visible region of kN x kN points, 4 m wide, corner at (1, 1) m; ground 2 m down.
 constexpr std::size_t kN = 128;
 constexpr double kWidth = 4.0, kDepth = 2.0;
@@ -1374,12 +1383,12 @@ TEST(VizCamera, FollowedShipNearAnEdgeKeepsTheViewOnTheWater) {
   EXPECT_NEAR(cam.target.y, 50.0 - 0.35 * cam.distance, 1e-9);
 }
 
-// The open ocean's sun glint fades over at least a pixel (its soft edge is at least fwidth of
-// r.sun): flecks of glint are not hard-edged white confetti. In the glint path of the ocean at
-// 640 x 360, the pixels between the water's tone and the glint's (mean channel 80 to 200) against
-// the glint's full tone (above 200): measured 1.7x (714 and 1194 pixels) with the disc's edge
-// half its radius wide (the old shader), 9.2x (300 and 2750) with the edge at least a pixel wide;
-// the crop's mean brightness 34.5 and 36.4.
+// The open ocean's sun glint fades over at least a pixel (the slope spread over the pixel widens
+// its facets' distribution): flecks of glint are not hard-edged white confetti. In the glint path
+// of the ocean at 640 x 360, the pixels between the water's tone and the glint's (mean channel 80
+// to 200) against the glint's full tone (above 200): measured 1.7x (714 and 1194 pixels) with the
+// disc's edge half its radius wide (before 2026-12-03), 9.2x (300 and 2750) with the edge at least
+// a pixel wide, 3.3x (5707 and 19111) with the facets' glint (a wider, brighter path).
 TEST_F(VizRender, OceanGlintFadesOverAPixel) {
   HeadlessOptions o;
   o.time = 1.0;
@@ -1397,6 +1406,7 @@ TEST_F(VizRender, OceanGlintFadesOverAPixel) {
     }
   ASSERT_GT(bright + mid, 500) << "the glint path is in view";
   EXPECT_GT(mid, 3 * bright) << "bright " << bright << ", between " << mid;
+  std::printf("glint path: %ld bright, %ld between\n", bright, mid);
   if (::testing::Test::HasFailure()) write_debug("ocean_glint.png", img);
 }
 
@@ -1461,9 +1471,7 @@ TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
   cam.target = glm::dvec3(g.x0 + 0.5 * kWidth, g.y0 + 0.5 * kWidth, 0.0);
   cam.pitch = 8.0 * std::numbers::pi / 180.0;
   cam.distance = 6.0;
-  RenderSettings s = plain_settings();
-  s.deep_water = true;
-  s.fresnel = FresnelModel::schlick;
+  RenderSettings s = deep_sea_settings(false);
   const int W = 96, H = 180;
   const double n = s.index, f0 = std::pow((n - 1) / (n + 1), 2);
   struct Ray {
@@ -1522,6 +1530,114 @@ TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
   }
   EXPECT_GT(far_deck_rows, 5);
   if (::testing::Test::HasFailure()) write_debug("horizon_deck.png", img);
+}
+
+// The glint's radiance in the closed form of ground_common.glsl's glint(): the sun (irradiance
+// E over the sky's radiance, colour C) on facets with Gaussian slopes about a level mean, of mean
+// square slope m2 (Beckmann's D, Smith's G1 in Walter et al.'s 2007 rational form), seen along d
+// (towards the water), with Schlick's F of index n at the angle between the facet and the eye.
+double glint_closed_form(const glm::dvec3& d, const glm::dvec3& sun, double E, double m2, double index) {
+  const glm::dvec3 v = -d, h = glm::normalize(sun + v);
+  if (v.z <= 0 || sun.z <= 0) return 0.0;
+  const auto g1 = [&](double c) {
+    const double a = c / std::sqrt(m2 * (1 - c * c));
+    return a >= 1.6 ? 1.0 : (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a);
+  };
+  const double f0 = std::pow((index - 1) / (index + 1), 2), F = f0 + (1 - f0) * std::pow(1 - glm::dot(h, v), 5);
+  const double tan2 = (1 - h.z * h.z) / (h.z * h.z);
+  const double D = std::exp(-tan2 / m2) / (std::numbers::pi * m2 * std::pow(h.z, 4));
+  return E * F * D * g1(v.z) * g1(sun.z) / (4 * v.z);
+}
+
+// The sun's glint is the sun reflected by facets whose slopes spread about the surface's
+// (shaders/ground_common.glsl, glint; Cox & Munk 1954): still deep water with a slope variance of
+// 0.02 for the waves shorter than the grid, the sun 25 degrees up ahead of a camera 20 degrees
+// down, every row of the centre column (the region and the sea beyond it) is the still sea's
+// mix(0.7 W, S, F(-d_z)) plus the closed form E F D G1 G1 / (4 v_z) of m2 = a^2 / 8 + 0.02 (a the
+// sun's radius) within 1.5/255; the glitter path spans the rows whose facets tilt up to ~20
+// degrees, brightest towards the sun's mirror image (until 2026-12-03 the glint was the sun's
+// disc, widened to 0.05 rad for the ocean, on the mean normal alone: flat water showed none here).
+TEST_F(VizRender, GlintIsTheSunOnTheFacetsOfTheSlopeSpread) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam;
+  cam.target = glm::dvec3(g.x0 + 0.5 * kWidth, g.y0 + 0.5 * kWidth, 0.0);
+  cam.pitch = 20.0 * std::numbers::pi / 180.0;
+  cam.distance = 6.0;
+  RenderSettings s = deep_sea_settings(true);
+  s.slope_var = 0.02f;
+  s.sun_irradiance = 0.05f;  // the path's brightest pixel stays below 1 (no tone map here)
+  const glm::dvec3 f = cam.forward(), ahead = glm::normalize(glm::dvec3(f.x, f.y, 0.0));
+  const double el = 25.0 * std::numbers::pi / 180.0;
+  const glm::dvec3 sun = std::cos(el) * ahead + glm::dvec3(0.0, 0.0, std::sin(el));
+  s.sun_dir = glm::vec3(sun);
+  const int W = 96, H = 180;
+  const double n = s.index, f0 = std::pow((n - 1) / (n + 1), 2);
+  const double m2 = s.sun_radius_rad * s.sun_radius_rad / 8.0 + s.slope_var;
+  const gl::Image8 img = render(r, cam, s, W, H);
+  int path_rows = 0;
+  double brightest = 0;
+  for (int y = 0; y < H; ++y) {
+    glm::dvec3 o, d;
+    cam.ray_through((2.0 * (W / 2) + 1.0) / W - 1.0, 1.0 - (2.0 * y + 1.0) / H, double(W) / H, o, d);
+    if (std::fabs(d.z) < 0.01) continue;  // the pixel the horizon cuts
+    const double F = f0 + (1 - f0) * std::pow(1.0 - std::max(-d.z, 0.0), 5);
+    const double glint = d.z < 0 ? glint_closed_form(d, sun, s.sun_irradiance, m2, n) : 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double sea = (1 - F) * 0.7 * s.water_colour[c] + F * s.sky_colour[c] + glint * s.sun_colour[c];
+      EXPECT_NEAR(channel(img, W / 2, y, c), d.z > 0 ? s.sky_colour[c] : sea, 1.5 / 255.0)
+          << "row " << y << " channel " << c << ", d_z " << d.z << ", glint " << glint;
+    }
+    path_rows += glint > 0.1;
+    brightest = std::max(brightest, glint);
+  }
+  EXPECT_GT(path_rows, 20) << "the glitter path is in view";
+  EXPECT_LT(brightest, 0.9) << "below the 8-bit range's top";
+  if (::testing::Test::HasFailure()) write_debug("glint_path.png", img);
+}
+
+// Far away, where a pixel holds many of the ambient sea's waves, the glint has the sea's slope
+// statistics (Bruneton, Neyret & Holzschuch 2010): the mipmap averages the slopes and their
+// squares' sum, and the variance in the texel widens the glint. Seen straight down from above
+// (orthographic, 16 x 16 pixels of 125 m each, far from the region: every pixel's texel is the
+// 1 x 1 level, mean slope 0), with the sun 55 degrees up, every pixel is the closed form with m2 =
+// a^2 / 8 + the resolved mean square slope + the unresolved one, that is a^2 / 8 + Cox & Munk's
+// 0.003 + 5.12e-3 U for the 6 m/s wind: the sea's own statistics, however much of it the grid
+// resolves. Without the texel's variance it would be the unresolved part alone.
+TEST_F(VizRender, FarSeaGlitterHasCoxAndMunksSlopeVariance) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  RenderAmbientSea sea;
+  sea.wind.speed_mps = 6.0, sea.wind.fetch_m = 10000.0, sea.wind.seed = 7;
+  sea.n = 64, sea.length_m = 100.0;
+  r.set_ambient_sea(sea);
+  const double cox_munk = 0.003 + 5.12e-3 * sea.wind.speed_mps;
+  ASSERT_GT(r.unresolved_slope_var(), 0.1 * cox_munk) << "a grid that leaves part of the slopes unresolved";
+  ASSERT_LT(r.unresolved_slope_var(), 0.9 * cox_munk) << "and resolves part of them";
+  const OrbitCamera cam = top_down(3000.0, 3000.0, 2000.0);
+  RenderSettings s = deep_sea_settings(true);
+  s.sun_irradiance = 40.0f;  // a glint near normal incidence reflects 2 % (Fresnel)
+  const double el = 55.0 * std::numbers::pi / 180.0;
+  const glm::dvec3 sun(std::cos(el), 0.0, std::sin(el)), d(0.0, 0.0, -1.0);
+  s.sun_dir = glm::vec3(sun);
+  r.set_sea_time(3.0);
+  const gl::Image8 img = render(r, cam, s, 16, 16);
+  const double n = s.index, f0 = std::pow((n - 1) / (n + 1), 2);
+  const double glint =
+      glint_closed_form(d, sun, s.sun_irradiance, s.sun_radius_rad * s.sun_radius_rad / 8.0 + cox_munk, n);
+  const double unresolved_only = glint_closed_form(
+      d, sun, s.sun_irradiance, s.sun_radius_rad * s.sun_radius_rad / 8.0 + r.unresolved_slope_var(), n);
+  EXPECT_GT(std::fabs(glint - unresolved_only), 10.0 / 255.0) << "the two differ in what the test sees";
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double expect = (1 - f0) * 0.7 * s.water_colour[c] + f0 * s.sky_colour[c] + glint * s.sun_colour[c];
+        EXPECT_NEAR(channel(img, x, y, c), expect, 1.5 / 255.0) << "pixel " << x << ", " << y << " channel " << c;
+      }
+  std::printf("glint %.4f (unresolved only %.4f), pixel (8, 8): %.4f\n", glint, unresolved_only, lum(img, 8, 8));
+  if (::testing::Test::HasFailure()) write_debug("far_glitter.png", img);
 }
 
 // The ambient sea's slopes (one n x n inverse FFT per display time) are computed only for a

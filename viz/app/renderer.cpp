@@ -517,7 +517,13 @@ void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
   sea_time_ = std::numeric_limits<double>::quiet_NaN();
   // every level down to 1 x 1: far away a texel averages the slopes (the sea flattens to its mean
   // colour instead of aliasing); anisotropic where the driver offers it (grazing views)
-  sea_tex_ = gl::Texture(sea.n, sea.n, GL_RG32F, static_cast<int>(std::bit_width(static_cast<unsigned>(sea.n))));
+  sea_tex_ = gl::Texture(sea.n, sea.n, GL_RGBA32F, static_cast<int>(std::bit_width(static_cast<unsigned>(sea.n))));
+  sea_texels_.assign(4 * static_cast<std::size_t>(sea.n) * sea.n, 0.0f);
+  // the resolved mean square slope does not change in time (linear waves: each mode's |Z| is fixed)
+  double resolved = 0.0;
+  for (const float v : sea_->compute(0.0)) resolved += static_cast<double>(v) * v;
+  resolved /= static_cast<double>(sea.n) * sea.n;
+  sea_unresolved_var_ = std::max(0.003 + 5.12e-3 * sea.wind.speed_mps - resolved, 0.0);
   sea_tex_.set_filter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
   sea_tex_.set_wrap(GL_REPEAT);
   if (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic")) {
@@ -541,7 +547,13 @@ void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
 void WaterRenderer::update_sea_slopes(const RenderSettings& s) {
   const double t = sea_request_;
   if (!sea_ || !s.deep_water || !s.ambient_sea || t == sea_time_ || !std::isfinite(t)) return;
-  sea_tex_.upload(sea_->compute(t).data(), GL_RG, GL_FLOAT, 0);
+  // the squares' sum too: the mipmap's averages of it give the slopes' variance in a texel
+  const std::span<const float> slopes = sea_->compute(t);
+  for (std::size_t i = 0; i < slopes.size() / 2; ++i) {
+    const float sx = slopes[2 * i], sy = slopes[2 * i + 1];
+    sea_texels_[4 * i] = sx, sea_texels_[4 * i + 1] = sy, sea_texels_[4 * i + 2] = sx * sx + sy * sy;
+  }
+  sea_tex_.upload(sea_texels_.data(), GL_RGBA, GL_FLOAT, 0);
   glBindTexture(GL_TEXTURE_2D, sea_tex_.id());
   glGenerateMipmap(GL_TEXTURE_2D);
   sea_time_ = t;
@@ -804,8 +816,10 @@ void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettin
   glUniform1i(p.loc("u_deck"), s.pool_deck ? 1 : 0);
   glUniform1i(p.loc("u_fresnel"), static_cast<int>(s.fresnel));
   glUniform1i(p.loc("u_glint"), !s.sun_glint ? 0 : s.paper_glint ? 1 : 2);
-  glUniform1f(p.loc("u_sun_cos"), std::cos(s.sun_radius_rad));
-  glUniform1f(p.loc("u_sun_intensity"), s.sun_intensity);
+  glUniform1f(p.loc("u_sun_radius"), s.sun_radius_rad);
+  glUniform1f(p.loc("u_sun_irradiance"), s.sun_irradiance);
+  const double sea_var = s.deep_water ? sea_unresolved_var_ : 0.0;
+  glUniform1f(p.loc("u_slope_var"), static_cast<float>(s.slope_var + sea_var));
   glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
   // the sea beyond the region: the ambient sea's slopes, repeated every length_m from the full
   // grid's origin (texel centres at the grid points)

@@ -15,8 +15,9 @@
 // direction r (uniform, or a horizon-to-zenith gradient), L the sun colour, F either the
 // paper's f = clamp(1 - 2.5 n.v) or Schlick's F0 + (1 - F0)(1 - n.v)^5,
 // F0 = ((index-1)/(index+1))^2 (paper 003), and g the glint: the paper's clamp(100 n.h - 98.95)
-// (h the half vector between the viewer and the sun) or the sun's disc seen in the mirror
-// direction, g = F E_sun [angle(r, sun) < sun radius] with a soft edge.
+// (h the half vector between the viewer and the sun) or the sun reflected by the facets of the
+// surface's slope spread, g = E_sun F(h.v) D(h) G1 G1 / (4 n.v) (Beckmann's D of the unresolved,
+// per-pixel and mipmap slope variance; shaders/ground_common.glsl, glint).
 // Everything is drawn in a half-float target (no clamping: caustics and glints exceed 1) and
 // tone-mapped once at the end into the 8-bit image: identity up to the knee k, then
 // k + (1 - k)(1 - exp(-(x - k)/(1 - k))) (C1, saturates at 1).
@@ -60,15 +61,20 @@ struct RenderSettings {
   /// Open ocean with an ambient sea (WaterRenderer::set_ambient_sea): the sea beyond the region
   /// takes its slopes (false: flat, as when the wind is switched off).
   bool ambient_sea = true;
-  /// Sun glint (the sun's disc in the mirror direction, or the paper's clamp(100 n.h - 98.95)).
+  /// Sun glint (the sun reflected by the facets of a rough surface, or the paper's
+  /// clamp(100 n.h - 98.95)).
   bool sun_glint = true;
-  /// The paper's glint g = clamp(100 n.h - 98.95) instead of the sun's disc.
+  /// The paper's glint g = clamp(100 n.h - 98.95) instead of the rough surface's.
   bool paper_glint = false;
-  /// Angular radius of the glint's disc (unit: rad): the sun's 0.0047 rad doubled for the
-  /// slope spread inside a pixel, which the per-pixel normal does not see.
-  float sun_radius_rad = 0.0094f;
-  /// Radiance of the sun's disc relative to the sky (unit: 1; tone-mapped to white).
-  float sun_intensity = 40.0f;
+  /// The sun's angular radius (unit: rad).
+  float sun_radius_rad = 0.0047f;
+  /// The sun's irradiance on a plane facing it over the sky's radiance at the horizon (unit: sr;
+  /// a clear day's is of order 10-20). The glint's radiance is E_sun F D G / (4 n.v)
+  /// (shaders/ground_common.glsl): bright where the facets that reflect the sun are many.
+  float sun_irradiance = 0.011f;
+  /// Mean square slope of the waves shorter than the heightfield's grid, which widen the glint
+  /// (unit: 1); the open sea adds its own (WaterRenderer::unresolved_slope_var).
+  float slope_var = 0.0f;
   /// Sky seen in the reflection: sky_colour at the horizon to sky_zenith overhead
   /// (S = mix(horizon, zenith, sqrt(r_z))); false = the uniform sky_colour.
   bool sky_gradient = true;
@@ -257,6 +263,11 @@ class WaterRenderer {
   void set_sea_time(double t) { sea_request_ = t; }
   /// The time the ambient sea's slopes were last computed for (unit: s; NaN: never).
   double sea_slopes_time() const { return sea_time_; }
+  /// Mean square slope of the ambient sea's waves shorter than its grid (unit: 1): Cox & Munk's
+  /// for the wind speed, 0.003 + 5.12e-3 U (U in m/s; 1954, clean surface, their wind at 12.5 m
+  /// taken as the scene's at 10 m), less the mean square slope the grid resolves (at least 0).
+  /// The glint of a deep_water picture adds it to RenderSettings::slope_var. 0 without a sea.
+  double unresolved_slope_var() const { return sea_unresolved_var_; }
   /// A particle solver's container, the box (0, 0, 0)-(box_m) (m, before the height offset): its
   /// four side walls from the floor to the lid, pale, each left out while the eye is outside
   /// it (the tank seen through its near walls: a backdrop for a slab seen from the side).
@@ -325,7 +336,9 @@ class WaterRenderer {
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
   std::unique_ptr<AmbientSlopes> sea_;      // set_ambient_sea
   double sea_time_ = std::numeric_limits<double>::quiet_NaN(), sea_request_ = 0.0;
-  gl::Texture sea_tex_;  // RG32F slopes, mipmapped, repeated
+  std::vector<float> sea_texels_;    // per texel d eta/dx, d eta/dy, their squares' sum, 0
+  double sea_unresolved_var_ = 0.0;  // unresolved_slope_var
+  gl::Texture sea_tex_;              // RGBA32F sea_texels_, mipmapped, repeated
   gl::Program tone_prog_;
   GLuint empty_vao_ = 0;
   GLuint sea_sampler_ = 0;  // the background's sampler of sea_tex_: trilinear, not anisotropic

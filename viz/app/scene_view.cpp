@@ -166,11 +166,10 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
       s.pool_deck = true;  // the sea around the region, to the horizon (background.frag beyond it)
       s.caustics = false;
       s.water_colour = glm::vec3(0.03f, 0.16f, 0.25f);
-      // the glint: the sun's disc widened by the slope spread of the waves shorter than the
-      // grid (Cox & Munk's variance at 6 m/s wind is ~0.034, of which the grid resolves part);
-      // its radiance is a display choice (tone-mapped), not calibrated against the sky's
-      s.sun_radius_rad = 0.05f;
-      s.sun_intensity = 25.0f;
+      // the glint: the sun of a clear day (its irradiance over the sky's radiance, of order
+      // 10 sr) on the sea's facets, the waves shorter than the grid included (Cox & Munk's
+      // slope variance less what the grid resolves: WaterRenderer::unresolved_slope_var)
+      s.sun_irradiance = 2.0f;
       const double az = camera.yaw + std::numbers::pi, el = 35.0 * kDeg;
       s.sun_dir = glm::vec3(static_cast<float>(std::cos(el) * std::cos(az)),
                             static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)));

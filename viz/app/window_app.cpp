@@ -370,6 +370,9 @@ void panel_parameters(App& a) {
   ImGui::SliderFloat3("absorption 1/m", &a.settings.absorb_rgb.x, 0.0f, 2.0f, "%.3f");
   if (ImGui::SliderFloat3("sun direction", &a.settings.sun_dir.x, -1.0f, 1.0f, "%.2f"))
     a.settings.sun_dir.z = std::max(a.settings.sun_dir.z, 0.05f);
+  // the glint's brightness: E_sun over the sky's radiance (RenderSettings::sun_irradiance)
+  ImGui::SliderFloat("sun irradiance sr", &a.settings.sun_irradiance, 0.001f, 40.0f, "%.3f",
+                     ImGuiSliderFlags_Logarithmic);
   float ts = static_cast<float>(a.time_scale);
   if (ImGui::SliderFloat("time scale", &ts, 0.05f, 4.0f, "%.2f", ImGuiSliderFlags_Logarithmic)) {
     a.time_scale = ts;
