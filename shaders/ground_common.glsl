@@ -31,6 +31,7 @@ uniform vec3 u_sun_colour;
 uniform float u_sun_radius;      // the sun's angular radius (rad)
 uniform float u_sun_irradiance;  // the sun's irradiance on a plane facing it over the sky's radiance (sr)
 uniform float u_slope_var;       // mean square slope of the waves shorter than the heightfield's grid
+uniform float u_region_var;      // more of it in the region, whose central differences resolve less
 uniform int u_far;              // 1: the sea beyond the region has the ambient sea's slopes
 uniform sampler2D u_far_slopes; // RGBA32F: d eta/dx, d eta/dy, their squares' sum, 0: the ambient sea
 uniform vec2 u_far_origin;      // world position of texture coordinate (0, 0) (m)
@@ -105,9 +106,13 @@ vec3 flat_sea(vec3 P) {
   vec3 n = vec3(0.0, 0.0, 1.0);
   float var = 0.0;  // the slopes' variance in the mipmap's texel (E |s|^2 - |E s|^2)
   if (u_far != 0) {
-    vec4 t = texture(u_far_slopes, (P.xy - u_far_origin) / u_far_length);
+    vec2 uv = (P.xy - u_far_origin) / u_far_length, px = uv * vec2(textureSize(u_far_slopes, 0));
+    vec4 t = texture(u_far_slopes, uv);
     n = normalize(vec3(-t.rg, 1.0));
-    var = max(t.b - dot(t.rg, t.rg), 0.0);
+    // a magnified texel (level of detail below 1) is not a spread: bilinear weights of the
+    // texels around would count as variance, faded out as the level falls to 0
+    float lod = 0.5 * log2(max(max(dot(dFdx(px), dFdx(px)), dot(dFdy(px), dFdy(px))), 1e-12));
+    var = max(t.b - dot(t.rg, t.rg), 0.0) * clamp(lod, 0.0, 1.0);
   }
   return mix(deep_water_colour(n), sky(reflect(dir, n)), fresnel(max(dot(n, -dir), 0.0))) + glint(n, dir, var);
 }

@@ -32,7 +32,7 @@ uniform float u_ground_z;
 uniform int u_exact;
 uniform int u_absorption;
 uniform vec3 u_absorb;
-// (u_fresnel, u_glint, u_sun_*, u_slope_var: ground_common.glsl)
+// (u_fresnel, u_glint, u_sun_*, u_slope_var, u_region_var: ground_common.glsl)
 
 // Value noise in [0, 1] at p (grid points): an integer hash per lattice corner, smooth blend.
 float hash(ivec2 c) {
@@ -82,7 +82,7 @@ void main() {
   if (u_use_dye != 0) refr = mix(refr, u_dye_colour, 0.7 * texture(u_dye, tc).r);
 
   float nv = max(dot(n, -dir), 0.0);
-  vec3 col = mix(refr, sky(reflect(dir, n)), fresnel(nv)) + glint(n, dir, 0.0);
+  vec3 col = mix(refr, sky(reflect(dir, n)), fresnel(nv)) + glint(n, dir, u_region_var);
   vec3 sun = normalize(u_sun_dir);
   if (u_use_foam != 0) {
     vec2 gp = (v_pos.xy - u_grid_origin) / u_dx;

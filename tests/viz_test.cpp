@@ -19,6 +19,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -1388,7 +1389,8 @@ TEST(VizCamera, FollowedShipNearAnEdgeKeepsTheViewOnTheWater) {
 // of the ocean at 640 x 360, the pixels between the water's tone and the glint's (mean channel 80
 // to 200) against the glint's full tone (above 200): measured 1.7x (714 and 1194 pixels) with the
 // disc's edge half its radius wide (before 2026-12-03), 9.2x (300 and 2750) with the edge at least
-// a pixel wide, 3.3x (5707 and 19111) with the facets' glint (a wider, brighter path).
+// a pixel wide, 3.3x (5707 and 19111) with the facets' glint (a wider, brighter path); the test
+// asks for 2.5x, between the hard disc's 1.7x and the soft glints' 3.3x.
 TEST_F(VizRender, OceanGlintFadesOverAPixel) {
   HeadlessOptions o;
   o.time = 1.0;
@@ -1405,7 +1407,7 @@ TEST_F(VizRender, OceanGlintFadesOverAPixel) {
       mid += m > 80 && m <= 200;
     }
   ASSERT_GT(bright + mid, 500) << "the glint path is in view";
-  EXPECT_GT(mid, 3 * bright) << "bright " << bright << ", between " << mid;
+  EXPECT_GT(mid, 2.5 * bright) << "bright " << bright << ", between " << mid;
   std::printf("glint path: %ld bright, %ld between\n", bright, mid);
   if (::testing::Test::HasFailure()) write_debug("ocean_glint.png", img);
 }
@@ -1533,20 +1535,60 @@ TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
 }
 
 // The glint's radiance in the closed form of ground_common.glsl's glint(): the sun (irradiance
-// E over the sky's radiance, colour C) on facets with Gaussian slopes about a level mean, of mean
-// square slope m2 (Beckmann's D, Smith's G1 in Walter et al.'s 2007 rational form), seen along d
-// (towards the water), with Schlick's F of index n at the angle between the facet and the eye.
-double glint_closed_form(const glm::dvec3& d, const glm::dvec3& sun, double E, double m2, double index) {
+// E over the sky's radiance, colour C) on facets with Gaussian slopes about the mean normal n, of
+// mean square slope m2 (Beckmann's D; with `masking`, Smith's G1 in Walter et al.'s 2007
+// rational form), seen along d (towards the water), with Schlick's F of index `index` at the
+// angle between the facet and the eye.
+double glint_closed_form(const glm::dvec3& d, const glm::dvec3& sun, double E, double m2, double index,
+                         const glm::dvec3& n = {0.0, 0.0, 1.0}, bool masking = true) {
   const glm::dvec3 v = -d, h = glm::normalize(sun + v);
-  if (v.z <= 0 || sun.z <= 0) return 0.0;
+  const double nv = glm::dot(n, v), ns = glm::dot(n, sun), nh = glm::dot(n, h);
+  if (nv <= 0 || ns <= 0) return 0.0;
   const auto g1 = [&](double c) {
     const double a = c / std::sqrt(m2 * (1 - c * c));
-    return a >= 1.6 ? 1.0 : (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a);
+    return !masking || a >= 1.6 ? 1.0 : (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a);
   };
   const double f0 = std::pow((index - 1) / (index + 1), 2), F = f0 + (1 - f0) * std::pow(1 - glm::dot(h, v), 5);
-  const double tan2 = (1 - h.z * h.z) / (h.z * h.z);
-  const double D = std::exp(-tan2 / m2) / (std::numbers::pi * m2 * std::pow(h.z, 4));
-  return E * F * D * g1(v.z) * g1(sun.z) / (4 * v.z);
+  const double tan2 = (1 - nh * nh) / (nh * nh);
+  const double D = std::exp(-tan2 / m2) / (std::numbers::pi * m2 * std::pow(nh, 4));
+  return E * F * D * g1(nv) * g1(ns) / (4 * nv);
+}
+
+// The closed form is the radiance of Gaussian facets (the model, apart from the shader): a
+// Monte-Carlo surface of 8 M facets with slopes of variance m2 / 2 per component (mean square
+// slope m2 in all, Cox & Munk's convention). A facet of normal m takes the sun's power E (m.s) /
+// m_z per unit of horizontal area (its area is 1 / m_z of it) and reflects F(m.s) of it along r =
+// 2 (m.s) m - s; the radiance seen along v is the power into a cone of half-angle 0.02 rad round
+// v over the cone's solid angle and the area's projection v_z. Without masking (a facet is never
+// hidden by another), against the closed form without G1, within 3 % (statistics about 1 %),
+// for three geometries: a low sun seen against, a high sun seen across, and the sun seen from
+// straight above.
+TEST(VizGlint, ClosedFormIsTheRadianceOfGaussianFacets) {
+  const double m2 = 0.02, index = 1.333, delta = 0.02, cone = 2 * std::numbers::pi * (1 - std::cos(delta));
+  const auto dir = [](double elevation_deg, double azimuth_deg) {
+    const double e = elevation_deg * std::numbers::pi / 180, a = azimuth_deg * std::numbers::pi / 180;
+    return glm::dvec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e));
+  };
+  struct Case {
+    glm::dvec3 sun, v;  // towards the sun, towards the eye
+  };
+  for (const Case& k : {Case{dir(25, 0), dir(35, 180)}, Case{dir(60, 0), dir(50, 150)}, Case{dir(70, 0), dir(90, 0)}}) {
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> slope(0.0, std::sqrt(m2 / 2));
+    const double f0 = std::pow((index - 1) / (index + 1), 2);
+    double power = 0;
+    const int facets = 8'000'000;
+    for (int i = 0; i < facets; ++i) {
+      const glm::dvec3 m = glm::normalize(glm::dvec3(-slope(rng), -slope(rng), 1.0));
+      const double ms = glm::dot(m, k.sun);
+      if (ms <= 0 || glm::dot(2 * ms * m - k.sun, k.v) < std::cos(delta)) continue;
+      power += ms / m.z * (f0 + (1 - f0) * std::pow(1 - ms, 5));
+    }
+    const double mc = power / facets / (cone * k.v.z);
+    const double cf = glint_closed_form(-k.v, k.sun, 1.0, m2, index, {0.0, 0.0, 1.0}, false);
+    EXPECT_NEAR(mc, cf, 0.03 * cf) << "sun " << k.sun.z << ", eye " << k.v.z;
+    std::printf("sun z %.3f, eye z %.3f: Monte-Carlo %.5f, closed form %.5f\n", k.sun.z, k.v.z, mc, cf);
+  }
 }
 
 // The sun's glint is the sun reflected by facets whose slopes spread about the surface's
@@ -1595,6 +1637,51 @@ TEST_F(VizRender, GlintIsTheSunOnTheFacetsOfTheSlopeSpread) {
   EXPECT_GT(path_rows, 20) << "the glitter path is in view";
   EXPECT_LT(brightest, 0.9) << "below the 8-bit range's top";
   if (::testing::Test::HasFailure()) write_debug("glint_path.png", img);
+}
+
+// The slope spread over a pixel widens the glint by (|dz/dx|^2 + |dz/dy|^2) / 12 (a slope linear
+// over the pixel's unit square): deep water shaped as the trough eta = k (x - xc)^2 / 2 (k = 0.8
+// 1/m, its slope changing by 0.05 over a pixel), seen straight down at 64 x 64 pixels of 6.25 cm,
+// with slope_var 0.002 and the sun 60 degrees up along +x: every pixel of the middle row is the
+// tilted water's mix(W_d(n), S, F(n.v)) plus the closed form on its mean normal n with m2 = a^2 / 8
+// + 0.002 + 0.05^2 / 12; where the path is brightest, leaving the pixel's term out would move the
+// pixel by more than 10/255.
+TEST_F(VizRender, GlintWidensByTheSlopeSpreadOverThePixel) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  const double xc = g.x0 + 0.5 * kWidth, k = 0.8;
+  std::vector<float> eta(kN * kN);
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j) eta[i * kN + j] = static_cast<float>(0.5 * k * std::pow(g.x(j) - xc, 2));
+  r.set_heights(eta);
+  const int W = 64;
+  const OrbitCamera cam = top_down(xc, g.y0 + 0.5 * kWidth, kWidth);
+  RenderSettings s = deep_sea_settings(true);
+  s.slope_var = 0.002f;
+  s.sun_irradiance = 1.0f;
+  const double el = 60.0 * std::numbers::pi / 180.0, px = kWidth / W;
+  const glm::dvec3 sun(std::cos(el), 0.0, std::sin(el)), d(0.0, 0.0, -1.0);
+  s.sun_dir = glm::vec3(sun);
+  const gl::Image8 img = render(r, cam, s, W, W);
+  const double m2 = s.sun_radius_rad * s.sun_radius_rad / 8.0 + s.slope_var, spread = std::pow(k * px, 2) / 12.0;
+  const double f0 = std::pow((s.index - 1) / (s.index + 1), 2);
+  double most = 0, moved = 0;
+  for (int j = 4; j < W - 4; ++j) {
+    const double x = xc + (j + 0.5 - 0.5 * W) * px;
+    const glm::dvec3 n = glm::normalize(glm::dvec3(-k * (x - xc), 0.0, 1.0));
+    const double glint = glint_closed_form(d, sun, s.sun_irradiance, m2 + spread, s.index, n);
+    const double F = f0 + (1 - f0) * std::pow(1 - n.z, 5);
+    const double lit = std::max(0.7 + 0.6 * (std::max(glm::dot(n, sun), 0.0) - sun.z), 0.2);
+    for (int c = 0; c < 3; ++c) {
+      const double expect = (1 - F) * lit * s.water_colour[c] + F * s.sky_colour[c] + glint * s.sun_colour[c];
+      EXPECT_NEAR(channel(img, j, W / 2, c), expect, 1.5 / 255.0) << "column " << j << " channel " << c;
+    }
+    if (glint > most) most = glint, moved = glint - glint_closed_form(d, sun, s.sun_irradiance, m2, s.index, n);
+  }
+  EXPECT_GT(std::fabs(moved), 10.0 / 255.0) << "the pixel's term matters where the path is brightest";
+  EXPECT_LT(most, 0.9);
+  std::printf("brightest glint %.3f; without the pixel's spread %.3f\n", most, most - moved);
+  if (::testing::Test::HasFailure()) write_debug("glint_pixel_spread.png", img);
 }
 
 // Far away, where a pixel holds many of the ambient sea's waves, the glint has the sea's slope

@@ -519,11 +519,12 @@ void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
   // colour instead of aliasing); anisotropic where the driver offers it (grazing views)
   sea_tex_ = gl::Texture(sea.n, sea.n, GL_RGBA32F, static_cast<int>(std::bit_width(static_cast<unsigned>(sea.n))));
   sea_texels_.assign(4 * static_cast<std::size_t>(sea.n) * sea.n, 0.0f);
-  // the resolved mean square slope does not change in time (linear waves: each mode's |Z| is fixed)
-  double resolved = 0.0;
-  for (const float v : sea_->compute(0.0)) resolved += static_cast<double>(v) * v;
-  resolved /= static_cast<double>(sea.n) * sea.n;
-  sea_unresolved_var_ = std::max(0.003 + 5.12e-3 * sea.wind.speed_mps - resolved, 0.0);
+  // Cox & Munk's mean square slope less what the texture's slopes resolve (spectral) and what
+  // the region's normals resolve (central differences of the heights on the same grid); both
+  // are constant in time (each mode's amplitude is)
+  const double cox_munk = 0.003 + 5.12e-3 * sea.wind.speed_mps;
+  sea_unresolved_var_ = std::max(cox_munk - sea_->mean_square_slope(0.0, false), 0.0);
+  region_unresolved_var_ = std::max(cox_munk - sea_->mean_square_slope(0.0, true), 0.0);
   sea_tex_.set_filter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
   sea_tex_.set_wrap(GL_REPEAT);
   if (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic")) {
@@ -818,8 +819,11 @@ void WaterRenderer::set_common_uniforms(const gl::Program& p, const RenderSettin
   glUniform1i(p.loc("u_glint"), !s.sun_glint ? 0 : s.paper_glint ? 1 : 2);
   glUniform1f(p.loc("u_sun_radius"), s.sun_radius_rad);
   glUniform1f(p.loc("u_sun_irradiance"), s.sun_irradiance);
-  const double sea_var = s.deep_water ? sea_unresolved_var_ : 0.0;
-  glUniform1f(p.loc("u_slope_var"), static_cast<float>(s.slope_var + sea_var));
+  // the wind's short waves: beyond the region those its texture does not resolve, in it
+  // (u_region_var more) those its central differences do not
+  const bool wind = sea_ && s.deep_water && s.ambient_sea;
+  glUniform1f(p.loc("u_slope_var"), static_cast<float>(s.slope_var + (wind ? sea_unresolved_var_ : 0.0)));
+  glUniform1f(p.loc("u_region_var"), static_cast<float>(wind ? region_unresolved_var_ - sea_unresolved_var_ : 0.0));
   glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
   // the sea beyond the region: the ambient sea's slopes, repeated every length_m from the full
   // grid's origin (texel centres at the grid points)

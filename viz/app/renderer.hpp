@@ -265,9 +265,12 @@ class WaterRenderer {
   double sea_slopes_time() const { return sea_time_; }
   /// Mean square slope of the ambient sea's waves shorter than its grid (unit: 1): Cox & Munk's
   /// for the wind speed, 0.003 + 5.12e-3 U (U in m/s; 1954, clean surface, their wind at 12.5 m
-  /// taken as the scene's at 10 m), less the mean square slope the grid resolves (at least 0).
-  /// The glint of a deep_water picture adds it to RenderSettings::slope_var. 0 without a sea.
+  /// taken as the scene's at 10 m), less the mean square slope the grid resolves (at least 0):
+  /// beyond the region its slopes' (spectral), in the region the central differences' of its
+  /// heights (region_unresolved_slope_var). The glint of a deep_water picture with the wind on
+  /// (ambient_sea) adds it to RenderSettings::slope_var. 0 without a sea.
   double unresolved_slope_var() const { return sea_unresolved_var_; }
+  double region_unresolved_slope_var() const { return region_unresolved_var_; }
   /// A particle solver's container, the box (0, 0, 0)-(box_m) (m, before the height offset): its
   /// four side walls from the floor to the lid, pale, each left out while the eye is outside
   /// it (the tank seen through its near walls: a backdrop for a slab seen from the side).
@@ -336,9 +339,10 @@ class WaterRenderer {
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
   std::unique_ptr<AmbientSlopes> sea_;      // set_ambient_sea
   double sea_time_ = std::numeric_limits<double>::quiet_NaN(), sea_request_ = 0.0;
-  std::vector<float> sea_texels_;    // per texel d eta/dx, d eta/dy, their squares' sum, 0
-  double sea_unresolved_var_ = 0.0;  // unresolved_slope_var
-  gl::Texture sea_tex_;              // RGBA32F sea_texels_, mipmapped, repeated
+  std::vector<float> sea_texels_;       // per texel d eta/dx, d eta/dy, their squares' sum, 0
+  double sea_unresolved_var_ = 0.0;     // unresolved_slope_var
+  double region_unresolved_var_ = 0.0;  // region_unresolved_slope_var
+  gl::Texture sea_tex_;                 // RGBA32F sea_texels_, mipmapped, repeated
   gl::Program tone_prog_;
   GLuint empty_vao_ = 0;
   GLuint sea_sampler_ = 0;  // the background's sampler of sea_tex_: trilinear, not anisotropic

@@ -52,4 +52,19 @@ std::span<const float> AmbientSlopes::compute(double t) {
   return {reinterpret_cast<const float*>(x_.data()), 2 * static_cast<std::size_t>(total)};
 }
 
+double AmbientSlopes::mean_square_slope(double t, bool central_differences) const {
+  const int n = n_;
+  const double dx = length_m_ / n;
+  const auto z = [&](std::size_t m) { return std::complex<double>(c_[m]) * std::polar(1.0, -omega_[m] * t); };
+  const auto k2 = [&](double k) { return central_differences ? std::pow(std::sin(k * dx) / dx, 2) : k * k; };
+  double sum = 0.0;
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c) {
+      const std::size_t m = static_cast<std::size_t>(r) * n + c,
+                        mm = static_cast<std::size_t>((n - r) % n) * n + (n - c) % n;
+      sum += (k2(kx_[c]) + k2(ky_[r])) * std::norm(0.5 * (z(m) - std::conj(z(mm))));
+    }
+  return sum;
+}
+
 }  // namespace huygens

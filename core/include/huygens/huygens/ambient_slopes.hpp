@@ -27,6 +27,11 @@ class AmbientSlopes {
   /// interleaved, row-major: [2 (r n + c) + {0, 1}] (unit: 1), 2 n^2 floats: the transform's own
   /// output (real and imaginary parts), valid until the next call. No allocation.
   std::span<const float> compute(double t);
+  /// Mean square slope |grad eta1|^2 over the grid (unit: 1), by Parseval from the modes at
+  /// time t: sum over k of |k|^2 |D(k)|^2 (compute's X(k) = (kx + i ky) D(k)); with
+  /// `central_differences`, of the slopes (eta(x + dx) - eta(x - dx)) / (2 dx) a grid resolves,
+  /// |k|^2 replaced by (sin^2(kx dx) + sin^2(ky dx)) / dx^2. No allocation.
+  double mean_square_slope(double t, bool central_differences) const;
   int n() const { return n_; }
   double length_m() const { return length_m_; }
 
