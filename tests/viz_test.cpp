@@ -1691,7 +1691,8 @@ TEST_F(VizRender, GlintWidensByTheSlopeSpreadOverThePixel) {
 // 1 x 1 level, mean slope 0), with the sun 55 degrees up, every pixel is the closed form with m2 =
 // a^2 / 8 + the resolved mean square slope + the unresolved one, that is a^2 / 8 + Cox & Munk's
 // 0.003 + 5.12e-3 U for the 6 m/s wind: the sea's own statistics, however much of it the grid
-// resolves. Without the texel's variance it would be the unresolved part alone.
+// resolves. Without the texel's variance it would be the unresolved part alone. Over the region
+// itself the glint takes what the region's central differences leave unresolved.
 TEST_F(VizRender, FarSeaGlitterHasCoxAndMunksSlopeVariance) {
   const GridPlacement g = test_grid();
   WaterRenderer r(g, -kDepth, 4);
@@ -1725,6 +1726,21 @@ TEST_F(VizRender, FarSeaGlitterHasCoxAndMunksSlopeVariance) {
       }
   std::printf("glint %.4f (unresolved only %.4f), pixel (8, 8): %.4f\n", glint, unresolved_only, lum(img, 8, 8));
   if (::testing::Test::HasFailure()) write_debug("far_glitter.png", img);
+  // the region (still here) adds what its central differences do not resolve: seen from above,
+  // every pixel is the closed form with m2 = a^2 / 8 + region_unresolved_slope_var
+  const double region_var = r.region_unresolved_slope_var();
+  EXPECT_GT(region_var, r.unresolved_slope_var() + 0.002) << "central differences resolve less";
+  const gl::Image8 region = render(r, top_down(g.x0 + 0.5 * kWidth, g.y0 + 0.5 * kWidth, 0.5 * kWidth), s, 16, 16);
+  const double in_region =
+      glint_closed_form(d, sun, s.sun_irradiance, s.sun_radius_rad * s.sun_radius_rad / 8.0 + region_var, n);
+  EXPECT_GT(std::fabs(in_region - unresolved_only), 5.0 / 255.0) << "the region's own term is seen";
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double expect = (1 - f0) * 0.7 * s.water_colour[c] + f0 * s.sky_colour[c] + in_region * s.sun_colour[c];
+        EXPECT_NEAR(channel(region, x, y, c), expect, 1.5 / 255.0) << "region pixel " << x << ", " << y;
+      }
+  std::printf("region: unresolved %.4f (beyond %.4f), glint %.4f\n", region_var, r.unresolved_slope_var(), in_region);
 }
 
 // The ambient sea's slopes (one n x n inverse FFT per display time) are computed only for a

@@ -166,9 +166,10 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
       s.pool_deck = true;  // the sea around the region, to the horizon (background.frag beyond it)
       s.caustics = false;
       s.water_colour = glm::vec3(0.03f, 0.16f, 0.25f);
-      // the glint: the sun of a clear day (its irradiance over the sky's radiance, of order
-      // 10 sr) on the sea's facets, the waves shorter than the grid included (Cox & Munk's
-      // slope variance less what the grid resolves: WaterRenderer::unresolved_slope_var)
+      // the glint: the sun on the sea's facets, the waves shorter than the grid included (Cox &
+      // Munk's slope variance less what the grid resolves: WaterRenderer::unresolved_slope_var);
+      // its irradiance over the sky's radiance a display choice, a fifth to a tenth of a clear
+      // day's 10-20 sr, so the tone map keeps the glitter path's structure
       s.sun_irradiance = 2.0f;
       const double az = camera.yaw + std::numbers::pi, el = 35.0 * kDeg;
       s.sun_dir = glm::vec3(static_cast<float>(std::cos(el) * std::cos(az)),
