@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Lists C++ function bodies longer than a limit (default 80 lines).
 
-Usage: scripts/function_lengths.py [--max N] [PATH...]   (default PATH: core validation)
+Usage: scripts/function_lengths.py [--max N] [PATH...]   (default PATH: core validation; scripts/test.sh also checks viz cli benchmarks)
 A body is a brace block opened after a parameter list `(...)` (with optional qualifiers,
 trailing return type or constructor initialisers) at namespace or class scope; lambdas and
 nested blocks count toward their enclosing function. Length = closing line - opening line + 1

@@ -145,6 +145,72 @@ void CausticsRenderer::draw_shadow_polygon(const std::vector<std::array<float, 2
   glDrawArrays(GL_TRIANGLE_FAN, 0, GLsizei(poly.size()));
 }
 
+// The ship's shadow: black into the lower MIP levels, or into the explicit mode's mask.
+void CausticsRenderer::draw_shadow(const std::vector<std::array<float, 2>>& shadow, bool has_ship,
+                                   const HeightfieldView& field) {
+  if (params_.area == CausticsArea::Explicit) {
+    if (!has_ship) return;
+    ensure_mask();
+    mask_fb_->bind();
+    glClearColor(1, 1, 1, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    draw_shadow_polygon(shadow, field);
+    return;
+  }
+  ensure_mip();
+  if (!has_ship && !mip_dirty_) return;
+  for (int l = 0; l < int(mip_fb_.size()); ++l) {
+    mip_fb_[std::size_t(l)].bind();
+    const float v = mip_level_value(params_, l);
+    glClearColor(v, v, v, v);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (has_ship) draw_shadow_polygon(shadow, field);
+  }
+  mip_dirty_ = has_ship;
+}
+
+// The projected mesh into the vertex buffers (ground and surface positions, skirts, and the
+// explicit mode's still-water positions).
+void CausticsRenderer::upload_mesh() {
+  const bool explicit_mode = params_.area == CausticsArea::Explicit;
+  auto upload = [&](GLuint vbo, const std::vector<float>& mesh, const std::vector<float>& skirt) {
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(mesh.size() * sizeof(float)), mesh.data());
+    glBufferSubData(GL_ARRAY_BUFFER, GLintptr(mesh.size() * sizeof(float)), GLsizeiptr(skirt.size() * sizeof(float)),
+                    skirt.data());
+    const std::vector<float>& rest = mesh_.rest_uv;
+    if (explicit_mode && !rest.empty())
+      glBufferSubData(GL_ARRAY_BUFFER, GLintptr((mesh.size() + skirt.size()) * sizeof(float)),
+                      GLsizeiptr(rest.size() * sizeof(float)), rest.data());
+  };
+  upload(vbo_ground_, mesh_.ground_uv, mesh_.skirt_ground_uv);
+  upload(vbo_surface_, mesh_.surface_uv, mesh_.skirt_surface_uv);
+}
+
+// The program that lights the texture and its inputs; returns the indices to draw.
+GLsizei CausticsRenderer::bind_light_program(bool has_ship) {
+  if (params_.area != CausticsArea::Explicit) {
+    mip_prog_.use();
+    mip_prog_.set("u_lod_bias", params_.mip_lod_offset);
+    mip_prog_.set("u_isotropic", params_.mip_isotropic_lod ? 1 : 0);
+    mip_->bind(0);
+    return GLsizei(mesh_.indices.size());
+  }
+  explicit_prog_.use();
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_draw_);
+  glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, GLsizeiptr(mesh_.draw_indices.size() * sizeof(std::uint32_t)),
+                  mesh_.draw_indices.data());
+  glBindBuffer(GL_TEXTURE_BUFFER, gain_buffer_);
+  glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(mesh_.gains.size() * sizeof(float)), mesh_.gains.data(), GL_STREAM_DRAW);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_BUFFER, gain_texture_);
+  glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, gain_buffer_);
+  glActiveTexture(GL_TEXTURE0);
+  explicit_prog_.set("u_use_mask", has_ship ? 1 : 0);
+  if (has_ship) mask_->bind(0);
+  return GLsizei(mesh_.draw_indices.size());
+}
+
 void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* ship) {
   // CPU: subsample, refract and project the mesh vertices
   const auto t0 = std::chrono::steady_clock::now();
@@ -158,29 +224,7 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
   const bool has_ship = ship && ship->outline.size() >= 3;
   std::vector<std::array<float, 2>> shadow;
   if (has_ship) shadow = shadow_on_surface(params_, *ship);
-
-  // shadow: black into the lower MIP levels, or into the explicit mode's mask
-  if (explicit_mode) {
-    if (has_ship) {
-      ensure_mask();
-      mask_fb_->bind();
-      glClearColor(1, 1, 1, 1);
-      glClear(GL_COLOR_BUFFER_BIT);
-      draw_shadow_polygon(shadow, field);
-    }
-  } else {
-    ensure_mip();
-    if (has_ship || mip_dirty_) {
-      for (int l = 0; l < int(mip_fb_.size()); ++l) {
-        mip_fb_[std::size_t(l)].bind();
-        const float v = mip_level_value(params_, l);
-        glClearColor(v, v, v, v);
-        glClear(GL_COLOR_BUFFER_BIT);
-        if (has_ship) draw_shadow_polygon(shadow, field);
-      }
-      mip_dirty_ = has_ship;
-    }
-  }
+  draw_shadow(shadow, has_ship, field);
 
   // GPU: all projected triangles, additive
   glBindVertexArray(vao_);
@@ -199,18 +243,7 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
     }
     caustics_mesh_triangles(params_, mesh_, box);
   }
-  auto upload = [&](GLuint vbo, const std::vector<float>& mesh, const std::vector<float>& skirt) {
-    glBindBuffer(GL_ARRAY_BUFFER, vbo);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(mesh.size() * sizeof(float)), mesh.data());
-    glBufferSubData(GL_ARRAY_BUFFER, GLintptr(mesh.size() * sizeof(float)), GLsizeiptr(skirt.size() * sizeof(float)),
-                    skirt.data());
-    const std::vector<float>& rest = mesh_.rest_uv;
-    if (explicit_mode && !rest.empty())
-      glBufferSubData(GL_ARRAY_BUFFER, GLintptr((mesh.size() + skirt.size()) * sizeof(float)),
-                      GLsizeiptr(rest.size() * sizeof(float)), rest.data());
-  };
-  upload(vbo_ground_, mesh_.ground_uv, mesh_.skirt_ground_uv);
-  upload(vbo_surface_, mesh_.surface_uv, mesh_.skirt_surface_uv);
+  upload_mesh();
   fb_.bind();
   // skip_still: still-water light 1 to start with, the still blocks are not drawn
   const float start = explicit_mode && mesh_.start_still ? 1.0f : 0.0f;
@@ -219,29 +252,7 @@ void CausticsRenderer::render(const HeightfieldView& field, const ShipShadow* sh
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
-  GLsizei draw_count = GLsizei(mesh_.indices.size());
-  if (explicit_mode) {
-    explicit_prog_.use();
-    const auto& gains_ = mesh_.gains;
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_draw_);
-    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, GLsizeiptr(mesh_.draw_indices.size() * sizeof(std::uint32_t)),
-                    mesh_.draw_indices.data());
-    draw_count = GLsizei(mesh_.draw_indices.size());
-    glBindBuffer(GL_TEXTURE_BUFFER, gain_buffer_);
-    glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(gains_.size() * sizeof(float)), gains_.data(), GL_STREAM_DRAW);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_BUFFER, gain_texture_);
-    glTexBuffer(GL_TEXTURE_BUFFER, GL_R32F, gain_buffer_);
-    glActiveTexture(GL_TEXTURE0);
-    explicit_prog_.set("u_use_mask", has_ship ? 1 : 0);
-    if (has_ship) mask_->bind(0);
-  } else {
-    mip_prog_.use();
-    mip_prog_.set("u_lod_bias", params_.mip_lod_offset);
-    mip_prog_.set("u_isotropic", params_.mip_isotropic_lod ? 1 : 0);
-    mip_->bind(0);
-  }
-  glDrawElements(GL_TRIANGLES, draw_count, GL_UNSIGNED_INT, nullptr);
+  glDrawElements(GL_TRIANGLES, bind_light_program(has_ship), GL_UNSIGNED_INT, nullptr);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo_);  // the vertex array's own element buffer again
   glDisable(GL_BLEND);
   glBindVertexArray(0);

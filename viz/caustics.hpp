@@ -55,6 +55,9 @@ class CausticsRenderer {
   void ensure_mip();
   int shadow_top_level() const;
   void ensure_mask();
+  void draw_shadow(const std::vector<std::array<float, 2>>& shadow, bool has_ship, const HeightfieldView& field);
+  void upload_mesh();
+  GLsizei bind_light_program(bool has_ship);
   void draw_shadow_polygon(const std::vector<std::array<float, 2>>& poly, const HeightfieldView& field);
 
   CausticsParams params_;

@@ -49,6 +49,170 @@ CausticsParams make_params(int mesh, int tex, const Mode& m, CausticsProjection 
   return p;
 }
 
+// The paper's path (MIP u8 + emulated blur) on a wind sea with a ship, oblique sun, into `png`:
+// left the MIP mode, right the explicit mode; top row unblurred, bottom row blurred.
+void write_panel(const std::string& png) {
+  // the paper's path (MIP u8 + emulated blur) on a wind sea with a ship, oblique sun;
+  // left: MIP mode, right: explicit mode, top row unblurred, bottom row blurred
+  const auto field = viz::synthetic_wind_sea(384, 15.0 * 384 / 512, 1.0, 1.2, false);
+  auto ship = viz::make_ellipse_hull(4.0f, 5.0f, 0.4f, 2.5f, 0.8f);
+  ship.height_m = 0.3f;
+  const int T = 512;
+  gl::Image8 out{2 * T, 2 * T, 1, std::vector<std::uint8_t>(std::size_t(4) * T * T)};
+  viz::AccumBlur blur(T, T);
+  for (int k = 0; k < 2; ++k) {
+    auto p = make_params(96, T, Mode{"", k ? CausticsArea::Explicit : CausticsArea::Mip, false, 0.5f},
+                         CausticsProjection::Linear);
+    p.sun_dir = {0.3f, 0.2f, -1.0f};
+    viz::CausticsRenderer r(p);
+    r.render(field.view(), &ship);
+    const auto raw = gl::read_pixels_u8(r.framebuffer(), GL_RED);
+    blur.blur_emulated(r.texture());
+    const auto bl = gl::read_pixels_u8(blur.emulated_framebuffer(), GL_RED);
+    for (int y = 0; y < T; ++y)
+      for (int x = 0; x < T; ++x) {
+        // GL rows are bottom first; the PNG is top first
+        out.pixels[std::size_t(T - 1 - y) * 2 * T + std::size_t(k * T + x)] = raw.pixels[std::size_t(y) * T + x];
+        out.pixels[std::size_t(2 * T - 1 - y) * 2 * T + std::size_t(k * T + x)] = bl.pixels[std::size_t(y) * T + x];
+      }
+  }
+  gl::write_png(png, out);
+  std::printf("wrote %s\n", png.c_str());
+}
+
+// The paper's sizes (N = 512, margin 64 -> 384 visible, subsampled by 4 -> 96), each pass as a
+// ratio to a copy pass measured in the same run.
+Table speed_table(int reps) {
+  // baseline measured in the same run: one full-screen texelFetch copy into an R8 target
+  // (llvmpipe's fill rate), so the passes can be compared as ratios on a loaded machine
+  const auto copy_prog = gl::program_from_strings(gl::fullscreen_vertex_shader(), R"(#version 330 core
+uniform sampler2D u_src;
+out vec4 o_color;
+void main() { o_color = vec4(texelFetch(u_src, ivec2(gl_FragCoord.xy), 0).r); }
+)",
+                                                  "copy");
+  Table t({"mesh", "texture", "field", "pass", "cpu mesh ms", "median ms", "x copy pass", "paper ms"});
+  struct Size {
+    int mesh, tex, field;
+  };
+  for (const Size& sz : {Size{96, 512, 384}, Size{192, 1024, 768}}) {
+    const auto field = viz::synthetic_wind_sea(sz.field, 15.0 * sz.field / 512.0, 1.0, 0.6, false);
+    const Mode modes[] = {{"caustics MIP u8 (paper)", CausticsArea::Mip, false, 0.5f},
+                          {"caustics explicit u8", CausticsArea::Explicit, false, 0.0f},
+                          {"caustics MIP f32", CausticsArea::Mip, true, 0.5f},
+                          {"caustics explicit f32", CausticsArea::Explicit, true, 0.0f}};
+    const std::string m = std::to_string(sz.mesh), x = std::to_string(sz.tex), f = std::to_string(sz.field);
+    viz::AccumBlur blur(sz.tex, sz.tex);
+    gl::Texture src(sz.tex, sz.tex, GL_R8), dst(sz.tex, sz.tex, GL_R8);
+    gl::Framebuffer dst_fb(dst);
+    gl::VertexArray vao;
+    const double copy = median_seconds(reps, [&] {
+      dst_fb.bind();
+      vao.bind();
+      copy_prog.use();
+      src.bind(0);
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glFinish();
+    });
+    t.add({m, x, f, "copy pass (baseline)", "", num(copy * 1e3, 3), "1", ""});
+    for (const auto& md : modes) {
+      viz::CausticsRenderer r(make_params(sz.mesh, sz.tex, md, CausticsProjection::Linear));
+      double cpu = 0;
+      const double sec = median_seconds(reps, [&] {
+        r.render(field.view());
+        glFinish();
+        cpu = r.last_cpu_seconds();
+      });
+      t.add({m, x, f, md.name, num(cpu * 1e3, 3), num(sec * 1e3, 3), num(sec / copy, 3), ""});
+    }
+    viz::CausticsRenderer paper(make_params(sz.mesh, sz.tex, modes[0], CausticsProjection::Linear));
+    paper.render(field.view());
+    viz::CausticsRenderer flt(make_params(sz.mesh, sz.tex, modes[3], CausticsProjection::Linear));
+    flt.render(field.view());
+    glFinish();
+    const double be = median_seconds(reps, [&] {
+      blur.blur_emulated(paper.texture());
+      glFinish();
+    });
+    const double bf = median_seconds(reps, [&] {
+      blur.blur_float(flt.texture());
+      glFinish();
+    });
+    const double both = median_seconds(reps, [&] {
+      paper.render(field.view());
+      blur.blur_emulated(paper.texture());
+      glFinish();
+    });
+    t.add({m, x, f, "blur emulated (16 draws + lookup)", "", num(be * 1e3, 3), num(be / copy, 3), ""});
+    t.add({m, x, f, "blur float", "", num(bf * 1e3, 3), num(bf / copy, 3), ""});
+    t.add({m, x, f, "MIP u8 caustics + emulated blur", "", num(both * 1e3, 3), num(both / copy, 3),
+           sz.mesh == 96 ? "18" : ""});
+  }
+  std::printf("\n== caustics speed (median of %d, glFinish after each) ==\n%s", reps, t.text().c_str());
+  return t;
+}
+
+// Run time against error: each mode against a photon-histogram reference.
+Table error_table(bool quick) {
+  const int tex = quick ? 256 : 512, n = quick ? 257 : 385, per_cell = quick ? 8 : 16, border = tex / 16;
+  Table t(
+      {"field", "mode", "projection", "mesh", "ms (caustics + blur)", "rel L2", "rel L2 / contrast", "total light"});
+  struct FieldCase {
+    const char* name;
+    viz::SyntheticField f;
+  };
+  const FieldCase fields[] = {{"wind sea", viz::synthetic_wind_sea(n, 2.0, 0.5, 0.6, false)},
+                              {"ring wave", viz::synthetic_ring_wave(n, 2.0, 0.5, 0.6)}};
+  const Mode modes[] = {{"explicit f32 + float blur", CausticsArea::Explicit, true, 0.0f},
+                        {"MIP o=0 f32 + float blur", CausticsArea::Mip, true, 0.0f},
+                        {"MIP o=0.5 f32 + float blur", CausticsArea::Mip, true, 0.5f},
+                        {"MIP o=0.5 isotropic f32 + float blur", CausticsArea::Mip, true, 0.5f, true},
+                        {"explicit u8 + emulated blur", CausticsArea::Explicit, false, 0.0f},
+                        {"MIP o=0 u8 + emulated blur", CausticsArea::Mip, false, 0.0f},
+                        {"MIP o=0.5 u8 + emulated blur", CausticsArea::Mip, false, 0.5f}};
+  viz::AccumBlur blur(tex, tex);
+  for (const auto& fc : fields) {
+    auto p0 = make_params(96, tex, modes[0], CausticsProjection::Exact);
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto ref = viz::blur121_f32(viz::photon_caustics(p0, fc.f.view(), per_cell, 1), tex, tex);
+    const double tr = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto ref2 = viz::blur121_f32(viz::photon_caustics(p0, fc.f.view(), per_cell, 2), tex, tex);
+    const auto nd = viz::compare_caustics(ref2, ref, tex, tex, border);
+    t.add({fc.name, fmt("photon reference, %d^2 per cell (noise floor)", per_cell), "exact", std::to_string(n),
+           num(tr * 1e3, 4), num(nd.rel_l2 / std::sqrt(2.0), 3), num(nd.rel_l2_contrast / std::sqrt(2.0), 3), "1"});
+    for (const auto& m : modes)
+      for (auto proj : {CausticsProjection::Linear, CausticsProjection::Exact})
+        for (int mesh : {48, 96, 192}) {
+          if (proj == CausticsProjection::Exact && mesh != 96) continue;
+          viz::CausticsRenderer r(make_params(mesh, tex, m, proj));
+          const double s = median_seconds(quick ? 3 : 7, [&] {
+            r.render(fc.f.view());
+            if (m.float_target)
+              blur.blur_float(r.texture());
+            else
+              blur.blur_emulated(r.texture());
+            glFinish();
+          });
+          std::vector<float> img;
+          if (m.float_target) {
+            img = gl::read_pixels_f32(blur.float_framebuffer(), 1);
+          } else {
+            const auto u8 = gl::read_pixels_u8(blur.emulated_framebuffer(), GL_RED);
+            img.assign(u8.pixels.begin(), u8.pixels.end());
+            for (auto& v : img) v /= r.params().unit_level_u8;
+          }
+          const auto d = viz::compare_caustics(img, ref, tex, tex, border);
+          t.add({fc.name, m.name, proj == CausticsProjection::Linear ? "linear" : "exact", std::to_string(mesh),
+                 num(s * 1e3, 3), num(d.rel_l2, 3), num(d.rel_l2_contrast, 3), num(d.mean_a / d.mean_b, 4)});
+        }
+  }
+  std::printf(
+      "\n== caustics run time against error (texture %d^2, surface %d^2, depth 0.5 m, sun overhead; "
+      "errors on the interior, both blurred and normalised to mean 1) ==\n%s",
+      tex, n, t.text().c_str());
+  return t;
+}
+
 }  // namespace
 
 int bench_main(int argc, char** argv) {
@@ -84,167 +248,9 @@ int bench_main(int argc, char** argv) {
     const char* lp = std::getenv("LP_NUM_THREADS");
     std::printf("GL: %s, %s (LP_NUM_THREADS=%s)\n", ctx.renderer().c_str(), ctx.version().c_str(), lp ? lp : "unset");
     std::vector<std::pair<std::string, Table>> tables;
-    if (!png.empty()) {
-      // the paper's path (MIP u8 + emulated blur) on a wind sea with a ship, oblique sun;
-      // left: MIP mode, right: explicit mode, top row unblurred, bottom row blurred
-      const auto field = viz::synthetic_wind_sea(384, 15.0 * 384 / 512, 1.0, 1.2, false);
-      auto ship = viz::make_ellipse_hull(4.0f, 5.0f, 0.4f, 2.5f, 0.8f);
-      ship.height_m = 0.3f;
-      const int T = 512;
-      gl::Image8 out{2 * T, 2 * T, 1, std::vector<std::uint8_t>(std::size_t(4) * T * T)};
-      viz::AccumBlur blur(T, T);
-      for (int k = 0; k < 2; ++k) {
-        auto p = make_params(96, T, Mode{"", k ? CausticsArea::Explicit : CausticsArea::Mip, false, 0.5f},
-                             CausticsProjection::Linear);
-        p.sun_dir = {0.3f, 0.2f, -1.0f};
-        viz::CausticsRenderer r(p);
-        r.render(field.view(), &ship);
-        const auto raw = gl::read_pixels_u8(r.framebuffer(), GL_RED);
-        blur.blur_emulated(r.texture());
-        const auto bl = gl::read_pixels_u8(blur.emulated_framebuffer(), GL_RED);
-        for (int y = 0; y < T; ++y)
-          for (int x = 0; x < T; ++x) {
-            // GL rows are bottom first; the PNG is top first
-            out.pixels[std::size_t(T - 1 - y) * 2 * T + std::size_t(k * T + x)] = raw.pixels[std::size_t(y) * T + x];
-            out.pixels[std::size_t(2 * T - 1 - y) * 2 * T + std::size_t(k * T + x)] = bl.pixels[std::size_t(y) * T + x];
-          }
-      }
-      gl::write_png(png, out);
-      std::printf("wrote %s\n", png.c_str());
-    }
-    const int reps = quick ? 5 : 15;
-
-    // ---- speed: the paper's sizes (N = 512, margin 64 -> 384 visible, subsampled by 4 -> 96)
-    if (only.empty() || only == "speed") {
-      // baseline measured in the same run: one full-screen texelFetch copy into an R8 target
-      // (llvmpipe's fill rate), so the passes can be compared as ratios on a loaded machine
-      const auto copy_prog = gl::program_from_strings(gl::fullscreen_vertex_shader(), R"(#version 330 core
-uniform sampler2D u_src;
-out vec4 o_color;
-void main() { o_color = vec4(texelFetch(u_src, ivec2(gl_FragCoord.xy), 0).r); }
-)",
-                                                      "copy");
-      Table t({"mesh", "texture", "field", "pass", "cpu mesh ms", "median ms", "x copy pass", "paper ms"});
-      struct Size {
-        int mesh, tex, field;
-      };
-      for (const Size& sz : {Size{96, 512, 384}, Size{192, 1024, 768}}) {
-        const auto field = viz::synthetic_wind_sea(sz.field, 15.0 * sz.field / 512.0, 1.0, 0.6, false);
-        const Mode modes[] = {{"caustics MIP u8 (paper)", CausticsArea::Mip, false, 0.5f},
-                              {"caustics explicit u8", CausticsArea::Explicit, false, 0.0f},
-                              {"caustics MIP f32", CausticsArea::Mip, true, 0.5f},
-                              {"caustics explicit f32", CausticsArea::Explicit, true, 0.0f}};
-        const std::string m = std::to_string(sz.mesh), x = std::to_string(sz.tex), f = std::to_string(sz.field);
-        viz::AccumBlur blur(sz.tex, sz.tex);
-        gl::Texture src(sz.tex, sz.tex, GL_R8), dst(sz.tex, sz.tex, GL_R8);
-        gl::Framebuffer dst_fb(dst);
-        gl::VertexArray vao;
-        const double copy = median_seconds(reps, [&] {
-          dst_fb.bind();
-          vao.bind();
-          copy_prog.use();
-          src.bind(0);
-          glDrawArrays(GL_TRIANGLES, 0, 3);
-          glFinish();
-        });
-        t.add({m, x, f, "copy pass (baseline)", "", num(copy * 1e3, 3), "1", ""});
-        for (const auto& md : modes) {
-          viz::CausticsRenderer r(make_params(sz.mesh, sz.tex, md, CausticsProjection::Linear));
-          double cpu = 0;
-          const double sec = median_seconds(reps, [&] {
-            r.render(field.view());
-            glFinish();
-            cpu = r.last_cpu_seconds();
-          });
-          t.add({m, x, f, md.name, num(cpu * 1e3, 3), num(sec * 1e3, 3), num(sec / copy, 3), ""});
-        }
-        viz::CausticsRenderer paper(make_params(sz.mesh, sz.tex, modes[0], CausticsProjection::Linear));
-        paper.render(field.view());
-        viz::CausticsRenderer flt(make_params(sz.mesh, sz.tex, modes[3], CausticsProjection::Linear));
-        flt.render(field.view());
-        glFinish();
-        const double be = median_seconds(reps, [&] {
-          blur.blur_emulated(paper.texture());
-          glFinish();
-        });
-        const double bf = median_seconds(reps, [&] {
-          blur.blur_float(flt.texture());
-          glFinish();
-        });
-        const double both = median_seconds(reps, [&] {
-          paper.render(field.view());
-          blur.blur_emulated(paper.texture());
-          glFinish();
-        });
-        t.add({m, x, f, "blur emulated (16 draws + lookup)", "", num(be * 1e3, 3), num(be / copy, 3), ""});
-        t.add({m, x, f, "blur float", "", num(bf * 1e3, 3), num(bf / copy, 3), ""});
-        t.add({m, x, f, "MIP u8 caustics + emulated blur", "", num(both * 1e3, 3), num(both / copy, 3),
-               sz.mesh == 96 ? "18" : ""});
-      }
-      std::printf("\n== caustics speed (median of %d, glFinish after each) ==\n%s", reps, t.text().c_str());
-      tables.emplace_back("caustics speed", t);
-    }
-
-    // ---- run time against error (photon reference)
-    if (only.empty() || only == "error") {
-      const int tex = quick ? 256 : 512, n = quick ? 257 : 385, per_cell = quick ? 8 : 16, border = tex / 16;
-      Table t({"field", "mode", "projection", "mesh", "ms (caustics + blur)", "rel L2", "rel L2 / contrast",
-               "total light"});
-      struct FieldCase {
-        const char* name;
-        viz::SyntheticField f;
-      };
-      const FieldCase fields[] = {{"wind sea", viz::synthetic_wind_sea(n, 2.0, 0.5, 0.6, false)},
-                                  {"ring wave", viz::synthetic_ring_wave(n, 2.0, 0.5, 0.6)}};
-      const Mode modes[] = {{"explicit f32 + float blur", CausticsArea::Explicit, true, 0.0f},
-                            {"MIP o=0 f32 + float blur", CausticsArea::Mip, true, 0.0f},
-                            {"MIP o=0.5 f32 + float blur", CausticsArea::Mip, true, 0.5f},
-                            {"MIP o=0.5 isotropic f32 + float blur", CausticsArea::Mip, true, 0.5f, true},
-                            {"explicit u8 + emulated blur", CausticsArea::Explicit, false, 0.0f},
-                            {"MIP o=0 u8 + emulated blur", CausticsArea::Mip, false, 0.0f},
-                            {"MIP o=0.5 u8 + emulated blur", CausticsArea::Mip, false, 0.5f}};
-      viz::AccumBlur blur(tex, tex);
-      for (const auto& fc : fields) {
-        auto p0 = make_params(96, tex, modes[0], CausticsProjection::Exact);
-        const auto t0 = std::chrono::steady_clock::now();
-        const auto ref = viz::blur121_f32(viz::photon_caustics(p0, fc.f.view(), per_cell, 1), tex, tex);
-        const double tr = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const auto ref2 = viz::blur121_f32(viz::photon_caustics(p0, fc.f.view(), per_cell, 2), tex, tex);
-        const auto nd = viz::compare_caustics(ref2, ref, tex, tex, border);
-        t.add({fc.name, fmt("photon reference, %d^2 per cell (noise floor)", per_cell), "exact", std::to_string(n),
-               num(tr * 1e3, 4), num(nd.rel_l2 / std::sqrt(2.0), 3), num(nd.rel_l2_contrast / std::sqrt(2.0), 3), "1"});
-        for (const auto& m : modes)
-          for (auto proj : {CausticsProjection::Linear, CausticsProjection::Exact})
-            for (int mesh : {48, 96, 192}) {
-              if (proj == CausticsProjection::Exact && mesh != 96) continue;
-              viz::CausticsRenderer r(make_params(mesh, tex, m, proj));
-              const double s = median_seconds(quick ? 3 : 7, [&] {
-                r.render(fc.f.view());
-                if (m.float_target)
-                  blur.blur_float(r.texture());
-                else
-                  blur.blur_emulated(r.texture());
-                glFinish();
-              });
-              std::vector<float> img;
-              if (m.float_target) {
-                img = gl::read_pixels_f32(blur.float_framebuffer(), 1);
-              } else {
-                const auto u8 = gl::read_pixels_u8(blur.emulated_framebuffer(), GL_RED);
-                img.assign(u8.pixels.begin(), u8.pixels.end());
-                for (auto& v : img) v /= r.params().unit_level_u8;
-              }
-              const auto d = viz::compare_caustics(img, ref, tex, tex, border);
-              t.add({fc.name, m.name, proj == CausticsProjection::Linear ? "linear" : "exact", std::to_string(mesh),
-                     num(s * 1e3, 3), num(d.rel_l2, 3), num(d.rel_l2_contrast, 3), num(d.mean_a / d.mean_b, 4)});
-            }
-      }
-      std::printf(
-          "\n== caustics run time against error (texture %d^2, surface %d^2, depth 0.5 m, sun overhead; "
-          "errors on the interior, both blurred and normalised to mean 1) ==\n%s",
-          tex, n, t.text().c_str());
-      tables.emplace_back("caustics error", t);
-    }
+    if (!png.empty()) write_panel(png);
+    if (only.empty() || only == "speed") tables.emplace_back("caustics speed", speed_table(quick ? 5 : 15));
+    if (only.empty() || only == "error") tables.emplace_back("caustics error", error_table(quick));
     if (!csv.empty()) {
       std::string text;
       for (const auto& [title, table] : tables) text += "# " + title + "\n" + table.csv() + "\n";

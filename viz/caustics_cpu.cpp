@@ -136,6 +136,56 @@ void caustics_mesh_init(const CausticsParams& p, CausticsMesh& m) {
   m.gains.reserve(m.indices.size() / 3 + m.rest_uv.capacity() / 8 * 2);
 }
 
+namespace {
+
+// The skirt (see CausticsMesh): the map continued linearly outwards from each border vertex,
+// P_ring = P_a + r (P_a - P_inner) per outward axis, in ground and surface coordinates alike,
+// with one reach r (in cells, >= 1) for the whole ring: the smallest that takes every ring
+// vertex at least one texel beyond the texture's edge. Where that cannot work (a fold at the
+// border, or r capped) the ground position is pushed out to that margin instead, so the ring
+// always encloses the whole texture.
+void update_skirt(const CausticsParams& p, CausticsMesh& m) {
+  const float mu = 1.0f / float(p.texture_width), mv = 1.0f / float(p.texture_height);  // one texel
+  auto inner = [&](std::size_t k, int c) {  // the vertex one cell inwards along axis c
+    const int a = int(m.skirt_anchor[k]), d = m.skirt_dir[2 * k + c];
+    return std::uint32_t(c == 0 ? a - d : a - d * m.cols);
+  };
+  float r = 1.0f;
+  for (std::size_t k = 0; k < m.skirt_anchor.size(); ++k) {
+    const std::uint32_t a = m.skirt_anchor[k];
+    for (int c = 0; c < 2; ++c) {
+      const int d = m.skirt_dir[2 * k + c];
+      if (d == 0) continue;
+      const float beyond = d > 0 ? m.ground_uv[2 * a + c] - 1.0f : -m.ground_uv[2 * a + c];
+      const float grow = float(d) * (m.ground_uv[2 * a + c] - m.ground_uv[2 * inner(k, c) + c]);
+      const float margin = c == 0 ? mu : mv;
+      if (grow > 0.0f) r = std::max(r, (margin - beyond) / grow);
+    }
+  }
+  r = std::min(r, 16.0f);
+  for (std::size_t k = 0; k < m.skirt_anchor.size(); ++k) {
+    const std::uint32_t a = m.skirt_anchor[k];
+    for (int c = 0; c < 2; ++c) {
+      float gr = m.ground_uv[2 * a + c], sr = m.surface_uv[2 * a + c];
+      for (int axis = 0; axis < 2; ++axis) {
+        if (m.skirt_dir[2 * k + axis] == 0) continue;
+        const std::uint32_t in = inner(k, axis);
+        gr += r * (m.ground_uv[2 * a + c] - m.ground_uv[2 * in + c]);
+        sr += r * (m.surface_uv[2 * a + c] - m.surface_uv[2 * in + c]);
+      }
+      const int d = m.skirt_dir[2 * k + c];
+      const float margin = c == 0 ? mu : mv;
+      if (d > 0) gr = std::max(gr, 1.0f + margin);
+      if (d < 0) gr = std::min(gr, -margin);
+      m.skirt_ground_uv[2 * k + c] = gr;
+      m.skirt_surface_uv[2 * k + c] = sr;
+    }
+  }
+  m.skirt_reach = r;
+}
+
+}  // namespace
+
 void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, CausticsMesh& m) {
   check_field(f);
   if (m.cols != p.mesh_cols || m.rows != p.mesh_rows) caustics_mesh_init(p, m);
@@ -180,49 +230,7 @@ void caustics_mesh_update(const CausticsParams& p, const HeightfieldView& f, Cau
       m.ground_uv[2 * (std::size_t(i) * m.cols + j) + 1] = float((Y - g.y0) / H);
     }
   }
-  // skirt (see CausticsMesh): the map continued linearly outwards from each border vertex,
-  // P_ring = P_a + r (P_a - P_inner) per outward axis, in ground and surface coordinates alike,
-  // with one reach r (in cells, >= 1) for the whole ring: the smallest that takes every ring
-  // vertex at least one texel beyond the texture's edge. Where that cannot work (a fold at the
-  // border, or r capped) the ground position is pushed out to that margin instead, so the ring
-  // always encloses the whole texture
-  const float mu = 1.0f / float(p.texture_width), mv = 1.0f / float(p.texture_height);  // one texel
-  auto inner = [&](std::size_t k, int c) {  // the vertex one cell inwards along axis c
-    const int a = int(m.skirt_anchor[k]), d = m.skirt_dir[2 * k + c];
-    return std::uint32_t(c == 0 ? a - d : a - d * m.cols);
-  };
-  float r = 1.0f;
-  for (std::size_t k = 0; k < m.skirt_anchor.size(); ++k) {
-    const std::uint32_t a = m.skirt_anchor[k];
-    for (int c = 0; c < 2; ++c) {
-      const int d = m.skirt_dir[2 * k + c];
-      if (d == 0) continue;
-      const float beyond = d > 0 ? m.ground_uv[2 * a + c] - 1.0f : -m.ground_uv[2 * a + c];
-      const float grow = float(d) * (m.ground_uv[2 * a + c] - m.ground_uv[2 * inner(k, c) + c]);
-      const float margin = c == 0 ? mu : mv;
-      if (grow > 0.0f) r = std::max(r, (margin - beyond) / grow);
-    }
-  }
-  r = std::min(r, 16.0f);
-  for (std::size_t k = 0; k < m.skirt_anchor.size(); ++k) {
-    const std::uint32_t a = m.skirt_anchor[k];
-    for (int c = 0; c < 2; ++c) {
-      float gr = m.ground_uv[2 * a + c], sr = m.surface_uv[2 * a + c];
-      for (int axis = 0; axis < 2; ++axis) {
-        if (m.skirt_dir[2 * k + axis] == 0) continue;
-        const std::uint32_t in = inner(k, axis);
-        gr += r * (m.ground_uv[2 * a + c] - m.ground_uv[2 * in + c]);
-        sr += r * (m.surface_uv[2 * a + c] - m.surface_uv[2 * in + c]);
-      }
-      const int d = m.skirt_dir[2 * k + c];
-      const float margin = c == 0 ? mu : mv;
-      if (d > 0) gr = std::max(gr, 1.0f + margin);
-      if (d < 0) gr = std::min(gr, -margin);
-      m.skirt_ground_uv[2 * k + c] = gr;
-      m.skirt_surface_uv[2 * k + c] = sr;
-    }
-  }
-  m.skirt_reach = r;
+  update_skirt(p, m);
 }
 
 namespace {

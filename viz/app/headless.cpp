@@ -27,6 +27,45 @@ std::string perspective_caption(const std::string& name, double t, const std::st
   return "";
 }
 
+// The dye and the foam need the flow's history: every frame from t = 0 (the plan's dye and foam
+// views, and the perspective picture of a flow, whose water the dye tints and the foam covers).
+struct FlowHistory {
+  bool dye_view, foam_view;
+  DyeField dye;
+  FoamField foam;
+  double time = 0.0;  // of the newest frame advected through (unit: s)
+
+  FlowHistory(const HeadlessOptions& opt, const GridPlacement& g, std::span<const float> bed)
+      : dye_view(opt.plan ? opt.plan_quantity == PlanQuantity::dye : opt.settings.dye && opt.flow),
+        foam_view(opt.plan ? opt.plan_quantity == PlanQuantity::foam : opt.settings.foam && opt.flow),
+        dye(g),
+        foam(g, bed) {}
+  bool needed() const { return dye_view || foam_view; }
+  void advance(const FramePair& frames, std::span<const float> velocity) {
+    if (!needed() || frames.newest->info.time_s <= time) return;
+    const double dt = frames.newest->info.time_s - time;
+    if (dye_view) dye.advect(velocity, dt);
+    if (foam_view) foam.step(frames.newest->eta.span(), velocity, dt);
+    time = frames.newest->info.time_s;
+  }
+};
+
+// Draws one frame of the pair into `target`: the plan view, or the perspective picture and its
+// caption.
+void draw_frame(WaterRenderer& renderer, const SceneView& view, const HeadlessOptions& opt, const OrbitCamera& cam,
+                const FramePair& frames, const PlanData& data, double display_time, const std::string& name,
+                RenderTarget& target) {
+  if (opt.plan) {
+    render_plan_view(renderer, view, data, opt.plan_quantity, frames.newest->info.time_s, name, target);
+    return;
+  }
+  renderer.render(cam, opt.settings, target);
+  if (opt.caption)
+    draw_caption(perspective_caption(name, display_time, scale_text(view, opt.settings, renderer.tile_m()), opt.width,
+                                     opt.height),
+                 target);
+}
+
 }  // namespace
 
 HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
@@ -50,18 +89,9 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   std::vector<float> field(g.rows * g.cols), velocity(2 * g.rows * g.cols);
   std::vector<ShipPose> ships;
   HeadlessResult res;
-  // the dye and the foam need the flow's history: every frame from t = 0, the last `frames`
-  // drawn (the plan's dye and foam views, and the perspective picture of a flow, whose water
-  // the dye tints and the foam covers)
-  const bool dye_view = opt.plan ? opt.plan_quantity == PlanQuantity::dye : opt.settings.dye && opt.flow;
-  const bool foam_view = opt.plan ? opt.plan_quantity == PlanQuantity::foam : opt.settings.foam && opt.flow;
-  DyeField dye(g);
-  FoamField foam(g, scene.info.bed_m);
-  const bool history = dye_view || foam_view;
-  const int skipped = history ? static_cast<int>(std::floor(opt.time / view.frame_dt + 1e-9)) : 0;
-  const double t_first = history ? opt.time - skipped * view.frame_dt : opt.time;
-  double flow_time = 0.0;
-  bool has_velocity = false;
+  FlowHistory flow(opt, g, scene.info.bed_m);  // advanced through every frame, the last `frames` drawn
+  const int skipped = flow.needed() ? static_cast<int>(std::floor(opt.time / view.frame_dt + 1e-9)) : 0;
+  const double t_first = flow.needed() ? opt.time - skipped * view.frame_dt : opt.time;
   bool shown_ahead = false;  // show(t) of this frame was already called (a history frame's overlap)
   for (int k = 0; k < skipped + opt.frames; ++k) {
     const double t = t_first + k * view.frame_dt;
@@ -79,40 +109,26 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
       runner.show(t_first + (k + 1) * view.frame_dt);
       shown_ahead = true;
     }
-    has_velocity = frames.velocity(velocity);
-    if (history && has_velocity && frames.newest->info.time_s > flow_time) {
-      const double dt = frames.newest->info.time_s - flow_time;
-      if (dye_view) dye.advect(velocity, dt);
-      if (foam_view) foam.step(frames.newest->eta.span(), velocity, dt);
-      flow_time = frames.newest->info.time_s;
-    }
+    const bool has_velocity = frames.velocity(velocity);
+    if (has_velocity) flow.advance(frames, velocity);
     if (k < skipped) continue;                    // the dye's history: not drawn
     frames.sample(runner.display_time(), field);  // the newest frame (the clock never runs ahead of it)
     renderer.set_heights(field);
     renderer.set_sea_time(runner.display_time());
     frame_ships(view, frames, runner.display_time(), ships);  // where the solver has them
     renderer.set_ships(ships);
-    if (dye_view && has_velocity) renderer.set_dye(dye.values());
-    if (foam_view && has_velocity) renderer.set_foam(foam.values());
+    if (flow.dye_view && has_velocity) renderer.set_dye(flow.dye.values());
+    if (flow.foam_view && has_velocity) renderer.set_foam(flow.foam.values());
     if (!opt.custom_camera && !ships.empty() && view.follow_ship) {
       if (!camera_placed) cam = start_camera(view, aspect, &ships[0]);
       follow_ship(view, ships[0], cam);
     }
     camera_placed = true;
     renderer.times.enabled = (k + 1 == opt.frames);
-    if (opt.plan)
-      render_plan_view(
-          renderer, view,
-          PlanData{field, has_velocity ? std::span<const float>(velocity) : std::span<const float>{}, dye.values(),
-                   foam.values(),
-                   frames.newest->has_particles ? frames.newest->particles.span() : std::span<const float>{}},
-          opt.plan_quantity, frames.newest->info.time_s, name, target);
-    else
-      renderer.render(cam, opt.settings, target);
-    if (!opt.plan && opt.caption)
-      draw_caption(perspective_caption(name, runner.display_time(), scale_text(view, opt.settings, renderer.tile_m()),
-                                       opt.width, opt.height),
-                   target);
+    const PlanData data{field, has_velocity ? std::span<const float>(velocity) : std::span<const float>{},
+                        flow.dye.values(), flow.foam.values(),
+                        frames.newest->has_particles ? frames.newest->particles.span() : std::span<const float>{}};
+    draw_frame(renderer, view, opt, cam, frames, data, runner.display_time(), name, target);
     res.steps = frames.newest->info.step;
     res.field_time = frames.newest->info.time_s;
   }

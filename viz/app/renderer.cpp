@@ -605,6 +605,12 @@ void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
   if (std::none_of(obstacles.begin(), obstacles.end(),
                    [](const RenderObstacle& o) { return o.kind != RenderObstacle::Kind::mesh; }))
     return;
+  add_prism_solids(obstacles);
+  fill_footprints(obstacles);
+}
+
+// Boxes and cylinders as solids (triangles in solids_).
+void WaterRenderer::add_prism_solids(std::span<const RenderObstacle> obstacles) {
   // solids: from the floor (or the obstacle's bottom) to its top, or for a 2D solver's
   // obstacle (infinite z) to a quarter of the depth above the water at rest; over terrain
   // (set_bed first), where water runs deeper than the rest level, at least 3 % of the region's
@@ -648,6 +654,10 @@ void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
       }
     }
   }
+}
+
+// The grid points under a box or cylinder take a height from outside (fill_from_).
+void WaterRenderer::fill_footprints(std::span<const RenderObstacle> obstacles) {
   // the grid points inside an obstacle's footprint take the height of the nearest point
   // outside all of them (multi-source breadth-first search over the 4-neighbourhood)
   const std::size_t R = grid_.rows, C = grid_.cols;
@@ -910,6 +920,50 @@ void WaterRenderer::draw_ships(const OrbitCamera& camera, const RenderSettings& 
   draw_flat(tri, FlatKind::hull, camera, s, mvp);
 }
 
+// The frame's uploads: view-dependent coefficients, ground texture, the sea's slopes, the heights.
+void WaterRenderer::upload_frame(const OrbitCamera& camera, const RenderSettings& s) {
+  update_linearisation(camera, s.index);
+  build_ground_texture(s);
+  update_sea_slopes(s);
+  if (!heights_dirty_) return;
+  diffs_tex_.upload(diffs_.data(), GL_RG, GL_FLOAT);
+  glBindBuffer(GL_ARRAY_BUFFER, surface_h_vbo_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(mesh_h_.size() * sizeof(float)), mesh_h_.data());
+  heights_dirty_ = false;
+}
+
+// The state other passes may have changed (the caustics pass blends, masks and uses its own
+// viewport), and a cleared target.
+void WaterRenderer::reset_scene_state() {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+// The floor seen directly and the deck around the region (vertices 0-5 the large floor, 6-11 the
+// region's floor, the rest the deck; deep water has no floor).
+void WaterRenderer::draw_ground(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
+  set_common_uniforms(ground_prog_, s, camera);
+  glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
+  glUniform1i(ground_prog_.loc("u_terrain"), 0);
+  glBindVertexArray(ground_vao_);
+  // the deck lies at the rest level and reaches under the water's outline: pushed back in depth
+  // so that the water there wins the depth test instead of alternating with it (z-fighting)
+  glEnable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(2.0f, 2.0f);
+  if (s.pool_deck)
+    glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,
+                 s.deep_water ? ground_vertex_count_ - 12 : ground_vertex_count_ - 6);
+  else
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+}
+
 void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, const RenderTarget& target) {
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
@@ -924,16 +978,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   };
   if (times.enabled) glFinish(), t0 = clock::now(), c0 = process_cpu_ms();
 
-  // upload: view-dependent coefficients, ground texture, the frame's heights
-  update_linearisation(camera, s.index);
-  build_ground_texture(s);
-  update_sea_slopes(s);
-  if (heights_dirty_) {
-    diffs_tex_.upload(diffs_.data(), GL_RG, GL_FLOAT);
-    glBindBuffer(GL_ARRAY_BUFFER, surface_h_vbo_);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(mesh_h_.size() * sizeof(float)), mesh_h_.data());
-    heights_dirty_ = false;
-  }
+  upload_frame(camera, s);
   lap(times.upload, times.cpu.upload);
 
   // caustics into their texture (lights the ground; flat light when off)
@@ -945,14 +990,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   const glm::mat4 mvp = mvp_of(camera, aspect);
   target.bind();
   // state other passes may have changed (the caustics pass blends, masks and uses its own viewport)
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDepthMask(GL_TRUE);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDisable(GL_SCISSOR_TEST);
-  glDisable(GL_BLEND);
-  glDisable(GL_CULL_FACE);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  reset_scene_state();
   ground_tex_.bind(0);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, use_caustics ? caustics_->texture() : flat_light_tex_.id());
@@ -970,20 +1008,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   if (has_bed_) {
     draw_terrain(camera, s, mvp);
   } else if (!s.deep_water || s.pool_deck) {
-    set_common_uniforms(ground_prog_, s, camera);
-    glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
-    glUniform1i(ground_prog_.loc("u_terrain"), 0);
-    glBindVertexArray(ground_vao_);
-    // the deck lies at the rest level and reaches under the water's outline: pushed back in depth
-    // so that the water there wins the depth test instead of alternating with it (z-fighting)
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(2.0f, 2.0f);
-    if (s.pool_deck)
-      glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,
-                   s.deep_water ? ground_vertex_count_ - 12 : ground_vertex_count_ - 6);
-    else
-      glDrawArrays(GL_TRIANGLES, 0, 6);
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    draw_ground(camera, s, mvp);
   }
   draw_background(camera, s, mvp);
   lap(times.ground, times.cpu.ground);

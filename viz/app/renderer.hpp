@@ -304,6 +304,11 @@ class WaterRenderer {
   bool upload_grid_field(std::span<const float> values, gl::Texture& tex) const;
   void draw_solids(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void add_mesh_solids(std::span<const RenderObstacle> obstacles);
+  void add_prism_solids(std::span<const RenderObstacle> obstacles);
+  void upload_frame(const OrbitCamera& camera, const RenderSettings& s);
+  static void reset_scene_state();
+  void draw_ground(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
+  void fill_footprints(std::span<const RenderObstacle> obstacles);
   void draw_tank(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_terrain(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp);
   void draw_background(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) const;
