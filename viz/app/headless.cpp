@@ -42,7 +42,7 @@ struct FlowHistory {
         foam(g, bed) {}
   bool needed() const { return dye_view || foam_view; }
   void advance(const FramePair& frames, std::span<const float> velocity) {
-    if (!needed() || frames.newest->info.time_s <= time) return;
+    if (!needed() || !(frames.newest->info.time_s > time)) return;  // (a NaN time advances nothing)
     const double dt = frames.newest->info.time_s - time;
     if (dye_view) dye.advect(velocity, dt);
     if (foam_view) foam.step(frames.newest->eta.span(), velocity, dt);
