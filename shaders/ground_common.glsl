@@ -135,13 +135,34 @@ vec3 deck_colour(vec2 G) {
   return albedo * (u_ambient + u_sun_light);
 }
 
-// What a ray under water meets at its floor point G: the lit floor, or, with a deck, the
-// wall when G lies beyond the floor under the visible region (the wall's colour: the tiles at
-// the clamped point, in the shade: ambient light only).
-vec3 seen_under_water(vec2 G) {
-  if (u_deck != 0 && (any(lessThan(G, u_floor_rect.xy)) || any(greaterThan(G, u_floor_rect.zw)))) {
-    vec2 C = clamp(G, u_floor_rect.xy, u_floor_rect.zw);
-    return texture(u_ground, (C - u_ground_origin) / u_ground_extent).rgb * (u_ambient + 0.3 * u_sun_light);
-  }
-  return lit_ground(G);
+// What the ray under water from the surface point P to its floor point F = (G, floor_z) meets,
+// and where (`hit`): the lit floor, or, with a deck, the pool's wall where G lies beyond the floor
+// under the visible region. The wall is the first wall plane the ray crosses; its tiles continue
+// the floor's, unfolded outwards about the wall's foot (the point h above the foot shows the
+// floor's texture h beyond it). Its light, with the floor's sky light u_ambient and still-water
+// sunlight u_sun_light as units: the sun through still water, max(n_w . (-s_w), 0) / (-s_w.z) of
+// the floor's (s_w the sun's ray refracted into the water, travelling; n_w the wall's inward
+// normal; Lambert's cosines; no caustics), plus what a vertical wall on a wide floor sees of a
+// uniform sky and of the lit floor, half of each (view factors 1/2): 0.5 u_ambient and
+// 0.5 rho (u_ambient + u_sun_light), rho the floor's albedo at the wall's foot (one bounce).
+vec3 seen_under_water(vec3 P, vec2 G, float floor_z, out vec3 hit) {
+  hit = vec3(G, floor_z);
+  if (u_deck == 0 || (all(greaterThanEqual(G, u_floor_rect.xy)) && all(lessThanEqual(G, u_floor_rect.zw))))
+    return lit_ground(G);
+  vec2 d = G - P.xy;
+  float f = 1.0;  // the ray's fraction P -> F where it meets the nearest wall plane it crosses
+  vec2 nw = vec2(0.0);
+  vec2 lo = (u_floor_rect.xy - P.xy) / d, hi = (u_floor_rect.zw - P.xy) / d;
+  if (G.x < u_floor_rect.x && lo.x < f) { f = lo.x; nw = vec2(1.0, 0.0); }
+  if (G.x > u_floor_rect.z && hi.x < f) { f = hi.x; nw = vec2(-1.0, 0.0); }
+  if (G.y < u_floor_rect.y && lo.y < f) { f = lo.y; nw = vec2(0.0, 1.0); }
+  if (G.y > u_floor_rect.w && hi.y < f) { f = hi.y; nw = vec2(0.0, -1.0); }
+  f = clamp(f, 0.0, 1.0);
+  hit = mix(P, vec3(G, floor_z), f);
+  vec2 unfolded = clamp(hit.xy, u_floor_rect.xy, u_floor_rect.zw) - nw * (hit.z - floor_z);
+  vec3 albedo = texture(u_ground, (unfolded - u_ground_origin) / u_ground_extent).rgb;
+  vec3 foot = texture(u_ground, (clamp(hit.xy, u_floor_rect.xy, u_floor_rect.zw) - u_ground_origin) / u_ground_extent).rgb;
+  vec3 s_w = refract(-normalize(u_sun_dir), vec3(0.0, 0.0, 1.0), 1.0 / u_index);
+  float lambert = max(dot(vec3(nw, 0.0), -s_w), 0.0) / max(-s_w.z, 0.1);
+  return albedo * (0.5 * u_ambient + u_sun_light * lambert + 0.5 * foot * (u_ambient + u_sun_light));
 }

@@ -72,9 +72,10 @@ void main() {
     G = v_base + vec2(c.x * d.x + c.y * d.y, c.z * d.x + c.w * d.y);
   }
 
-  vec3 refr = u_deep != 0 ? deep_water_colour(n) : seen_under_water(G);
+  vec3 hit;  // where the refracted ray ends: the floor, or a pool's wall
+  vec3 refr = u_deep != 0 ? deep_water_colour(n) : seen_under_water(v_pos, G, floor_z, hit);
   if (u_absorption != 0 && u_deep == 0) {
-    float path = length(vec3(G, floor_z) - v_pos);
+    float path = length(hit - v_pos);
     vec3 T = exp(-u_absorb * path);
     refr = refr * T + u_water_colour * (1.0 - T);
   }

@@ -344,6 +344,78 @@ TEST_F(VizRender, StillWaterMagnifiesByTheApparentDepthFactor) {
   }
 }
 
+// The pool's walls seen through still water (shaders/ground_common.glsl, seen_under_water): a
+// uniform ground of albedo a, sky light A and still-water sunlight S on the floor, the sun from
+// the south, 40 degrees up. Every pixel is a closed form of its view ray d: it meets the rest
+// level at P, refracts (Snell) to t and ends on the floor, a (A + S), or first on a wall of
+// inward normal n_w, a (A / 2 + S max(n_w . (-s_w), 0) / (-s_w.z) + a (A + S) / 2), s_w the
+// sun's ray refracted into the water (a vertical wall sees half the sky and half the lit floor).
+// Seen from the south, 50 degrees up: the far (north) wall faces the sun, the side walls are
+// edge-on to it. Until 2026-12-04 every wall had a (A + 0.3 S), the colour of its foot: a dark
+// frame round every pool.
+TEST_F(VizRender, PoolWallsSeenThroughTheWaterAreLitBySunSkyAndFloor) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam = default_camera(g.x0, g.y0, kWidth, kWidth);
+  cam.distance = 1.6 * kWidth;
+  RenderSettings s = plain_settings();
+  s.pool_deck = true;
+  s.exact_refraction = true;
+  s.ground = GroundPattern::uniform;
+  s.ground_uniform = glm::vec3(0.6f, 0.5f, 0.4f);
+  s.ambient = 0.3f;
+  s.sun_light = 0.5f;
+  const double el = 40.0 * std::numbers::pi / 180.0, n = s.index;
+  s.sun_dir = glm::vec3(0.0f, static_cast<float>(-std::cos(el)), static_cast<float>(std::sin(el)));
+  const int W = 160, H = 120;
+  const gl::Image8 img = render(r, cam, s, W, H);
+  const glm::dvec3 s_w = glm::refract(-glm::normalize(glm::dvec3(s.sun_dir)), glm::dvec3(0, 0, 1), 1.0 / n);
+  const double lo = g.x(0), hi = g.x(kN - 1), A = s.ambient, S = s.sun_light, margin = 0.1;
+  int floor_px = 0, north_px = 0, side_px = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      glm::dvec3 o, d;
+      cam.ray_through((2.0 * x + 1.0) / W - 1.0, 1.0 - (2.0 * y + 1.0) / H, double(W) / H, o, d);
+      if (d.z >= 0.0) continue;
+      const glm::dvec3 P = o - o.z / d.z * d;
+      if (P.x < lo + margin || P.x > hi - margin || P.y < lo + margin || P.y > hi - margin) continue;
+      const glm::dvec3 t = glm::refract(d, glm::dvec3(0, 0, 1), 1.0 / n);
+      const glm::dvec3 F = P + t * (-kDepth / t.z);
+      // the fraction of P -> F at each wall plane it crosses, and that wall's inward normal
+      std::vector<std::pair<double, glm::dvec2>> walls;
+      if (F.x < lo) walls.push_back({(lo - P.x) / (F.x - P.x), {1, 0}});
+      if (F.x > hi) walls.push_back({(hi - P.x) / (F.x - P.x), {-1, 0}});
+      if (F.y < lo) walls.push_back({(lo - P.y) / (F.y - P.y), {0, 1}});
+      if (F.y > hi) walls.push_back({(hi - P.y) / (F.y - P.y), {0, -1}});
+      std::sort(walls.begin(), walls.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      const auto near_edge = [&](double v) { return std::fabs(v - lo) < margin || std::fabs(v - hi) < margin; };
+      if (walls.empty() && (near_edge(F.x) || near_edge(F.y))) continue;  // the wall's foot
+      if (walls.size() > 1 && walls[1].first - walls[0].first < 0.05) continue;  // a corner
+      double light = A + S;  // the floor
+      if (!walls.empty()) {
+        const glm::dvec2 nw = walls[0].second;
+        const double hit_z = -kDepth * walls[0].first;
+        if (hit_z > -margin || hit_z < -kDepth + margin) continue;  // the wall's top or foot
+        light = 0.5 * A + S * std::max(-(nw.x * s_w.x + nw.y * s_w.y), 0.0) / -s_w.z;
+      }
+      for (int c = 0; c < 3; ++c) {
+        const double a = s.ground_uniform[c];
+        const double expected = a * (light + (walls.empty() ? 0.0 : 0.5 * a * (A + S)));
+        EXPECT_NEAR(channel(img, x, y, c), expected, 2.0 / 255.0)
+            << "pixel (" << x << ", " << y << ") channel " << c << (walls.empty() ? ", floor" : ", wall");
+      }
+      floor_px += walls.empty();
+      north_px += !walls.empty() && walls[0].second.y < 0;
+      side_px += !walls.empty() && walls[0].second.x != 0;
+    }
+  std::printf("pool walls: %d floor, %d north wall, %d side wall pixels checked\n", floor_px, north_px, side_px);
+  EXPECT_GT(floor_px, 2000);
+  EXPECT_GT(north_px, 300);
+  EXPECT_GT(side_px, 100);
+  if (::testing::Test::HasFailure()) write_debug("pool_walls.png", img);
+}
+
 // Centre pixel of an oblique view of still water: C = (1 - F) G + F S with n.v = sin(pitch),
 // F = clamp(1 - 2.5 n.v) (paper) or F0 + (1 - F0)(1 - n.v)^5 (Schlick).
 TEST_F(VizRender, SkyReflectionAtTheCentreEqualsFresnel) {
