@@ -390,9 +390,9 @@ TEST_F(VizRender, PoolWallsSeenThroughTheWaterAreLitBySunSkyAndFloor) {
       if (F.y > hi) walls.push_back({(hi - P.y) / (F.y - P.y), {0, -1}});
       std::sort(walls.begin(), walls.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       const auto near_edge = [&](double v) { return std::fabs(v - lo) < margin || std::fabs(v - hi) < margin; };
-      if (walls.empty() && (near_edge(F.x) || near_edge(F.y))) continue;  // the wall's foot
+      if (walls.empty() && (near_edge(F.x) || near_edge(F.y))) continue;         // the wall's foot
       if (walls.size() > 1 && walls[1].first - walls[0].first < 0.05) continue;  // a corner
-      double light = A + S;  // the floor
+      double light = A + S;                                                      // the floor
       if (!walls.empty()) {
         const glm::dvec2 nw = walls[0].second;
         const double hit_z = -kDepth * walls[0].first;
