@@ -923,6 +923,42 @@ TEST_F(VizRender, MeshObstacleIsDrawnAsItsTrianglesLit) {
   EXPECT_GT(std::abs(luminance(cx, cy - 0.7) - luminance(cx + 0.3, cy + 0.2)), 0.02)
       << "two faces turned differently are shaded differently";
   if (::testing::Test::HasFailure()) write_debug("mesh_obstacle.png", img);
+
+  // On a dry floor (the SPH look leaves water thinner than 2 mm out) the surface next to the solid
+  // is not raised to its top: outside the footprint the picture is the bare floor's. A steep
+  // tetrahedron whose base edge y = e runs half a grid cell from the grid points, seen from
+  // 12.5 cm (32 px per cell), absorption on (water shows, tinted). Until 2026-12-04 the first
+  // point inside took the solid's top and a ring of water sloped down from it to the first point
+  // outside, half a cell beyond the edge (1920 pixels here).
+  s.hide_dry = true;
+  s.absorption = true;
+  const float e = static_cast<float>(cy - 1.0 + 0.5 * g.dx);
+  RenderObstacle steep = tet;
+  steep.triangles_m.clear();
+  const std::array<float, 3> A2{cx - 1, e, fz}, B2{cx + 1, e, fz}, D2{cx, e + 0.1f, 1.0f};
+  for (const auto& t : {std::array{A2, C, B2}, std::array{A2, B2, D2}, std::array{B2, C, D2}, std::array{C, A2, D2}})
+    for (const auto& v : t) steep.triangles_m.insert(steep.triangles_m.end(), v.begin(), v.end());
+  const std::vector<float> dry_heights(kN * kN, static_cast<float>(-kDepth));
+  const OrbitCamera edge = top_down(cx, e, 0.125);
+  WaterRenderer fine(g, -kDepth, 1);  // a mesh vertex at every grid point, as an SPH surface has
+  fine.set_heights(dry_heights);
+  const gl::Image8 bare = render(fine, edge, s, W, H);
+  fine.set_obstacles(std::span(&steep, 1));
+  fine.set_heights(dry_heights);
+  const gl::Image8 dry = render(fine, edge, s, W, H);
+  int outside = 0, wet = 0;
+  for (int i = 0; i < H; ++i)
+    for (int j = 0; j < W; ++j) {
+      const double y = edge.target.y + (0.5 * H - i - 0.5) * edge.ortho_height / H;  // pixel centre (m)
+      if (y > e - 1.5 * edge.ortho_height / H) continue;                             // the footprint and its edge pixel
+      ++outside;
+      double d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(channel(dry, j, i, c) - channel(bare, j, i, c)));
+      wet += d > 1.5 / 255.0;
+    }
+  EXPECT_GT(outside, W * H / 3);
+  EXPECT_EQ(wet, 0) << "pixels beside a solid on a dry floor that differ from the bare floor";
+  if (::testing::Test::HasFailure()) write_debug("mesh_obstacle_dry.png", dry);
 }
 
 // ---------------------------------------------------------------------------------

@@ -406,10 +406,14 @@ void WaterRenderer::set_heights(std::span<const float> eta) {
     for (std::size_t k = 0; k < eta_.size(); ++k)
       if (fill_from_[k] != k) eta_[k] = eta_[fill_from_[k]];
   // over a mesh obstacle the surface is not below the solid's top (a dry column there, which an
-  // SPH solver reports as height 0, lies just inside the solid and is hidden by it)
-  if (!mesh_top_.empty()) {
+  // SPH solver reports as height 0, lies just inside the solid and is hidden by it), unless the
+  // water at the nearest point outside its footprint is lower: a solid standing in shallower
+  // water or on a dry floor keeps its footprint's own height (until 2026-12-04 a dry wedge got a
+  // one-cell ring of water round its foot, the surface sloping down from its top)
+  if (!mesh_top_.empty() && !mesh_from_.empty()) {
     const float inset = static_cast<float>(0.25 * grid_.dx);
-    for (std::size_t k = 0; k < eta_.size(); ++k) eta_[k] = std::max(eta_[k], mesh_top_[k] - inset);
+    for (std::size_t k = 0; k < eta_.size(); ++k)
+      eta_[k] = std::max(eta_[k], std::min(mesh_top_[k] - inset, eta_[mesh_from_[k]]));
   }
   subsample_heights(eta_, grid_.rows, grid_.cols, static_cast<std::size_t>(subsample_), layout_, mesh_h_);
   height_differences(eta_, grid_.rows, grid_.cols, diffs_);
@@ -560,6 +564,33 @@ void WaterRenderer::update_sea_slopes(const RenderSettings& s) {
   sea_time_ = t;
 }
 
+namespace {
+
+// Per grid point (R x C, row-major) the nearest point outside `solid` (itself when outside):
+// multi-source breadth-first search over the 4-neighbourhood. Empty when every point is solid.
+std::vector<std::uint32_t> nearest_outside(std::vector<std::uint8_t> solid, std::size_t R, std::size_t C) {
+  std::vector<std::uint32_t> from(R * C);
+  std::vector<std::size_t> queue;
+  for (std::size_t k = 0; k < R * C; ++k) {
+    from[k] = static_cast<std::uint32_t>(k);
+    if (!solid[k]) queue.push_back(k);
+  }
+  if (queue.empty()) return {};
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const std::size_t k = queue[head], i = k / C, j = k % C;
+    const std::size_t nb[4] = {i > 0 ? k - C : k, i + 1 < R ? k + C : k, j > 0 ? k - 1 : k, j + 1 < C ? k + 1 : k};
+    for (std::size_t m : nb)
+      if (solid[m]) {
+        solid[m] = 0;
+        from[m] = from[k];
+        queue.push_back(m);
+      }
+  }
+  return from;
+}
+
+}  // namespace
+
 // A mesh obstacle (RenderObstacle::Kind::mesh): its triangles among the solids, and per grid
 // point the highest z of the mesh above it (mesh_top_; the water surface is kept at least that
 // high, set_heights) and the outline of its footprint (mesh_outline_, grey in the plan view).
@@ -588,6 +619,9 @@ void WaterRenderer::add_mesh_solids(std::span<const RenderObstacle> obstacles) {
     }
   }
   if (mesh_top_.empty()) return;
+  std::vector<std::uint8_t> footprint(R * C);
+  for (std::size_t k = 0; k < R * C; ++k) footprint[k] = std::isfinite(mesh_top_[k]);
+  mesh_from_ = nearest_outside(footprint, R, C);
   mesh_outline_.assign(R * C, 0);
   auto in = [&](std::size_t i, std::size_t j) { return std::isfinite(mesh_top_[i * C + j]); };
   for (std::size_t i = 0; i < R; ++i)
@@ -600,6 +634,7 @@ void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
   solids_.clear();
   fill_from_.clear();
   mesh_top_.clear();
+  mesh_from_.clear();
   mesh_outline_.clear();
   add_mesh_solids(obstacles);
   if (std::none_of(obstacles.begin(), obstacles.end(),
@@ -673,26 +708,7 @@ void WaterRenderer::fill_footprints(std::span<const RenderObstacle> obstacles) {
         if (in) solid[i * C + j] = 1;
       }
     }
-  fill_from_.resize(R * C);
-  std::vector<std::size_t> queue;
-  for (std::size_t k = 0; k < R * C; ++k) {
-    fill_from_[k] = static_cast<std::uint32_t>(k);
-    if (!solid[k]) queue.push_back(k);
-  }
-  if (queue.empty()) {  // all solid: nothing to fill from
-    fill_from_.clear();
-    return;
-  }
-  for (std::size_t head = 0; head < queue.size(); ++head) {
-    const std::size_t k = queue[head], i = k / C, j = k % C;
-    const std::size_t nb[4] = {i > 0 ? k - C : k, i + 1 < R ? k + C : k, j > 0 ? k - 1 : k, j + 1 < C ? k + 1 : k};
-    for (std::size_t m : nb)
-      if (solid[m]) {
-        solid[m] = 0;
-        fill_from_[m] = fill_from_[k];
-        queue.push_back(m);
-      }
-  }
+  fill_from_ = nearest_outside(solid, R, C);
 }
 
 // The water's sides: the mesh's outline down to the floor (seen where no deck hides them: a

@@ -341,6 +341,7 @@ class WaterRenderer {
   std::array<double, 3> tank_{};            // set_tank's box (m); 0 = none
   std::vector<std::uint32_t> fill_from_;    // per grid point: the point whose height it shows
   std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
+  std::vector<std::uint32_t> mesh_from_;    // per grid point: the nearest point outside the meshes' footprints
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
   std::unique_ptr<AmbientSlopes> sea_;      // set_ambient_sea
   double sea_time_ = std::numeric_limits<double>::quiet_NaN(), sea_request_ = 0.0;
