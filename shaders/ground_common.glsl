@@ -147,22 +147,29 @@ vec3 deck_colour(vec2 G) {
 // 0.5 rho (u_ambient + u_sun_light), rho the floor's albedo at the wall's foot (one bounce).
 vec3 seen_under_water(vec3 P, vec2 G, float floor_z, out vec3 hit) {
   hit = vec3(G, floor_z);
-  if (u_deck == 0 || (all(greaterThanEqual(G, u_floor_rect.xy)) && all(lessThanEqual(G, u_floor_rect.zw))))
-    return lit_ground(G);
+  // how far G lies beyond the floor (m; < 0 inside), and the wall's share of the pixel: the
+  // floor's edge anti-aliased over the pixel's footprint (a staircase of whole pixels before)
+  vec2 beyond = max(u_floor_rect.xy - G, G - u_floor_rect.zw);
+  float outside = max(beyond.x, beyond.y), px = max(fwidth(outside), 1e-6);
+  float w = clamp(0.5 + outside / px, 0.0, 1.0);
+  if (u_deck == 0 || w == 0.0) return lit_ground(G);
+  vec3 floor_part = w < 1.0 ? lit_ground(clamp(G, u_floor_rect.xy, u_floor_rect.zw)) : vec3(0.0);
   vec2 d = G - P.xy;
-  float f = 1.0;  // the ray's fraction P -> F where it meets the nearest wall plane it crosses
+  float f = 1e9;  // the ray's fraction P -> F at the nearest wall plane it reaches (within a pixel)
   vec2 nw = vec2(0.0);
   vec2 lo = (u_floor_rect.xy - P.xy) / d, hi = (u_floor_rect.zw - P.xy) / d;
-  if (G.x < u_floor_rect.x && lo.x < f) { f = lo.x; nw = vec2(1.0, 0.0); }
-  if (G.x > u_floor_rect.z && hi.x < f) { f = hi.x; nw = vec2(-1.0, 0.0); }
-  if (G.y < u_floor_rect.y && lo.y < f) { f = lo.y; nw = vec2(0.0, 1.0); }
-  if (G.y > u_floor_rect.w && hi.y < f) { f = hi.y; nw = vec2(0.0, -1.0); }
+  if (u_floor_rect.x - G.x > -px && lo.x < f) { f = lo.x; nw = vec2(1.0, 0.0); }
+  if (G.x - u_floor_rect.z > -px && hi.x < f) { f = hi.x; nw = vec2(-1.0, 0.0); }
+  if (u_floor_rect.y - G.y > -px && lo.y < f) { f = lo.y; nw = vec2(0.0, 1.0); }
+  if (G.y - u_floor_rect.w > -px && hi.y < f) { f = hi.y; nw = vec2(0.0, -1.0); }
   f = clamp(f, 0.0, 1.0);
-  hit = mix(P, vec3(G, floor_z), f);
-  vec2 unfolded = clamp(hit.xy, u_floor_rect.xy, u_floor_rect.zw) - nw * (hit.z - floor_z);
+  hit = w < 0.5 ? hit : mix(P, vec3(G, floor_z), f);
+  vec3 H = mix(P, vec3(G, floor_z), f);
+  vec2 unfolded = clamp(H.xy, u_floor_rect.xy, u_floor_rect.zw) - nw * (H.z - floor_z);
   vec3 albedo = texture(u_ground, (unfolded - u_ground_origin) / u_ground_extent).rgb;
-  vec3 foot = texture(u_ground, (clamp(hit.xy, u_floor_rect.xy, u_floor_rect.zw) - u_ground_origin) / u_ground_extent).rgb;
+  vec3 foot = texture(u_ground, (clamp(H.xy, u_floor_rect.xy, u_floor_rect.zw) - u_ground_origin) / u_ground_extent).rgb;
   vec3 s_w = refract(-normalize(u_sun_dir), vec3(0.0, 0.0, 1.0), 1.0 / u_index);
   float lambert = max(dot(vec3(nw, 0.0), -s_w), 0.0) / max(-s_w.z, 0.1);
-  return albedo * (0.5 * u_ambient + u_sun_light * lambert + 0.5 * foot * (u_ambient + u_sun_light));
+  vec3 wall = albedo * (0.5 * u_ambient + u_sun_light * lambert + 0.5 * foot * (u_ambient + u_sun_light));
+  return mix(floor_part, wall, w);
 }
