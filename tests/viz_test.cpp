@@ -299,6 +299,25 @@ TEST_F(VizRender, WaterOverTerrainLeavesDryLandVisible) {
   row_counts(flooded, white, black, transitions);
   EXPECT_GT(white, W / 3);
   EXPECT_EQ(transitions, 0) << "all flooded: water only";
+
+  // With the pool's deck around it, dry land below the rest level reaches the region's outline:
+  // seen straight down at the south edge (4 px per cell), every pixel inside the outline is the
+  // terrain's black and every one outside it the deck's pale stone. Until 2026-12-04 the deck,
+  // at the rest level, reached 1.5 cells inside and hid the lower land there.
+  m.pool_deck = true;
+  r.set_heights(dry);
+  const OrbitCamera edge = top_down(g.x0 + 0.5 * kWidth, g.y(0), 1.0);
+  const gl::Image8 img = render(r, edge, m, 128, 128);
+  int inside = 0, hidden = 0;
+  for (int i = 0; i < 128; ++i) {
+    const double y = edge.target.y + (64.0 - i - 0.5) / 128.0;  // pixel centre (m)
+    if (y < g.y(0) + 1.5 / 128.0) continue;                     // the outline's own pixels
+    ++inside;
+    hidden += channel(img, 64, i, 0) > 0.1;
+  }
+  EXPECT_GT(inside, 50);
+  EXPECT_EQ(hidden, 0) << "pixels inside the outline where the deck hides the land";
+  if (hidden) write_debug("terrain_edge.png", img);
 }
 
 // Looking straight down through still water of depth d from height H, the ground appears

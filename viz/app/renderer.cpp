@@ -346,13 +346,16 @@ WaterRenderer::WaterRenderer(const GridPlacement& grid, double ground_z, int sub
        static_cast<float>(my + far), gz);
   quad(ax, ay, bx, by, gz);
   // deck: south, north, west, east, reaching 1.5 cells under the water's outline so that no
-  // gap opens between its edge and a wave trough there
-  const float o = static_cast<float>(1.5 * grid_.dx);
-  quad(gx0, gy0, gx1, ay + o, 0.0f);
-  quad(gx0, by - o, gx1, gy1, 0.0f);
-  quad(gx0, ay + o, ax + o, by - o, 0.0f);
-  quad(bx - o, ay + o, gx1, by - o, 0.0f);
-  ground_vertex_count_ = static_cast<GLsizei>(quads.size() / 3);
+  // gap opens between its edge and a wave trough there (vertices 12-35); over terrain the deck
+  // ends at the outline (vertices 36-59): there the water and the bed may lie below the rest
+  // level near the edge, and a deck reaching in hid them (a strip of deck inside the flood's
+  // near edge until 2026-12-04)
+  for (const float o : {static_cast<float>(1.5 * grid_.dx), 0.0f}) {
+    quad(gx0, gy0, gx1, ay + o, 0.0f);
+    quad(gx0, by - o, gx1, gy1, 0.0f);
+    quad(gx0, ay + o, ax + o, by - o, 0.0f);
+    quad(bx - o, ay + o, gx1, by - o, 0.0f);
+  }
   glGenVertexArrays(1, &ground_vao_);
   glBindVertexArray(ground_vao_);
   glGenBuffers(1, &ground_vbo_);
@@ -908,7 +911,7 @@ void WaterRenderer::draw_terrain(const OrbitCamera& camera, const RenderSettings
   glUniform1i(ground_prog_.loc("u_terrain"), 0);
   if (s.pool_deck) {
     glBindVertexArray(ground_vao_);
-    glDrawArrays(GL_TRIANGLES, 12, ground_vertex_count_ - 12);
+    glDrawArrays(GL_TRIANGLES, 36, 24);  // the deck that ends at the outline
   }
 }
 
@@ -962,7 +965,7 @@ void WaterRenderer::reset_scene_state() {
 }
 
 // The floor seen directly and the deck around the region (vertices 0-5 the large floor, 6-11 the
-// region's floor, the rest the deck; deep water has no floor).
+// region's floor, 12-35 the deck; deep water has no floor).
 void WaterRenderer::draw_ground(const OrbitCamera& camera, const RenderSettings& s, const glm::mat4& mvp) {
   set_common_uniforms(ground_prog_, s, camera);
   glUniformMatrix4fv(ground_prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(mvp));
@@ -973,8 +976,7 @@ void WaterRenderer::draw_ground(const OrbitCamera& camera, const RenderSettings&
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 2.0f);
   if (s.pool_deck)
-    glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6,
-                 s.deep_water ? ground_vertex_count_ - 12 : ground_vertex_count_ - 6);
+    glDrawArrays(GL_TRIANGLES, s.deep_water ? 12 : 6, s.deep_water ? 24 : 30);
   else
     glDrawArrays(GL_TRIANGLES, 0, 6);
   glDisable(GL_POLYGON_OFFSET_FILL);

@@ -336,7 +336,6 @@ class WaterRenderer {
   GLsizei surface_index_count_ = 0;
   GLuint ground_vao_ = 0, ground_vbo_ = 0;
   GLuint ship_vao_ = 0, ship_vbo_ = 0;
-  GLsizei ground_vertex_count_ = 0;
   std::vector<float> solids_;               // obstacle triangles (x, y, z)
   std::array<double, 3> tank_{};            // set_tank's box (m); 0 = none
   std::vector<std::uint32_t> fill_from_;    // per grid point: the point whose height it shows
