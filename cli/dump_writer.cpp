@@ -1,5 +1,6 @@
 #include "dump_writer.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -38,9 +39,10 @@ std::string mpi_error(int code) {
 
 // One .npy from the rows of every rank (a collective): PATH.tmp is opened by all ranks and emptied,
 // rank 0 writes the header, each rank writes its rows at header + row0 * row bytes
-// (MPI_File_write_at_all), the file is closed (which syncs it), and only when every rank succeeded
-// rank 0 renames it onto PATH. Any failure: every rank throws IoError, no file under PATH.
-void write_npy_ranks(const std::string& path, const OutputField& f) {
+// (MPI_File_write_at_all), the file is flushed to the disk (MPI_File_sync, Sync::to_disk) and
+// closed, and only when every rank succeeded rank 0 renames it onto PATH (the folder is flushed
+// once per dump, DumpWriter::write_step). Any failure: every rank throws IoError, no file under PATH.
+void write_npy_ranks(const std::string& path, const OutputField& f, Sync sync) {
   const std::string tmp = path + ".tmp", header = npy_header(f.full_shape());
   std::size_t row_elems = 1;
   for (std::size_t i = 1; i < f.shape.size(); ++i) row_elems *= f.shape[i];
@@ -62,10 +64,15 @@ void write_npy_ranks(const std::string& path, const OutputField& f) {
     step(MPI_File_write_at_all(fh, at, f.data.data(), static_cast<int>(f.shape.empty() ? 0 : f.shape[0]), row,
                                MPI_STATUS_IGNORE));
     MPI_Type_free(&row);
+    if (sync == Sync::to_disk) step(MPI_File_sync(fh));  // collective
     step(MPI_File_close(&fh));
   }
   bool failed = comm::any(!err.empty());
-  if (!failed && comm::root() && std::rename(tmp.c_str(), path.c_str()) != 0) err = std::strerror(errno);
+  if (!failed && comm::root()) {
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+      err = std::strerror(errno);
+    }
+  }
   failed = comm::any(!err.empty());
   if (!failed) return;
   if (comm::root()) std::remove(tmp.c_str());
@@ -74,13 +81,13 @@ void write_npy_ranks(const std::string& path, const OutputField& f) {
 #endif
 
 // One dumped field: the whole array in one process, the rows of every rank on MPI ranks.
-void write_field(const std::string& path, const OutputField& f) {
+void write_field(const std::string& path, const OutputField& f, Sync sync) {
 #ifdef HUYGENS_HAVE_MPI
-  if (comm::size() > 1) return write_npy_ranks(path, f);
+  if (comm::size() > 1) return write_npy_ranks(path, f, sync);
 #endif
   if (!f.global_shape.empty() && f.global_shape != f.shape)
     throw std::logic_error("a field of " + f.name + " holds part of the rows in a run of one rank");
-  write_npy(path, f.data, f.shape);
+  write_npy(path, f.data, f.shape, sync == Sync::to_disk ? Sync::file : sync);  // the folder: once a dump
 }
 
 // Runs fn on rank 0 alone (meta.json, the folder) and agrees on the outcome: when it throws
@@ -111,26 +118,32 @@ void DumpWriter::prepare(const std::string& dir, bool overwrite) {
     throw UsageError("the dump folder " + dir + " holds another run's files (" + std::to_string(old.size()) +
                      ", e.g. " + old.front().filename().string() + "): choose an empty folder or add --overwrite");
   comm::barrier();  // every rank looked before rank 0 removes
+  // meta.json goes first, and its removal reaches the disk before the files it lists go: a crash
+  // part-way leaves unlisted files, never a meta.json that lists a removed one
+  std::stable_partition(old.begin(), old.end(), [](const fs::path& p) { return p.filename() == "meta.json"; });
   agreed_on_root(dir, [&] {
-    for (const auto& p : old)
+    for (const auto& p : old) {
       if (!fs::remove(p, ec)) throw IoError(p.string(), "cannot remove: " + ec.message());
+      if (p.filename() == "meta.json") sync_folder(dir, p.string());
+    }
     check_output_file(dir + "/meta.json");  // the folder takes a new file
   });
 }
 
-DumpWriter::DumpWriter(std::string dir, const std::string& scene_file, Solver& solver)
-    : dir_(std::move(dir)), solver_(solver), meta_(solver.meta()) {
+DumpWriter::DumpWriter(std::string dir, const std::string& scene_file, Solver& solver, Sync sync)
+    : dir_(std::move(dir)), solver_(solver), sync_(sync), meta_(solver.meta()) {
   meta_["scene"] = scene_file;
   meta_["dumps"] = nlohmann::json::array();
   meta_["complete"] = false;
   meta_["ranks"] = comm::size();
+  meta_["fsync"] = sync_ == Sync::to_disk;  // false: --no-fsync (a crash of the machine may lose dumps)
 }
 
 // meta.json carries the solver's meta refreshed (step counts, adaptive dt history)
 void DumpWriter::save_meta() {
   const nlohmann::json now = solver_.meta();
   for (const auto& [key, value] : now.items()) meta_[key] = value;
-  agreed_on_root(dir_ + "/meta.json", [&] { write_file_atomic(dir_ + "/meta.json", meta_.dump(2) + "\n"); });
+  agreed_on_root(dir_ + "/meta.json", [&] { write_file_atomic(dir_ + "/meta.json", meta_.dump(2) + "\n", sync_); });
 }
 
 void DumpWriter::write_entry(nlohmann::json entry, const std::vector<OutputField>& fields, const std::string& suffix) {
@@ -138,7 +151,7 @@ void DumpWriter::write_entry(nlohmann::json entry, const std::vector<OutputField
   for (const auto& f : fields) {
     const std::string name = fmt("%s_%06lld%s.npy", f.name.c_str(), entry["step"].get<long long>(), suffix.c_str());
     written_.push_back(dir_ + "/" + name);
-    write_field(written_.back(), f);
+    write_field(written_.back(), f, sync_);
     entry["files"].push_back(name);
   }
   entry["index"] = static_cast<long long>(meta_["dumps"].size());
@@ -180,6 +193,8 @@ void DumpWriter::write_step() {
   nlohmann::json entry = {
       {"step", s}, {"time_s", solver_.time()}, {"interpolated", false}, {"s", 0.0}, {"display_frame", s * per_step}};
   write_entry(entry, solver_.outputs(), "");
+  // every file of the dump is on the disk (Sync::file); their renames too before meta.json lists them
+  if (sync_ == Sync::to_disk) agreed_on_root(dir_, [&] { sync_folder(dir_, dir_); });
   save_meta();
 }
 

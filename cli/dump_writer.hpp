@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "huygens/common/atomic_file.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens {
@@ -20,7 +21,8 @@ class DumpWriter {
   /// must take a new file (IoError otherwise).
   static void prepare(const std::string& dir, bool overwrite);
 
-  DumpWriter(std::string dir, const std::string& scene_file, Solver& solver);
+  /// `sync`: Sync::to_disk flushes every file and the folder before meta.json lists them.
+  DumpWriter(std::string dir, const std::string& scene_file, Solver& solver, Sync sync = Sync::to_disk);
   /// Writes the current step's fields (and the displayed frames interpolated inside the last
   /// step), then meta.json. Throws IoError naming the file; the earlier dumps stay listed.
   void dump();
@@ -36,6 +38,7 @@ class DumpWriter {
 
   std::string dir_;
   Solver& solver_;
+  Sync sync_;
   nlohmann::json meta_;
   std::vector<std::string> written_;  // the files of the dump being written
 };

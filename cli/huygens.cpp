@@ -17,7 +17,7 @@ namespace huygens {
 namespace {
 const char* const kUsage =
     "usage: huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--overwrite] [--stats-json FILE]\n"
-    "                         [--fast-plans]\n"
+    "                         [--fast-plans] [--no-fsync]\n"
     "       huygens run SCENE --dry-run [--ranks P] [--rank-memory GIB]\n"
     "       mpirun -np P huygens run SCENE ...   (MPI build: P ranks, docs/scale.md)\n"
     "       huygens validate [CASE...] [--list]\n"
@@ -33,7 +33,10 @@ const char* const kUsage =
     "          (NNNNNN = the step they follow, J = 1..D-1, time (NNNNNN + J/D) dt); meta.json\n"
     "          marks them \"interpolated\": true with \"s\": J/D. A DIR that holds another run's\n"
     "          files (meta.json, <field>_NNNNNN*.npy) is refused; --overwrite removes those\n"
-    "          files first and leaves every other file in DIR.\n"
+    "          files first and leaves every other file in DIR. Each dump is flushed to the disk\n"
+    "          (fsync of each file, then of DIR) before meta.json lists it, so the files\n"
+    "          meta.json lists survive a power cut; --no-fsync skips the flushes (scratch runs:\n"
+    "          a crash of the machine may then lose listed files; docs/robustness.md).\n"
     "          --stats-json FILE writes the stage table as JSON. --fast-plans plans FFTs with\n"
     "          FFTW_ESTIMATE instead of FFTW_MEASURE: a quicker start, transforms 1.4-1.9x\n"
     "          slower, and the same bits on every run (FFTW_MEASURE picks its plan by timing,\n"

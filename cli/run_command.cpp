@@ -32,8 +32,9 @@ struct RunArgs {
   std::string scene_file, dump_dir, stats_file;
   long long steps = 100, every = 1;
   bool overwrite = false, dry_run = false;
-  int ranks = 0;          // --ranks (0: not given)
-  double rank_gib = 0.0;  // --rank-memory (0: this machine's available memory)
+  Sync sync = Sync::to_disk;  // --no-fsync: Sync::cache
+  int ranks = 0;              // --ranks (0: not given)
+  double rank_gib = 0.0;      // --rank-memory (0: this machine's available memory)
   RunOptions options;
 };
 
@@ -59,6 +60,8 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
       a.overwrite = true;
     else if (w == "--fast-plans")
       a.options.measure_plans = false;
+    else if (w == "--no-fsync")
+      a.sync = Sync::cache;
     else if (w == "--dry-run")
       a.dry_run = true;
     else if (w == "--ranks")
@@ -274,7 +277,7 @@ int cmd_run(int argc, char** argv) {
   }
   print_header(a, *solver);
   std::unique_ptr<DumpWriter> dumps;
-  if (!a.dump_dir.empty()) dumps = std::make_unique<DumpWriter>(a.dump_dir, a.scene_file, *solver);
+  if (!a.dump_dir.empty()) dumps = std::make_unique<DumpWriter>(a.dump_dir, a.scene_file, *solver, a.sync);
   const auto t0 = std::chrono::steady_clock::now();
   const int rc = run_steps(a, *solver, dumps.get());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -14,7 +14,7 @@ namespace huygens {
 IoError::IoError(const std::string& path, const std::string& reason)
     : std::runtime_error("cannot write " + path + ": " + reason), path_(path) {}
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+AtomicFile::AtomicFile(std::string path, Sync sync) : path_(std::move(path)), sync_(sync) {
   struct stat st {};
   if (::stat(path_.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISDIR(st.st_mode)) {
     // a device, pipe or socket (/dev/null, /dev/stdout, a FIFO) is written in place: a rename would
@@ -52,19 +52,38 @@ void AtomicFile::write(std::span<const std::byte> bytes) {
   }
 }
 
+// The order that makes a renamed file whole after a power cut: the data reach the disk (fsync)
+// before the rename makes them visible under PATH, and the folder's entry is flushed after it, so
+// a caller that lists PATH (meta.json) lists a file that is on the disk.
 void AtomicFile::commit() {
   const int fd = fd_;
   fd_ = -1;
+  const bool durable = sync_ != Sync::cache && !tmp_.empty();  // a device or a pipe: no fsync
+  if (durable && ::fsync(fd) != 0) {
+    const int err = errno;
+    ::close(fd);
+    throw IoError(path_, std::string("fsync: ") + std::strerror(err));
+  }
   if (::close(fd) != 0) throw IoError(path_, std::strerror(errno));  // delayed write errors (NFS)
   if (tmp_.empty()) return;                                          // written in place (a device or a pipe)
   if (std::rename(tmp_.c_str(), target_.c_str()) != 0) throw IoError(path_, std::strerror(errno));
   tmp_.clear();
+  if (durable && sync_ == Sync::to_disk) sync_folder(std::filesystem::path(target_).parent_path().string(), path_);
 }
 
-void write_file_atomic(const std::string& path, std::string_view text) {
-  AtomicFile f(path);
+void write_file_atomic(const std::string& path, std::string_view text, Sync sync) {
+  AtomicFile f(path, sync);
   f.write(text);
   f.commit();
+}
+
+void sync_folder(const std::string& dir, const std::string& what) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) throw IoError(what, std::string("cannot open its folder to flush it: ") + std::strerror(errno));
+  const int rc = ::fsync(fd), err = errno;
+  ::close(fd);
+  // a file system that cannot flush a folder (EINVAL) has nothing pending in it
+  if (rc != 0 && err != EINVAL) throw IoError(what, std::string("fsync of its folder: ") + std::strerror(err));
 }
 
 void check_output_file(const std::string& path) {

@@ -28,11 +28,11 @@ std::string npy_header(const std::vector<std::size_t>& shape) {
   return std::string(lead, sizeof lead) + header;
 }
 
-void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape) {
+void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape, Sync sync) {
   std::size_t count = 1;
   for (auto s : shape) count *= s;
   if (count != data.size()) throw std::invalid_argument("write_npy: shape does not match data size");
-  AtomicFile f(path);
+  AtomicFile f(path, sync);
   f.write(npy_header(shape));
   f.write(std::as_bytes(data));
   f.commit();

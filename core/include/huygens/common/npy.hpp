@@ -1,12 +1,14 @@
 #pragma once
 // NumPy .npy writer (format version 1.0, little-endian float32, C order) and
 // a reader for the same (versions 1.0 to 3.0; its checks in npy_read.hpp), used by tests and by
-// scenes that name an array (an LBM bed). Writes go to FILE.tmp then rename, so a file that
-// exists is always complete.
+// scenes that name an array (an LBM bed). Writes are an AtomicFile's (FILE.tmp, flushed, then
+// renamed): a file that exists is always complete.
 #include <cstddef>
 #include <span>
 #include <string>
 #include <vector>
+
+#include "huygens/common/atomic_file.hpp"
 
 namespace huygens {
 
@@ -16,7 +18,8 @@ namespace huygens {
 std::string npy_header(const std::vector<std::size_t>& shape);
 
 /// Writes `data` with the given shape (product of shape == data.size()). Throws on I/O error.
-void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape);
+void write_npy(const std::string& path, std::span<const float> data, const std::vector<std::size_t>& shape,
+               Sync sync = Sync::to_disk);
 
 /// A float32 array read back from .npy.
 struct NpyArray {
