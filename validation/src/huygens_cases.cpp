@@ -365,7 +365,8 @@ std::vector<ValidationRow> kelvin_case() { return kelvin_rows("kelvin", 512, 10,
 // transverse wavelengths). Caveat, measured: at that range the method reads the exact steady wake
 // (kelvin_test, Fr 2) at 18.6 deg, and 19.25 deg only at 5-20 wavelengths; the started ship's
 // field reads higher (19.47 here, 19.01 at 3-6.4 wavelengths on a 16-wavelength grid), so part of
-// the agreement at Fr 2 and 3 is the start transient offsetting that bias (docs/huygens.md).
+// the agreement at Fr 2 and 3 is the start transient offsetting that bias (docs/ocean.md,
+// "Froude trend at Fr 2 and 3").
 std::vector<ValidationRow> froude_rows(int n, std::vector<double> froudes) {
   std::vector<ValidationRow> rows;
   double ref = 0;
