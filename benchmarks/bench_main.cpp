@@ -24,6 +24,7 @@ void Context::report(const std::string& section, const std::string& title, const
   std::printf("\n== %s: %s ==\n%s", section.c_str(), title.c_str(), table.text().c_str());
   std::fflush(stdout);
   tables.emplace_back(section + ": " + title, table);
+  huygens::stop_request::throw_if_requested("after the table \"" + section + ": " + title + "\"");  // a check point
 }
 
 void Context::expect(bool ok, const std::string& what) {
@@ -73,7 +74,9 @@ void print_help(const std::map<std::string, huygens::bench::Section>& sections) 
       "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
       "  --csv FILE also write every table's rows as CSV (checked before the run, written atomically)\n"
       "  --threads  comma-separated thread counts to sweep, each in [1, 1024] (default 1,<cores>)\n"
-      "exit codes: 0 ok; 1 an accuracy check failed or a write failed; 2 bad usage\n");
+      "exit codes: 0 ok; 1 an accuracy check failed or a write failed; 2 bad usage; 130/143 stopped by\n"
+      "  SIGINT/SIGTERM after the current table (the tables so far are printed, and written to --csv\n"
+      "  with a first line that says the run stopped; a second signal ends it at once)\n");
 }
 
 // Reads the command line; false for --help. Throws UsageError for bad usage.
@@ -133,6 +136,7 @@ int bench_main(int argc, char** argv) {
   std::string csv;
   std::vector<std::string> chosen;
   if (!parse_bench_args(argc, argv, sections, ctx, csv, chosen)) return 0;
+  huygens::stop_request::install();                   // SIGINT/SIGTERM: stop after the current table
   if (!csv.empty()) huygens::check_output_file(csv);  // before the run, not after it
   if (ctx.threads.empty()) {
     ctx.threads.push_back(1);
@@ -145,20 +149,31 @@ int bench_main(int argc, char** argv) {
               __VERSION__, huygens::fft_version(), omp_get_max_threads(), ctx.quick ? "quick" : "full");
   const auto start = std::chrono::steady_clock::now();
   huygens::Table took({"section", "wall s"});
-  for (const auto& [name, fn] : sections)
-    if (chosen.empty() || std::find(chosen.begin(), chosen.end(), name) != chosen.end()) {
-      const auto t0 = std::chrono::steady_clock::now();
-      fn(ctx);
-      took.add({name, huygens::fmt("%.1f", seconds_since(t0))});
-    }
-  took.add({"total", huygens::fmt("%.1f", seconds_since(start))});
+  std::string stopped;  // what a SIGINT/SIGTERM abandoned; "" when every section ran
+  try {
+    for (const auto& [name, fn] : sections)
+      if (chosen.empty() || std::find(chosen.begin(), chosen.end(), name) != chosen.end()) {
+        huygens::stop_request::throw_if_requested("before the section " + name);
+        const auto t0 = std::chrono::steady_clock::now();
+        fn(ctx);
+        took.add({name, huygens::fmt("%.1f", seconds_since(t0))});
+      }
+  } catch (const huygens::StopRequested& e) {
+    stopped = e.what();
+  }
+  took.add({stopped.empty() ? "total" : "total (stopped)", huygens::fmt("%.1f", seconds_since(start))});
   std::printf("\n== run time per section ==\n%s", took.text().c_str());
-  if (!csv.empty()) {
-    std::string text;
+  if (!csv.empty()) {  // the complete tables; a stopped run says so in its first line
+    std::string text = stopped.empty() ? ""
+                                       : "# stopped by " + std::string(huygens::stop_request::signal_name()) + " " +
+                                             stopped + ": the tables below are complete, later ones missing\n";
     for (const auto& [title, table] : ctx.tables) text += "# " + title + "\n" + table.csv() + "\n";
     huygens::write_file_atomic(csv, text);
   }
   std::printf("\nhuygens-bench: %d accuracy check(s) failed\n", ctx.failures);
+  if (!stopped.empty())
+    throw huygens::StopRequested(stopped + "; the " + std::to_string(ctx.tables.size()) +
+                                 " complete table(s) are printed above" + (csv.empty() ? "" : " and in " + csv));
   return ctx.failures ? 1 : 0;
 }
 

@@ -96,6 +96,7 @@ void main() { o_color = vec4(texelFetch(u_src, ivec2(gl_FragCoord.xy), 0).r); }
     int mesh, tex, field;
   };
   for (const Size& sz : {Size{96, 512, 384}, Size{192, 1024, 768}}) {
+    stop_request::throw_if_requested("the speed table abandoned at mesh " + std::to_string(sz.mesh));
     const auto field = viz::synthetic_wind_sea(sz.field, 15.0 * sz.field / 512.0, 1.0, 0.6, false);
     const Mode modes[] = {{"caustics MIP u8 (paper)", CausticsArea::Mip, false, 0.5f},
                           {"caustics explicit u8", CausticsArea::Explicit, false, 0.0f},
@@ -149,6 +150,7 @@ void main() { o_color = vec4(texelFetch(u_src, ivec2(gl_FragCoord.xy), 0).r); }
            sz.mesh == 96 ? "18" : ""});
   }
   std::printf("\n== caustics speed (median of %d, glFinish after each) ==\n%s", reps, t.text().c_str());
+  std::fflush(stdout);  // each table is out when it is done, also into a file or a pipe
   return t;
 }
 
@@ -184,6 +186,7 @@ Table error_table(bool quick) {
       for (auto proj : {CausticsProjection::Linear, CausticsProjection::Exact})
         for (int mesh : {48, 96, 192}) {
           if (proj == CausticsProjection::Exact && mesh != 96) continue;
+          stop_request::throw_if_requested(std::string("the error table abandoned at ") + fc.name + ", " + m.name);
           viz::CausticsRenderer r(make_params(mesh, tex, m, proj));
           const double s = median_seconds(quick ? 3 : 7, [&] {
             r.render(fc.f.view());
@@ -210,6 +213,7 @@ Table error_table(bool quick) {
       "\n== caustics run time against error (texture %d^2, surface %d^2, depth 0.5 m, sun overhead; "
       "errors on the interior, both blurred and normalised to mean 1) ==\n%s",
       tex, n, t.text().c_str());
+  std::fflush(stdout);
   return t;
 }
 
@@ -235,27 +239,41 @@ int bench_main(int argc, char** argv) {
     else if (a == "--help" || a == "-h") {
       std::printf(
           "usage: huygens-caustics-bench [--quick] [--only speed|error] [--csv FILE] [--png FILE]\n"
-          "exit codes: 0 ok; 1 a GL or write failure; 2 bad usage\n");
+          "exit codes: 0 ok; 1 a GL or write failure; 2 bad usage; 130/143 stopped by SIGINT/SIGTERM\n"
+          "  (the table being measured is abandoned; the complete ones are printed, and written to\n"
+          "  --csv with a first line that says the run stopped; a second signal ends it at once)\n");
       return 0;
     } else
       throw UsageError("unknown argument '" + a + "'");
   }
   if (!only.empty() && only != "speed" && only != "error") throw UsageError("--only takes 'speed' or 'error'");
+  stop_request::install();                      // SIGINT/SIGTERM: the table being measured is abandoned
   for (const std::string& target : {csv, png})  // checked before the run, not after it
     if (!target.empty()) check_output_file(target);
   {
     gl::HeadlessContext ctx;
     const char* lp = std::getenv("LP_NUM_THREADS");
     std::printf("GL: %s, %s (LP_NUM_THREADS=%s)\n", ctx.renderer().c_str(), ctx.version().c_str(), lp ? lp : "unset");
+    std::fflush(stdout);
     std::vector<std::pair<std::string, Table>> tables;
-    if (!png.empty()) write_panel(png);
-    if (only.empty() || only == "speed") tables.emplace_back("caustics speed", speed_table(quick ? 5 : 15));
-    if (only.empty() || only == "error") tables.emplace_back("caustics error", error_table(quick));
-    if (!csv.empty()) {
-      std::string text;
+    std::string stopped;  // what a SIGINT/SIGTERM abandoned
+    try {
+      if (!png.empty()) write_panel(png);
+      if (only.empty() || only == "speed") tables.emplace_back("caustics speed", speed_table(quick ? 5 : 15));
+      if (only.empty() || only == "error") tables.emplace_back("caustics error", error_table(quick));
+    } catch (const StopRequested& e) {
+      stopped = e.what();
+    }
+    if (!csv.empty()) {  // the complete tables; a stopped run says so in its first line
+      std::string text = stopped.empty() ? ""
+                                         : "# stopped by " + std::string(stop_request::signal_name()) + ": " + stopped +
+                                               "; the tables below are complete\n";
       for (const auto& [title, table] : tables) text += "# " + title + "\n" + table.csv() + "\n";
       write_file_atomic(csv, text);
     }
+    if (!stopped.empty())
+      throw StopRequested(stopped + "; " + std::to_string(tables.size()) + " complete table(s) printed above" +
+                          (csv.empty() ? "" : " and in " + csv));
   }
   return 0;
 }

@@ -9,6 +9,8 @@
 
 #include "dye.hpp"
 #include "foam.hpp"
+#include "huygens/common/program.hpp"
+#include "huygens/common/report.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "plot.hpp"
 
@@ -94,6 +96,8 @@ HeadlessResult render_headless(ViewerSolver scene, const HeadlessOptions& opt) {
   const double t_first = flow.needed() ? opt.time - skipped * view.frame_dt : opt.time;
   bool shown_ahead = false;  // show(t) of this frame was already called (a history frame's overlap)
   for (int k = 0; k < skipped + opt.frames; ++k) {
+    // SIGINT/SIGTERM: the frame being drawn is abandoned and no image is written (main.cpp)
+    stop_request::throw_if_requested(fmt("frame %d of %d abandoned; no image written", k + 1, skipped + opt.frames));
     const double t = t_first + k * view.frame_dt;
     if (!shown_ahead) runner.show(t);
     shown_ahead = false;

@@ -66,7 +66,9 @@ void usage(std::FILE* f) {
                "  --auto-frames N       window: after N frames press S, then quit (smoke test)\n"
                "  --help                this text\n"
                "Exit codes: 0 ok; 1 a write or the GL context failed; 2 bad scene or usage; 3 non-finite\n"
-               "  value; 4 not enough memory for the scene.\n"
+               "  value; 4 not enough memory for the scene; 130/143 stopped by SIGINT/SIGTERM (the window\n"
+               "  closes; a headless run abandons its frame and writes no image; a second signal ends\n"
+               "  the program at once).\n"
                "Keys (window): space pause, R reset, F1 hide panel, S screenshot, E exact/linearised,\n"
                "  F Fresnel model, P plan view (again: speed, dye, foam or particles), Esc quit.\n"
                "Mouse: left click drops a stone, left drag on a ship moves it, right drag orbits, middle\n"
@@ -285,6 +287,7 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   Table tc({"size", "mesh+normals CPU", "upload", "caustics", "ground", "surface", "ship+solids", "tone map",
             "render total", "caustics / rest"});
   for (auto [w, h] : {std::pair{1280, 720}, std::pair{640, 360}}) {
+    stop_request::throw_if_requested(fmt("the render benchmark abandoned before %dx%d", w, h));
     BenchmarkRows rows = benchmark_row(renderer, cam, settings, solver.height(), w, h, sim_per_frame, samples);
     t.add(std::move(rows.wall));
     tc.add(std::move(rows.cpu));
@@ -397,6 +400,7 @@ int main(int argc, char** argv) {
       usage(stdout);
       return 0;
     }
+    stop_request::install();  // SIGINT/SIGTERM: the window closes, a headless run abandons its image
     return run(o);
   });
 }

@@ -21,6 +21,7 @@
 #include "dye.hpp"
 #include "foam.hpp"
 #include "gl.hpp"
+#include "huygens/common/program.hpp"
 #include "huygens/pipeline/command.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "scene_view.hpp"
@@ -605,7 +606,7 @@ long frame_loop(App& a) {
   long frame = 0;
   auto t_last = std::chrono::steady_clock::now();
   double fps = 0.0;
-  while (!glfwWindowShouldClose(a.window) && !a.quit) {
+  while (!glfwWindowShouldClose(a.window) && !a.quit && stop_request::signal() == 0) {
     glfwPollEvents();
     hold_drag_target(a);
     if (a.subsample != renderer->subsample()) {
@@ -680,6 +681,11 @@ int run_window(ViewerSolver scene, const WindowOptions& opt) {
       code = 3;
     }
     if (opt.auto_frames > 0 && a.screenshot_count == 0) code = 1;
+    if (stop_request::signal() != 0) {  // the window closed as Esc would close it
+      std::fprintf(stderr, "huygens-viz: stopped by %s: the window closed after %ld frames\n",
+                   stop_request::signal_name(), frames);
+      code = stop_request::exit_code();
+    }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();

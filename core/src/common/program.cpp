@@ -99,6 +99,9 @@ int run_program(const char* name, char** argv, const std::function<int()>& body)
   } catch (const NonFiniteError& e) {
     std::fprintf(stderr, "%s: %s\n", name, e.what());
     return kExitNonFinite;
+  } catch (const StopRequested& e) {
+    std::fprintf(stderr, "%s: stopped by %s: %s\n", name, stop_request::signal_name(), e.what());
+    return stop_request::exit_code();
   } catch (const ResourceError& e) {
     std::fprintf(stderr, "%s: %s\n", name, e.what());
     return kExitResources;
@@ -124,7 +127,7 @@ void on_signal(int sig) {
     return;
   }
   g_signal = sig;
-  static const char msg[] = "\nstop requested: finishing the current step (signal again to stop at once)\n";
+  static const char msg[] = "\nstop requested: finishing the current item (signal again to stop at once)\n";
   [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, msg, sizeof msg - 1);
 }
 }  // namespace
@@ -144,6 +147,10 @@ int signal() { return g_signal; }
 const char* signal_name() { return g_signal == SIGINT ? "SIGINT" : g_signal == SIGTERM ? "SIGTERM" : ""; }
 
 int exit_code() { return 128 + g_signal; }
+
+void throw_if_requested(const std::string& what) {
+  if (g_signal != 0) throw StopRequested(what);
+}
 
 }  // namespace stop_request
 

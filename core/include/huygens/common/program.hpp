@@ -40,16 +40,25 @@ double parse_real_arg(std::string_view flag, const char* text, double lo, double
 /// A non-empty value of option `flag` (a file or folder name) or UsageError.
 std::string nonempty_arg(std::string_view flag, const char* text);
 
+/// A stop that SIGINT or SIGTERM asked for, thrown at a program's check point between two items
+/// (a frame, a table, a case); what() says what was abandoned and what was kept.
+class StopRequested : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Runs a program's body and returns its exit code. Every exception becomes a line
 /// "NAME: ..." on stderr and its code: UsageError and SceneError 2, NonFiniteError 3,
-/// ResourceError and std::bad_alloc 4, anything else 1. Also installs a std::terminate handler
+/// ResourceError and std::bad_alloc 4, StopRequested 130 or 143 ("NAME: stopped by SIGINT: ..."),
+/// anything else 1. Also installs a std::terminate handler
 /// that prints the same kind of line (an exception that escapes a thread) and exits 1. First,
 /// when neither OMP_WAIT_POLICY nor GOMP_SPINCOUNT is set, sets GOMP_SPINCOUNT=3000 and executes
 /// the program again with `argv` (libgomp reads it only at start; program.cpp says why).
 int run_program(const char* name, char** argv, const std::function<int()>& body);
 
-/// SIGINT/SIGTERM as a request to stop between steps: the first signal sets the request (and
-/// says so on stderr), a second one ends the process at once by the signal's default action.
+/// SIGINT/SIGTERM as a request to stop between steps (huygens run) or items (the viewer's frames,
+/// the benches' tables): the first signal sets the request (and says so on stderr), a second one
+/// ends the process at once by the signal's default action.
 /// Also ignores SIGXFSZ, so a write past the file-size limit fails with a message (EFBIG).
 namespace stop_request {
 void install();
@@ -59,6 +68,8 @@ int signal();
 const char* signal_name();
 /// The exit code for a run that stopped on signal(): 130 or 143.
 int exit_code();
+/// Throws StopRequested(what) when a signal asked to stop: a program's check point.
+void throw_if_requested(const std::string& what);
 }  // namespace stop_request
 
 }  // namespace huygens
