@@ -38,8 +38,8 @@ MemoryEstimate huygens_rank_memory(const HuygensScene& s, int ranks) {
   const std::uint64_t rows = (n + static_cast<std::uint64_t>(ranks) - 1) / static_cast<std::uint64_t>(ranks);
   MemoryEstimate m;
   m.size_key = whole.size_key;
-  for (const auto& [name, bytes] : whole.parts)
-    m.add(name, name == "ship patches" ? bytes : (bytes * rows + n - 1) / n);
+  for (const MemoryEstimate::Part& part : whole.parts)
+    m.add(part.name, part.name == "ship patches" ? part.bytes : (part.bytes * rows + n - 1) / n, part.key);
   return m;
 }
 

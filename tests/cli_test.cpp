@@ -209,6 +209,34 @@ TEST(Cli, AScenePastTheMemoryIsRefusedBeforeTheRun) {
   }
 }
 
+// Many ships: the memory refusal names the part that dominates and its key ($.ships, not the
+// grid), and a fleet whose waves would cost more than 16 grid transforms a step is refused at
+// $.ships with the bound, before anything is allocated.
+TEST(Cli, ManyShipsAreRefusedAtTheShipsKey) {
+  const fs::path d = work_dir("ships");
+  const nlohmann::json kelvin = nlohmann::json::parse(slurp(fs::path(huygens::test::scenes_dir()) / "kelvin.json"));
+  auto fleet = [&](int count) {  // kelvin's ship, `count` times, on parallel paths
+    nlohmann::json s = kelvin;
+    s["ships"] = nlohmann::json::array();
+    for (int i = 0; i < count; ++i) {
+      nlohmann::json ship = kelvin["ships"][0];
+      for (auto& p : ship["path"]) p["y_m"] = 5.0 + 40.0 * i / count;
+      s["ships"].push_back(ship);
+    }
+    std::ofstream(d / "scene.json") << s.dump();
+  };
+  fleet(400);  // 400 patches of 96^2: about 57 MiB of ship patches, the largest part
+  const Result r = run(d, "run scene.json --steps 1 --fast-plans", "HUYGENS_MAX_MEMORY_GIB=0.04");
+  EXPECT_EQ(r.code, 4) << r.output;
+  EXPECT_NE(r.output.find("the largest part, ship patches"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("is set by $.ships"), std::string::npos) << r.output;
+  fleet(456);  // 16 x 512^2 / 96^2 = 455 ships at most
+  const Result many = run(d, "run scene.json --steps 1 --fast-plans");
+  EXPECT_EQ(many.code, 2) << many.output;
+  EXPECT_NE(many.output.find("$.ships: 456 ships"), std::string::npos) << many.output;
+  EXPECT_NE(many.output.find("at most 455 ships"), std::string::npos) << many.output;
+}
+
 TEST(Cli, TheAddressSpaceLimitCountsAsMemory) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space and doubles the resident memory";

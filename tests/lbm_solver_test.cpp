@@ -79,6 +79,59 @@ TEST(LbmScene, SurfaceIsDepthPlusBed) {
   EXPECT_EQ(h[4 * 40 + 30], 0.0f);             // (x, y) = (15.25, 2.25): in the obstacle
 }
 
+// Regions and obstacles are painted over their boxes only (solver.cpp, for_each_cell_in): every
+// cell whose centre they hold and no other, checked against the whole-grid test on shapes whose
+// edges fall between, on and near cell centres.
+TEST(LbmScene, ShapesCoverExactlyTheCellsWhoseCentresTheyHold) {
+  json j = json::parse(kBase);
+  j["lbm"].erase("bed");
+  const double dx = 0.5;
+  struct Box {
+    double x0, x1, y0, y1, depth;
+  };
+  const std::vector<Box> boxes = {{2.0, 4.0, 0.0, 4.0, 1.5},   {2.25, 2.26, 1.25, 3.75, 2.0},
+                                  {-5.0, 0.75, 3.0, 9.0, 2.5}, {7.7499, 9.2501, 0.2, 0.3, 3.0},
+                                  {19.0, 30.0, 1.0, 1.3, 3.5}, {12.0, 12.5, -1.0, 0.2501, 4.0}};
+  j["lbm"]["initial"]["regions"] = json::array();
+  for (const Box& b : boxes)
+    j["lbm"]["initial"]["regions"].push_back(
+        {{"x0_m", b.x0}, {"x1_m", b.x1}, {"y0_m", b.y0}, {"y1_m", b.y1}, {"depth_m", b.depth}});
+  j["lbm"]["obstacles"] = {{{"type", "circle"}, {"x_m", 15.0}, {"y_m", 2.0}, {"radius_m", 1.0}},
+                           {{"type", "rect"}, {"x0_m", 16.75}, {"x1_m", 17.25}, {"y0_m", 0.0}, {"y1_m", 1.75}}};
+  auto solver = make_solver(parse_scene_text(j.dump()), RunOptions{false});
+  const auto h = solver->outputs()[0].data;
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 40; ++c) {
+      const double x = (c + 0.5) * dx, y = (r + 0.5) * dx;
+      double want = 1.0;  // the base level; later regions win
+      for (const Box& b : boxes)
+        if (x >= b.x0 && x < b.x1 && y >= b.y0 && y < b.y1) want = b.depth;
+      const bool solid =
+          (x - 15.0) * (x - 15.0) + (y - 2.0) * (y - 2.0) <= 1.0 || (x >= 16.75 && x < 17.25 && y >= 0.0 && y < 1.75);
+      EXPECT_FLOAT_EQ(h[r * 40 + c], solid ? 0.0f : static_cast<float>(want)) << "cell (" << r << ", " << c << ")";
+    }
+}
+
+// Shapes that together cover more than 64 times the grid are refused at their list's key, before
+// any is painted (a set-up that grows with shapes x grid cells).
+TEST(LbmScene, ShapesCoveringTheGridManyTimesOverAreRefusedAtTheirKey) {
+  json j = json::parse(kBase);
+  j["lbm"]["initial"]["regions"] = json::array();
+  for (int i = 0; i < 64; ++i) j["lbm"]["initial"]["regions"].push_back({{"depth_m", 1.0}});
+  EXPECT_EQ(error_path(j), "<no error>");  // 64 whole-grid regions: at the bound
+  j["lbm"]["initial"]["regions"].push_back({{"depth_m", 1.0}});
+  EXPECT_EQ(error_path(j), "$.lbm.initial.regions");
+  // rectangles over the left half: a box of 21 x 8 cells each (a cell of margin), 120 of them and the
+  // circle's 4 x 4 fit the bound of 64 x 320 cells, 124 do not
+  j = json::parse(kBase);
+  for (int i = 0; i < 120; ++i)
+    j["lbm"]["obstacles"].push_back({{"type", "rect"}, {"x0_m", 0.0}, {"x1_m", 10.0}, {"y0_m", 0.0}, {"y1_m", 4.0}});
+  EXPECT_EQ(error_path(j), "<no error>");
+  for (int i = 0; i < 4; ++i)
+    j["lbm"]["obstacles"].push_back({{"type", "rect"}, {"x0_m", 0.0}, {"x1_m", 10.0}, {"y0_m", 0.0}, {"y1_m", 4.0}});
+  EXPECT_EQ(error_path(j), "$.lbm.obstacles");
+}
+
 TEST(LbmScene, ErrorsNameTheJsonPath) {
   const json base = json::parse(kBase);
   EXPECT_EQ(error_path(base), "<no error>");

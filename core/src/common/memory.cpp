@@ -78,7 +78,7 @@ std::uint64_t address_space_room() {
 
 std::uint64_t MemoryEstimate::total() const {
   std::uint64_t t = 0;
-  for (const auto& [name, b] : parts) t += b;
+  for (const Part& part : parts) t += part.bytes;
   return t;
 }
 
@@ -96,13 +96,21 @@ std::string MemoryEstimate::summary() const {
   std::ostringstream s;
   s << format_bytes(total()) << " (";
   bool first = true;
-  for (const auto& [name, b] : parts) {
-    if (b == 0) continue;
-    s << (first ? "" : ", ") << name << " " << format_bytes(b);
+  for (const Part& part : parts) {
+    if (part.bytes == 0) continue;
+    s << (first ? "" : ", ") << part.name << " " << format_bytes(part.bytes);
     first = false;
   }
   s << ")";
   return s.str();
+}
+
+std::string MemoryEstimate::largest_part() const {
+  const auto most =
+      std::max_element(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.bytes < b.bytes; });
+  if (most == parts.end()) return "";
+  const std::string& key = most->key.empty() ? size_key : most->key;
+  return "the largest part, " + most->name + " (" + format_bytes(most->bytes) + "), is set by " + key;
 }
 
 std::uint64_t available_memory() {
@@ -129,7 +137,7 @@ void require_memory(const MemoryEstimate& need) {
   const std::uint64_t avail = available_memory();
   if (need.total() <= avail) return;
   throw ResourceError("the scene needs " + need.summary() + ", " + format_bytes(avail) + " available; " +
-                      need.size_key + " sets the size");
+                      need.largest_part());
 }
 
 }  // namespace huygens

@@ -170,29 +170,40 @@ JsonIn Scene::root() const { return JsonIn(*doc, "$"); }
 
 namespace {
 
-// The JSON path of the value the parser is reading, kept by a parser callback, so that an error
-// the parser raises without a position (a number that overflows a double) names "$.grid.n".
-class PathTracker {
+// The JSON path of the value the parser is reading, kept by a SAX pass over the text, so that an
+// error the parser raises without a position (a number that overflows a double) names "$.grid.n",
+// and a key repeated in its object is refused with its path. A SAX pass and then a plain parse:
+// nlohmann's parser with a callback scans the parent container at every object's end, quadratic in
+// an array of objects (10^5 LBM regions took minutes); both passes here are linear.
+class PathTracker : public nlohmann::json_sax<json> {
  public:
-  bool operator()(int, json::parse_event_t event, json& parsed) {
-    using E = json::parse_event_t;
-    if (event == E::object_start || event == E::array_start) {
-      frames_.push_back({event == E::array_start, false, {}, 0, {}});
-    } else if (event == E::key) {
-      Frame& f = frames_.back();
-      f.key = parsed.get<std::string>();
-      f.has_key = true;
-      // RFC 8259 leaves repeated names to the parser; nlohmann keeps the last, silently
-      if (!f.keys.insert(f.key).second)
-        throw SceneError(path(),
-                         "the key appears twice in its object (the later value would silently replace the "
-                         "earlier one)");
-    } else {
-      // a value ends: a scalar (value) or a container (object_end, array_end)
-      if (event != E::value) frames_.pop_back();
-      if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
-    }
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(false); }
+  bool start_array(std::size_t) override { return open(true); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& k) override {
+    Frame& f = frames_.back();
+    f.key = k;
+    f.has_key = true;
+    // RFC 8259 leaves repeated names to the parser; nlohmann keeps the last, silently
+    if (!f.keys.insert(f.key).second)
+      throw SceneError(path(),
+                       "the key appears twice in its object (the later value would silently replace the "
+                       "earlier one)");
     return true;
+  }
+  // the parser's own error, thrown as its type so that parse_json names its position or path
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+    if (const auto* pe = dynamic_cast<const json::parse_error*>(&e)) throw *pe;
+    if (const auto* oor = dynamic_cast<const json::out_of_range*>(&e)) throw *oor;
+    throw std::runtime_error(e.what());
   }
   std::string path() const {
     std::string p = "$";
@@ -213,6 +224,18 @@ class PathTracker {
     std::size_t index;
     std::set<std::string> keys;  // the object's keys so far
   };
+  bool open(bool array) {
+    frames_.push_back({array, false, {}, 0, {}});
+    return true;
+  }
+  bool close() {
+    frames_.pop_back();
+    return value();
+  }
+  bool value() {  // a value ends: the array it is in moves on
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+    return true;
+  }
   std::vector<Frame> frames_;
 };
 
@@ -241,10 +264,10 @@ std::string json_reason(const json::exception& e) {
 }
 
 json parse_json(const std::string& text, const std::string& name) {
-  // the callback is copied into the parser: the tracker lives here, the parser holds a reference
   PathTracker tracker;
   try {
-    return json::parse(text, [&tracker](int d, json::parse_event_t e, json& v) { return tracker(d, e, v); });
+    json::sax_parse(text, &tracker);  // errors with their path, repeated keys
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     throw SceneError("$", "JSON syntax error in " + name + " at " + line_column(text, e.byte) + ": " + json_reason(e));
   } catch (const json::out_of_range& e) {

@@ -157,6 +157,16 @@ void size_ship_patch(const JsonIn& root, HuygensScene& out) {
   for (std::size_t i = 0; i < out.ships.size(); ++i)
     if (!hull_fits(out.ships[i].hull, out.ship_patch, dx))
       root.fail("ships", "ship " + std::to_string(i) + ": the hull (with its blur) does not fit a quarter of the grid");
+  // each ship costs a P x P transform and its kernels every step (ship_waves.hpp): their work is
+  // bounded by kShipWork grid transforms, ships P^2 <= kShipWork N^2
+  constexpr std::uint64_t kShipWork = 16;
+  const std::uint64_t p2 = static_cast<std::uint64_t>(out.ship_patch) * out.ship_patch;
+  const std::uint64_t most = kShipWork * static_cast<std::uint64_t>(p.n) * p.n / p2;
+  if (out.ships.size() > most)
+    root.fail("ships", std::to_string(out.ships.size()) + " ships of a " + std::to_string(out.ship_patch) +
+                           "^2 patch: " + "their waves would cost more than " + std::to_string(kShipWork) +
+                           " grid transforms per step (ships x patch^2 <= " + std::to_string(kShipWork) +
+                           " n^2); this grid takes at most " + std::to_string(most) + " ships");
 }
 
 void check_ship_steps(const JsonIn& root, const HuygensScene& out) {
@@ -237,7 +247,7 @@ MemoryEstimate huygens_memory(const HuygensScene& s) {
   if (s.display_per_step > 1) m.add("interpolation", 3 * f * v2);
   if (!s.ships.empty()) {  // the patch buffer, omega, and two cached kernels per ship (ship_waves.hpp)
     const std::uint64_t p2 = static_cast<std::uint64_t>(s.ship_patch) * s.ship_patch;
-    m.add("ship patches", c * p2 * (1 + 2 * s.ships.size()) + sizeof(double) * p2);
+    m.add("ship patches", c * p2 * (1 + 2 * s.ships.size()) + sizeof(double) * p2, "$.ships");
   }
   return m;
 }

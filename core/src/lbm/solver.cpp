@@ -142,6 +142,46 @@ void for_each_cell(const LbmParams& p, Fn fn) {
       fn(static_cast<std::size_t>(r) * p.cols + c, (c + 0.5) * p.cell_m, (r + 0.5) * p.cell_m);
 }
 
+// The cells (index range, half-open) whose centres may lie in [lo, hi] along an axis of n cells:
+// a cell more on each side than the centres strictly inside, so `fn`'s exact test decides.
+std::pair<int, int> cell_span(double lo, double hi, double cell, int n) {
+  const double a = std::floor(lo / cell - 0.5), b = std::ceil(hi / cell - 0.5) + 1;
+  return {static_cast<int>(std::clamp(a, 0.0, double(n))), static_cast<int>(std::clamp(b, 0.0, double(n)))};
+}
+
+// A shape's box [x0, x1] x [y0, y1] (unit: m) in cells, with the margin of cell_span (an upper
+// bound of the cells it covers).
+std::uint64_t box_cells(const LbmParams& p, double x0, double x1, double y0, double y1) {
+  const auto [c0, c1] = cell_span(x0, x1, p.cell_m, p.cols);
+  const auto [r0, r1] = cell_span(y0, y1, p.cell_m, p.rows);
+  return static_cast<std::uint64_t>(std::max(0, c1 - c0)) * static_cast<std::uint64_t>(std::max(0, r1 - r0));
+}
+
+// for_each_cell over the cells of the box [x0, x1] x [y0, y1] only: a shape costs its own area,
+// not the grid's, so thousands of small shapes are set up in time proportional to their cells
+template <class Fn>
+void for_each_cell_in(const LbmParams& p, double x0, double x1, double y0, double y1, Fn fn) {
+  const auto [c0, c1] = cell_span(x0, x1, p.cell_m, p.cols);
+  const auto [r0, r1] = cell_span(y0, y1, p.cell_m, p.rows);
+  for (int r = r0; r < r1; ++r)
+    for (int c = c0; c < c1; ++c)
+      fn(static_cast<std::size_t>(r) * p.cols + c, (c + 0.5) * p.cell_m, (r + 0.5) * p.cell_m);
+}
+
+// The shapes of one list (regions, obstacles) may together cover at most this many times the
+// grid's cells (a later shape overwrites an earlier one: deeper overlaps only cost set-up time)
+constexpr std::uint64_t kShapeCover = 64;
+
+// Counts a shape's box against the list's bound; refuses at the list's key past it.
+void count_cover(const JsonIn& owner, const char* key, const LbmParams& p, std::uint64_t& covered, double x0, double x1,
+                 double y0, double y1) {
+  covered += box_cells(p, x0, x1, y0, y1);
+  if (covered > kShapeCover * cell_count(p))
+    owner.fail(key, "the " + std::string(key) + " together cover more than " + std::to_string(kShapeCover) +
+                        " times the grid's cells (each is painted over the cells of its box; later ones win): "
+                        "merge or remove overlapping ones");
+}
+
 void parse_grid(const JsonIn& lb, LbmParams& p) {
   const JsonIn grid = lb.object("grid");
   grid.allow_only({"cols", "rows", "cell_m"});
@@ -275,6 +315,7 @@ DamFlow parse_dam(const JsonIn& dam, const LbmParams& p, LbmFields& f) {
 
 // "regions": rectangles [x0, x1) x [y0, y1) (unit: m) with their own level and velocity.
 void parse_regions(const JsonIn& init, const LbmParams& p, LbmFields& f) {
+  std::uint64_t covered = 0;
   for (const JsonIn& reg : init.array("regions")) {
     reg.allow_only({"x0_m", "x1_m", "y0_m", "y1_m", "depth_m", "surface_m", "velocity_mps"});
     const double x0 = reg.number("x0_m", -1e9, -1e9, 1e9), x1 = reg.number("x1_m", 1e9, -1e9, 1e9);
@@ -282,8 +323,9 @@ void parse_regions(const JsonIn& init, const LbmParams& p, LbmFields& f) {
     if (reg.has("depth_m") && reg.has("surface_m")) reg.fail("surface_m", "give depth_m or surface_m, not both");
     const bool has_u = reg.has("velocity_mps");
     const auto u = vec2_or_zero(reg, "velocity_mps", -1e4, 1e4);
+    count_cover(init, "regions", p, covered, x0, x1, y0, y1);
     std::size_t cells = 0;
-    for_each_cell(p, [&](std::size_t i, double x, double y) {
+    for_each_cell_in(p, x0, x1, y0, y1, [&](std::size_t i, double x, double y) {
       if (x < x0 || x >= x1 || y < y0 || y >= y1) return;
       ++cells;
       set_level(reg, i, f);
@@ -323,14 +365,16 @@ DamFlow parse_initial(const JsonIn& lb, const LbmParams& p, LbmFields& f) {
 void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f, std::vector<RenderObstacle>& shapes) {
   constexpr double kInf = std::numeric_limits<double>::infinity();
   f.solid.assign(cell_count(p), 0);
+  std::uint64_t covered = 0;
   for (const JsonIn& ob : lb.array("obstacles")) {
     const std::string type = ob.string("type", "", {"circle", "rect"});
     if (type == "circle") {
       ob.allow_only({"type", "x_m", "y_m", "radius_m"});
       const double cx = ob.number("x_m", -1e9, 1e9), cy = ob.number("y_m", -1e9, 1e9);
       const double rad = ob.number("radius_m", 0.0, 1e9);
+      count_cover(lb, "obstacles", p, covered, cx - rad, cx + rad, cy - rad, cy + rad);
       std::size_t cells = 0;
-      for_each_cell(p, [&](std::size_t i, double xc, double yc) {
+      for_each_cell_in(p, cx - rad, cx + rad, cy - rad, cy + rad, [&](std::size_t i, double xc, double yc) {
         const double x = xc - cx, y = yc - cy;
         if (x * x + y * y <= rad * rad) f.solid[i] = 1, ++cells;
       });
@@ -345,8 +389,9 @@ void parse_obstacles(const JsonIn& lb, const LbmParams& p, LbmFields& f, std::ve
       ob.allow_only({"type", "x0_m", "x1_m", "y0_m", "y1_m"});
       const double x0 = ob.number("x0_m", -1e9, 1e9), x1 = ob.number("x1_m", -1e9, 1e9);
       const double y0 = ob.number("y0_m", -1e9, 1e9), y1 = ob.number("y1_m", -1e9, 1e9);
+      count_cover(lb, "obstacles", p, covered, x0, x1, y0, y1);
       std::size_t cells = 0;
-      for_each_cell(p, [&](std::size_t i, double x, double y) {
+      for_each_cell_in(p, x0, x1, y0, y1, [&](std::size_t i, double x, double y) {
         if (x >= x0 && x < x1 && y >= y0 && y < y1) f.solid[i] = 1, ++cells;
       });
       if (cells == 0) fail_no_cell(ob, "obstacle");
@@ -440,7 +485,7 @@ MemoryEstimate lbm_memory(const LbmParams& p, int ranks, bool carry) {
   const std::uint64_t rows = (static_cast<std::uint64_t>(p.rows) + ranks - 1) / ranks;
   const std::uint64_t lattice = (rows + (ranks > 1 ? 5 : 2)) * (p.cols + 2);
   MemoryEstimate m;
-  m.size_key = "$.lbm.grid.rows, $.lbm.grid.cols";
+  m.size_key = "$.lbm.grid (rows x cols)";
   // two sets of 9 populations, depth now and next, bed, the wet/dry outflow limiter (floats), the
   // solid flags (bytes)
   m.add("lattice", lattice * (18 * 4 + 4 * 4 + 1));

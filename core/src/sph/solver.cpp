@@ -459,11 +459,13 @@ MemoryEstimate sph_memory(const SphScene& scene) {
   // (n, 3) positions; the grid's two cell arrays; the heightfield's columns (height, normals)
   // (DFSPH: 10 more, dfsph.hpp)
   const double arrays = p.method == SphMethod::dfsph ? 32 : 22;
-  m.add("particles", static_cast<std::uint64_t>(particles * (arrays * 4 + 2 * 4 + 3 * 4)));
-  m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4));
-  m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4));
+  m.add("particles", static_cast<std::uint64_t>(particles * (arrays * 4 + 2 * 4 + 3 * 4)),
+        "$.sph.fluid (its blocks' volume / $.sph.spacing_m^3)");
+  m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4), "$.sph.container_m / $.sph.spacing_m");
+  m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4), "$.sph.container_m / $.sph.surface.cell_m");
   // 9 float arrays per boundary particle (system.hpp) and the 7 of its sample
-  m.add("boundary particles", static_cast<std::uint64_t>(boundary_estimate(p) * 16 * 4));
+  m.add("boundary particles", static_cast<std::uint64_t>(boundary_estimate(p) * 16 * 4),
+        "$.sph.container_m and $.sph.obstacles / $.sph.spacing_m");
   return m;
 }
 

@@ -9,17 +9,30 @@
 
 namespace huygens {
 
-/// The bytes a scene's solver will allocate, by part.
+/// The bytes a scene's solver will allocate, by part, each with the scene key that sets its size.
 struct MemoryEstimate {
-  /// JSON path of the key that sets the size (named in a refusal), e.g. "$.grid.n".
+  struct Part {
+    std::string name;
+    /// (unit: byte)
+    std::uint64_t bytes = 0;
+    /// JSON path of the key that sets this part's size, e.g. "$.ships"; "" = size_key.
+    std::string key;
+  };
+  /// JSON path of the key that sets the size of the parts added without a key of their own, e.g.
+  /// "$.grid.n".
   std::string size_key;
-  /// (part, bytes) in allocation order (unit: byte).
-  std::vector<std::pair<std::string, std::uint64_t>> parts;
+  /// The parts in allocation order.
+  std::vector<Part> parts;
 
-  void add(std::string part, std::uint64_t bytes) { parts.emplace_back(std::move(part), bytes); }
+  void add(std::string part, std::uint64_t bytes, std::string key = "") {
+    parts.push_back({std::move(part), bytes, std::move(key)});
+  }
   std::uint64_t total() const;
   /// "1.25 GiB (propagator 0.75 GiB, stokes 0.5 GiB)".
   std::string summary() const;
+  /// What a refusal names: the largest part, its size and the key that sets it, e.g. "the largest
+  /// part, ship patches (13.7 GiB), is set by $.ships". "" for an empty estimate.
+  std::string largest_part() const;
 };
 
 /// Bytes this process can still take: /proc/meminfo's MemAvailable, capped by the cgroup's
@@ -28,8 +41,8 @@ struct MemoryEstimate {
 /// HUYGENS_MAX_MEMORY_GIB when set (a cap a user chooses on a shared machine).
 std::uint64_t available_memory();
 
-/// Throws ResourceError ("needs X GiB, Y GiB available; KEY sets the size") when the estimate
-/// is larger than available_memory().
+/// Throws ResourceError ("needs X GiB (parts), Y GiB available; the largest part, P (Z GiB), is set
+/// by KEY") when the estimate is larger than available_memory().
 void require_memory(const MemoryEstimate& need);
 
 /// While one lives (on any thread), require_memory() refuses nothing: `huygens run --dry-run`
