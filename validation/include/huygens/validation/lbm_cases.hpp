@@ -65,6 +65,8 @@ struct LbmRitterResult {
   double front_threshold_exact_m = 0;
   /// Where the depth falls to 0.01 h0, measured (interpolated) and exact (unit: m from the dam).
   double x01_m = 0, x01_exact_m = 0;
+  /// Where the depth falls to 0.1 h0, measured (interpolated) and exact (unit: m from the dam).
+  double x10_m = 0, x10_exact_m = 0;
   /// Smallest depth over the run's end state (unit: m) and the relative volume change.
   double min_depth_m = 0, volume_drift = 0;
   /// Cell size (unit: m), steps and the simulated time (unit: s).
