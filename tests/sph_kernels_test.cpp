@@ -70,7 +70,9 @@ TEST(SphKernels, LatticeSumsInTheRoleEachKernelIsUsed) {
   int reported = 0;
   for (const auto& r : sph_kernel_rows(2.0f)) {
     reported += !r.judged;
-    if (r.judged) EXPECT_TRUE(r.pass) << r.quantity << " measured " << r.measured << " error " << r.error;
+    if (r.judged) {
+      EXPECT_TRUE(r.pass) << r.quantity << " measured " << r.measured << " error " << r.error;
+    }
   }
   EXPECT_EQ(reported, 3);
 }
