@@ -164,15 +164,16 @@ void DumpWriter::save_meta() {
   agreed_on_root(dir_ + "/meta.json", [&] { write_file_atomic(dir_ + "/meta.json", meta_.dump(2) + "\n", sync_); });
 }
 
-// run.pvd: every VTK file meta.json lists, at its dump's time; the grid files are part 0, the
-// particles part 1 (ParaView shows both of a time as the blocks of one data set).
+// run.pvd: every VTK file meta.json lists, at its dump's time; the grid files are part 0 "grid", the
+// particles part 1 "particles" (ParaView reads both of a time as the two blocks of one data set).
 void DumpWriter::save_pvd() {
   std::vector<PvdDataSet> sets;
   for (const auto& d : meta_["dumps"])
     for (const auto& f : d["files"]) {
       const std::string name = f.get<std::string>();
       const bool vtu = name.ends_with(".vtu");
-      if (vtu || name.ends_with(".vti")) sets.push_back({d["time_s"].get<double>(), vtu ? 1 : 0, name});
+      if (vtu || name.ends_with(".vti"))
+        sets.push_back({d["time_s"].get<double>(), vtu ? 1 : 0, vtu ? "particles" : "grid", name});
     }
   const std::string path = dir_ + "/run.pvd";
   agreed_on_root(path, [&] { write_file_atomic(path, pvd_text(sets), sync_); });

@@ -16,8 +16,9 @@ namespace {
 const char* byte_order() { return std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian"; }
 
 std::string file_head(const char* type) {
-  return fmt("<?xml version=\"1.0\"?>\n<VTKFile type=\"%s\" version=\"1.0\" byte_order=\"%s\" header_type=\"UInt64\">\n",
-             type, byte_order());
+  return fmt(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"%s\" version=\"1.0\" byte_order=\"%s\" header_type=\"UInt64\">\n", type,
+      byte_order());
 }
 
 template <class T>
@@ -128,7 +129,8 @@ void write_vti(const std::string& path, const std::vector<OutputField>& fields, 
   std::string xml = file_head("ImageData");
   xml += fmt("  <ImageData WholeExtent=\"%s\" Origin=\"%.17g %.17g 0\" Spacing=\"%.17g %.17g %.17g\">\n",
              extent.c_str(), grid.x0_m, grid.y0_m, grid.dx_m, grid.dx_m, grid.dx_m);
-  xml += "    <Piece Extent=\"" + extent + "\">\n" + point_data(arrays, comps, names) + "    </Piece>\n  </ImageData>\n";
+  xml +=
+      "    <Piece Extent=\"" + extent + "\">\n" + point_data(arrays, comps, names) + "    </Piece>\n  </ImageData>\n";
   AtomicFile f(path, sync);
   f.write(xml);
   data.write(f);
@@ -177,7 +179,8 @@ void write_vtu(const std::string& path, const std::vector<OutputField>& fields, 
 std::string pvd_text(const std::vector<PvdDataSet>& sets) {
   std::string out = file_head("Collection") + "  <Collection>\n";
   for (const auto& s : sets)
-    out += fmt("    <DataSet timestep=\"%.17g\" part=\"%d\" file=\"%s\"/>\n", s.time_s, s.part, s.file.c_str());
+    out += fmt("    <DataSet timestep=\"%.17g\" part=\"%d\" name=\"%s\" file=\"%s\"/>\n", s.time_s, s.part,
+               s.name.c_str(), s.file.c_str());
   return out + "  </Collection>\n</VTKFile>\n";
 }
 

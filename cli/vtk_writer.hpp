@@ -28,12 +28,13 @@ void write_vti(const std::string& path, const std::vector<OutputField>& fields, 
 /// for fields that do not fit.
 void write_vtu(const std::string& path, const std::vector<OutputField>& fields, Sync sync);
 
-/// One data set of a .pvd collection: its time (unit: s), its part (one per kind of file, so
-/// ParaView shows the parts of a time as the blocks of one data set) and its file, relative to the .pvd.
+/// One data set of a .pvd collection: its time (unit: s), its part and name (one per kind of file:
+/// ParaView reads the data sets of one time as the blocks of one data set, named so) and its file,
+/// relative to the .pvd.
 struct PvdDataSet {
   double time_s = 0.0;
   int part = 0;
-  std::string file;
+  std::string name, file;
 };
 
 /// The text of a .pvd collection that lists `sets` in order.

@@ -146,6 +146,8 @@ def check_pvd(folder, expected):
     check(root.tag == "VTKFile" and root.get("type") == "Collection", "run.pvd is a VTKFile of type Collection")
     listed = [(float(d.get("timestep")), int(d.get("part")), d.get("file")) for d in root.iter("DataSet")]
     check(listed == expected, f"run.pvd lists the {len(expected)} VTK files of meta.json with their times and parts")
+    names = [d.get("name") for d in root.iter("DataSet")]
+    check(names == [("particles" if p else "grid") for _, p, _ in listed], "run.pvd names part 0 grid, 1 particles")
     times = sorted({t for t, _, _ in listed})
     check(len(times) > 1 and [t for t, p, _ in listed if p == 0] == sorted(t for t, p, _ in listed if p == 0),
           f"run.pvd's times rise: {', '.join(f'{t:.4g}' for t in times)} s")
