@@ -14,15 +14,23 @@
 #include "huygens/common/npy.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
+#include "vtk_writer.hpp"
 
 namespace huygens {
 
-// The names a dump writes: meta.json and FIELD_NNNNNN[_J].npy (FIELD a lower-case identifier, the
-// step in six or more digits, J the display frame inside a step), each also with ".tmp". Any other
-// file in the folder (an input bed .npy, notes) is not a run's and is never removed.
+// The names a dump writes: meta.json, run.pvd and FIELD_NNNNNN[_J].npy|vti|vtu (FIELD a lower-case
+// identifier, the step in six or more digits, J the display frame inside a step), each also with
+// ".tmp". Any other file in the folder (an input bed .npy, notes) is not a run's and is never removed.
 bool is_run_file(const std::filesystem::path& p) {
-  static const std::regex name(R"((meta\.json|[a-z][a-z0-9_]*_[0-9]{6,}(_[0-9]+)?\.npy)(\.tmp)?)");
+  static const std::regex name(R"((meta\.json|run\.pvd|[a-z][a-z0-9_]*_[0-9]{6,}(_[0-9]+)?\.(npy|vti|vtu))(\.tmp)?)");
   return std::regex_match(p.filename().string(), name);
+}
+
+DumpFormat parse_dump_format(const std::string& text) {
+  if (text == "npy") return {true, false};
+  if (text == "vtk") return {false, true};
+  if (text == "both") return {true, true};
+  throw UsageError("--dump-format " + text + ": choose npy, vtk or both");
 }
 
 namespace {
@@ -90,6 +98,15 @@ void write_field(const std::string& path, const OutputField& f, Sync sync) {
   write_npy(path, f.data, f.shape, sync == Sync::to_disk ? Sync::file : sync);  // the folder: once a dump
 }
 
+// Where the grid's samples sit: meta.json's "dx" and "visible"/"origin_m" (every solver's meta()).
+VtkGrid vtk_grid(const nlohmann::json& meta) {
+  const auto& o = meta.at("visible").at("origin_m");
+  return {meta.at("dx").get<double>(), o.at(0).get<double>(), o.at(1).get<double>()};
+}
+
+// The files that list others (meta.json, run.pvd): removed first by --overwrite.
+bool is_index_file(const std::filesystem::path& p) { return p.filename() == "meta.json" || p.filename() == "run.pvd"; }
+
 // Runs fn on rank 0 alone (meta.json, the folder) and agrees on the outcome: when it throws
 // IoError there, every rank throws one (no rank waits in a collective for one that stopped).
 void agreed_on_root(const std::string& what, const std::function<void()>& fn) {
@@ -118,21 +135,22 @@ void DumpWriter::prepare(const std::string& dir, bool overwrite) {
     throw UsageError("the dump folder " + dir + " holds another run's files (" + std::to_string(old.size()) +
                      ", e.g. " + old.front().filename().string() + "): choose an empty folder or add --overwrite");
   comm::barrier();  // every rank looked before rank 0 removes
-  // meta.json goes first, and its removal reaches the disk before the files it lists go: a crash
-  // part-way leaves unlisted files, never a meta.json that lists a removed one
-  std::stable_partition(old.begin(), old.end(), [](const fs::path& p) { return p.filename() == "meta.json"; });
+  // meta.json and run.pvd go first, and their removal reaches the disk before the files they list
+  // go: a crash part-way leaves unlisted files, never a meta.json or run.pvd that lists a removed one
+  std::stable_partition(old.begin(), old.end(), is_index_file);
   agreed_on_root(dir, [&] {
     for (const auto& p : old) {
       if (!fs::remove(p, ec)) throw IoError(p.string(), "cannot remove: " + ec.message());
-      if (p.filename() == "meta.json") sync_folder(dir, p.string());
+      if (is_index_file(p)) sync_folder(dir, p.string());
     }
     check_output_file(dir + "/meta.json");  // the folder takes a new file
   });
 }
 
-DumpWriter::DumpWriter(std::string dir, const std::string& scene_file, Solver& solver, Sync sync)
-    : dir_(std::move(dir)), solver_(solver), sync_(sync), meta_(solver.meta()) {
+DumpWriter::DumpWriter(std::string dir, const std::string& scene_file, Solver& solver, Sync sync, DumpFormat format)
+    : dir_(std::move(dir)), solver_(solver), sync_(sync), format_(format), meta_(solver.meta()) {
   meta_["scene"] = scene_file;
+  meta_["dump_format"] = format_.npy && format_.vtk ? "both" : format_.vtk ? "vtk" : "npy";
   meta_["dumps"] = nlohmann::json::array();
   meta_["complete"] = false;
   meta_["ranks"] = comm::size();
@@ -146,14 +164,49 @@ void DumpWriter::save_meta() {
   agreed_on_root(dir_ + "/meta.json", [&] { write_file_atomic(dir_ + "/meta.json", meta_.dump(2) + "\n", sync_); });
 }
 
+// run.pvd: every VTK file meta.json lists, at its dump's time; the grid files are part 0 "grid", the
+// particles part 1 "particles" (ParaView reads both of a time as the two blocks of one data set).
+void DumpWriter::save_pvd() {
+  std::vector<PvdDataSet> sets;
+  for (const auto& d : meta_["dumps"])
+    for (const auto& f : d["files"]) {
+      const std::string name = f.get<std::string>();
+      const bool vtu = name.ends_with(".vtu");
+      if (vtu || name.ends_with(".vti"))
+        sets.push_back({d["time_s"].get<double>(), vtu ? 1 : 0, vtu ? "particles" : "grid", name});
+    }
+  const std::string path = dir_ + "/run.pvd";
+  agreed_on_root(path, [&] { write_file_atomic(path, pvd_text(sets), sync_); });
+}
+
+// The grid fields as grid<stem>.vti, the per-particle fields as particles<stem>.vtu.
+void DumpWriter::write_vtk(const std::vector<OutputField>& fields, const std::string& stem, nlohmann::json& files) {
+  std::vector<OutputField> grid, particles;
+  for (const auto& f : fields) (f.per_particle ? particles : grid).push_back(f);
+  const Sync sync = sync_ == Sync::to_disk ? Sync::file : sync_;  // the folder: once a dump
+  if (!grid.empty()) {
+    files.push_back("grid" + stem + ".vti");
+    written_.push_back(dir_ + "/" + files.back().get<std::string>());
+    write_vti(written_.back(), grid, vtk_grid(meta_), sync);
+  }
+  if (!particles.empty()) {
+    files.push_back("particles" + stem + ".vtu");
+    written_.push_back(dir_ + "/" + files.back().get<std::string>());
+    write_vtu(written_.back(), particles, sync);
+  }
+}
+
 void DumpWriter::write_entry(nlohmann::json entry, const std::vector<OutputField>& fields, const std::string& suffix) {
   entry["files"] = nlohmann::json::array();
-  for (const auto& f : fields) {
-    const std::string name = fmt("%s_%06lld%s.npy", f.name.c_str(), entry["step"].get<long long>(), suffix.c_str());
-    written_.push_back(dir_ + "/" + name);
-    write_field(written_.back(), f, sync_);
-    entry["files"].push_back(name);
-  }
+  const std::string stem = fmt("_%06lld%s", entry["step"].get<long long>(), suffix.c_str());
+  if (format_.npy)
+    for (const auto& f : fields) {
+      const std::string name = f.name + stem + ".npy";
+      written_.push_back(dir_ + "/" + name);
+      write_field(written_.back(), f, sync_);
+      entry["files"].push_back(name);
+    }
+  if (format_.vtk) write_vtk(fields, stem, entry["files"]);
   entry["index"] = static_cast<long long>(meta_["dumps"].size());
   meta_["dumps"].push_back(entry);
 }
@@ -172,6 +225,9 @@ void DumpWriter::dump() {
     meta_["dumps"] = before;
     throw;
   }
+  // after meta.json: run.pvd never lists a dump that meta.json does not (a crash or a failed write
+  // between the two leaves it one dump behind)
+  if (format_.vtk) save_pvd();
 }
 
 void DumpWriter::write_step() {

@@ -1,5 +1,6 @@
 // huygens: run a scene without graphics, or validate the physics against analytic solutions.
-//   huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--overwrite] [--stats-json FILE] [--fast-plans]
+//   huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--dump-format npy|vtk|both] [--overwrite]
+//                     [--stats-json FILE] [--fast-plans] [--no-fsync]
 //   huygens validate [CASE...] [--list]
 // Exit codes (program.hpp, README): 0 ok, 1 a validation case failed or a write failed, 2 bad
 // scene or usage, 3 a non-finite value (or a negative LBM depth), 4 not enough memory, 130/143 stopped
@@ -16,8 +17,8 @@ namespace huygens {
 
 namespace {
 const char* const kUsage =
-    "usage: huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--overwrite] [--stats-json FILE]\n"
-    "                         [--fast-plans] [--no-fsync]\n"
+    "usage: huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--dump-format npy|vtk|both]\n"
+    "                         [--overwrite] [--stats-json FILE] [--fast-plans] [--no-fsync]\n"
     "       huygens run SCENE --dry-run [--ranks P] [--rank-memory GIB]\n"
     "       mpirun -np P huygens run SCENE ...   (MPI build: P ranks, docs/scale.md)\n"
     "       huygens validate [CASE...] [--list]\n"
@@ -31,8 +32,13 @@ const char* const kUsage =
     "          time.display_per_step = D > 1 it also writes the D - 1 displayed frames\n"
     "          interpolated inside the step before each dumped step as <field>_NNNNNN_J.npy\n"
     "          (NNNNNN = the step they follow, J = 1..D-1, time (NNNNNN + J/D) dt); meta.json\n"
-    "          marks them \"interpolated\": true with \"s\": J/D. A DIR that holds another run's\n"
-    "          files (meta.json, <field>_NNNNNN*.npy) is refused; --overwrite removes those\n"
+    "          marks them \"interpolated\": true with \"s\": J/D. --dump-format vtk (or both: vtk\n"
+    "          and npy; default npy) writes VTK XML files for ParaView instead: the grid fields\n"
+    "          as DIR/grid_NNNNNN[_J].vti (image data, spacing and origin in metres), SPH\n"
+    "          particles as DIR/particles_NNNNNN.vtu (pos as points; vel, density, pressure),\n"
+    "          and DIR/run.pvd, the time series ParaView opens (one process only, not under\n"
+    "          mpirun). A DIR that holds another run's files (meta.json, run.pvd,\n"
+    "          <field>_NNNNNN*.npy|vti|vtu) is refused; --overwrite removes those\n"
     "          files first and leaves every other file in DIR. Each dump is flushed to the disk\n"
     "          (fsync of each file, then of DIR) before meta.json lists it, so the files\n"
     "          meta.json lists survive a power cut; --no-fsync skips the flushes (scratch runs:\n"

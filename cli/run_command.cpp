@@ -33,8 +33,10 @@ struct RunArgs {
   long long steps = 100, every = 1;
   bool overwrite = false, dry_run = false;
   Sync sync = Sync::to_disk;  // --no-fsync: Sync::cache
-  int ranks = 0;              // --ranks (0: not given)
-  double rank_gib = 0.0;      // --rank-memory (0: this machine's available memory)
+  DumpFormat format;          // --dump-format
+  bool format_given = false;
+  int ranks = 0;          // --ranks (0: not given)
+  double rank_gib = 0.0;  // --rank-memory (0: this machine's available memory)
   RunOptions options;
 };
 
@@ -52,7 +54,10 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
       a.steps = parse_int_arg(w, value(), 0, kMaxSteps);
     else if (w == "--dump")
       a.dump_dir = nonempty_arg(w, value());
-    else if (w == "--dump-every")
+    else if (w == "--dump-format") {
+      a.format = parse_dump_format(value());
+      a.format_given = true;
+    } else if (w == "--dump-every")
       a.every = parse_int_arg(w, value(), 1, kMaxSteps);
     else if (w == "--stats-json")
       a.stats_file = nonempty_arg(w, value());
@@ -80,6 +85,9 @@ bool parse_run_args(int argc, char** argv, RunArgs& a) {
   if (a.scene_file.empty()) throw UsageError("run needs a SCENE (a scene file or a shipped scene's name)");
   if ((a.ranks || a.rank_gib > 0) && !a.dry_run)
     throw UsageError("--ranks and --rank-memory size a --dry-run (a run's ranks are mpirun -np P)");
+  if (a.format_given && a.dump_dir.empty()) throw UsageError("--dump-format sets the format of --dump DIR; add it");
+  if (a.format.vtk && comm::size() > 1)
+    throw UsageError("--dump-format vtk and both write from one process only; under mpirun dump npy");
   return true;
 }
 
@@ -228,7 +236,7 @@ void report(const RunArgs& a, Solver& solver, double wall, int rc) {
   if (!a.dump_dir.empty()) std::printf("dumps: %s (meta.json)\n", a.dump_dir.c_str());
 }
 
-// --stats-json must not name the scene file or a file the dump writes (meta.json, *.npy in DIR): it
+// --stats-json must not name the scene file or a file the dump writes (meta.json, *.npy, ... in DIR): it
 // replaced them when the run ended, with exit code 0 (a scene turned into stats, a dump's meta.json
 // that was not one).
 void check_outputs_apart(const RunArgs& a) {
@@ -241,7 +249,7 @@ void check_outputs_apart(const RunArgs& a) {
   const fs::path stats_dir = fs::weakly_canonical(fs::absolute(a.stats_file).parent_path(), ec);
   if (!ec && stats_dir == fs::weakly_canonical(fs::absolute(a.dump_dir), ec) && !ec)
     throw UsageError("--stats-json " + a.stats_file + " is a file the dump writes in " + a.dump_dir +
-                     " (meta.json, *.npy); name another file");
+                     " (meta.json, run.pvd, *.npy, *.vti, *.vtu); name another file");
 }
 
 }  // namespace
@@ -277,7 +285,7 @@ int cmd_run(int argc, char** argv) {
   }
   print_header(a, *solver);
   std::unique_ptr<DumpWriter> dumps;
-  if (!a.dump_dir.empty()) dumps = std::make_unique<DumpWriter>(a.dump_dir, a.scene_file, *solver, a.sync);
+  if (!a.dump_dir.empty()) dumps = std::make_unique<DumpWriter>(a.dump_dir, a.scene_file, *solver, a.sync, a.format);
   const auto t0 = std::chrono::steady_clock::now();
   const int rc = run_steps(a, *solver, dumps.get());
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -13,6 +13,7 @@ packages=(
   libgl-dev libegl-dev libgl1-mesa-dri libegl-mesa0 mesa-utils
   xvfb xauth
   python3 python3-numpy python3-matplotlib
+  python3-vtk9  # VTK's own readers for the ParaView output test (tests/vtk_output_test.py)
 )
 
 missing=()

@@ -65,14 +65,15 @@ fs::path scene(const fs::path& dir, const std::string& water = "{}", int n = 64)
   return p;
 }
 
-// The dumps meta.json lists, and the files in the folder besides meta.json.
+// The dumps meta.json lists, and the files in the folder besides meta.json and run.pvd.
 void expect_listed_equals_present(const fs::path& dumps) {
   const auto meta = nlohmann::json::parse(slurp(dumps / "meta.json"));
   std::set<std::string> listed, present;
   for (const auto& d : meta["dumps"])
     for (const auto& f : d["files"]) listed.insert(f.get<std::string>());
   for (const auto& e : fs::directory_iterator(dumps))
-    if (e.path().filename() != "meta.json") present.insert(e.path().filename().string());
+    if (e.path().filename() != "meta.json" && e.path().filename() != "run.pvd")
+      present.insert(e.path().filename().string());
   EXPECT_EQ(listed, present);
 }
 
@@ -82,7 +83,8 @@ TEST(Cli, NumbersOnTheCommandLineAreCheckedWithTheirRange) {
   const fs::path d = work_dir("numbers");
   scene(d);
   for (const char* bad : {"--steps 99999999999999999999", "--steps 9223372036854775808", "--steps -1", "--steps 1e3",
-                          "--steps ''", "--dump-every 0", "--dump ''", "--stats-json ''", "--nosuch"}) {
+                          "--steps ''", "--dump-every 0", "--dump ''", "--stats-json ''", "--nosuch",
+                          "--dump out --dump-format vtu", "--dump-format vtk"}) {
     const Result r = run(d, std::string("run scene.json ") + bad);
     EXPECT_EQ(r.code, 2) << bad << ": " << r.output;
     EXPECT_EQ(r.output.rfind("huygens: ", 0), 0u) << bad << ": " << r.output;
@@ -140,6 +142,21 @@ TEST(Cli, ADumpFolderOfAnotherRunIsRefusedUnlessOverwrite) {
   }
   expect_listed_equals_present(d / "out");
   EXPECT_EQ(nlohmann::json::parse(slurp(d / "out" / "meta.json"))["dumps"].size(), 3u);
+}
+
+// The VTK files (--dump-format both) are listed in meta.json and are the run's files: a second run
+// is refused, --overwrite removes them with run.pvd.
+TEST(Cli, VtkDumpsAreListedAndOverwrittenLikeTheNpy) {
+  const fs::path d = work_dir("vtk");
+  scene(d);
+  ASSERT_EQ(run(d, "run scene.json --steps 4 --dump-every 2 --dump out --dump-format both --fast-plans").code, 0);
+  for (const char* name : {"eta_000004.npy", "grid_000004.vti", "run.pvd"}) EXPECT_TRUE(fs::exists(d / "out" / name));
+  expect_listed_equals_present(d / "out");
+  EXPECT_EQ(nlohmann::json::parse(slurp(d / "out" / "meta.json"))["dump_format"], "both");
+  EXPECT_EQ(run(d, "run scene.json --steps 2 --dump out --dump-format vtk --fast-plans").code, 2);
+  ASSERT_EQ(run(d, "run scene.json --steps 2 --dump out --overwrite --fast-plans").code, 0);
+  EXPECT_FALSE(fs::exists(d / "out" / "run.pvd"));
+  expect_listed_equals_present(d / "out");  // no .vti left
 }
 
 // A full disk, made real by the file-size limit (ulimit -f, 1 KiB blocks): each dump (48^2

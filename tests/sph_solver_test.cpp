@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -270,13 +271,20 @@ TEST(SphScene, ShippedScenesBuildAndRun) {
     auto solver = make_solver(load_scene(huygens::test::scenes_dir() + "/" + name));
     for (int k = 0; k < 3; ++k) solver->step();
     const auto out = solver->outputs();
-    ASSERT_EQ(out.size(), 2u);
-    EXPECT_EQ(out[0].name, "pos");
-    EXPECT_EQ(out[0].shape[1], 3u);
-    EXPECT_EQ(out[0].data.size(), out[0].shape[0] * 3);
-    EXPECT_EQ(out[1].name, "eta");
-    EXPECT_EQ(out[1].shape[0], solver->height_rows());
-    EXPECT_EQ(out[1].shape[1], solver->height_cols());
+    ASSERT_EQ(out.size(), 5u);
+    const std::size_t n = out[0].shape[0];
+    for (std::size_t i = 0; i < 4; ++i) {
+      EXPECT_EQ(out[i].name, std::vector<std::string>({"pos", "vel", "density", "pressure"})[i]);
+      EXPECT_TRUE(out[i].per_particle);
+      EXPECT_EQ(out[i].shape[0], n);
+      EXPECT_EQ(out[i].data.size(), n * (i < 2 ? 3 : 1));
+    }
+    EXPECT_EQ(out[2].shape.size(), 1u) << "one density per particle";
+    EXPECT_GT(*std::min_element(out[2].data.begin(), out[2].data.end()), 0.0f);
+    EXPECT_EQ(out[4].name, "eta");
+    EXPECT_FALSE(out[4].per_particle);
+    EXPECT_EQ(out[4].shape[0], solver->height_rows());
+    EXPECT_EQ(out[4].shape[1], solver->height_cols());
     EXPECT_EQ(solver->meta()["dt"]["steps"], 3);
     EXPECT_EQ(solver->stats().find("surface") >= 0, true);
   }
@@ -302,12 +310,14 @@ TEST(SphScene, ParticlesForTheViewerArePositionsAndSpeeds) {
   const std::span<const float> p = solver->particles();
   const auto out = solver->outputs();
   ASSERT_EQ(p.size(), out[0].shape[0] * 4);
-  // the same positions as the "pos" dump (which is in id order; particles() in memory order)
-  std::vector<std::array<float, 3>> a, b;
+  // the same positions and speeds as the "pos" and "vel" dumps (in id order; particles() in memory order)
+  std::vector<std::array<float, 4>> a, b;
   float fastest = 0.0f;
   for (std::size_t i = 0; i < p.size() / 4; ++i) {
-    a.push_back({p[4 * i], p[4 * i + 1], p[4 * i + 2]});
-    b.push_back({out[0].data[3 * i], out[0].data[3 * i + 1], out[0].data[3 * i + 2]});
+    a.push_back({p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]});
+    const float* v = &out[1].data[3 * i];
+    b.push_back({out[0].data[3 * i], out[0].data[3 * i + 1], out[0].data[3 * i + 2],
+                 std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])});
     EXPECT_GE(p[4 * i + 3], 0.0f);
     fastest = std::max(fastest, p[4 * i + 3]);
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -54,6 +55,18 @@ RenderObstacle render_obstacle(const SphObstacle& o) {
   return ro;
 }
 
+// The arrays `comps` (one per component, in the current particle order) interleaved in particle-id
+// order: out[k ids[i] + c] = comps[c][i], k = comps.size().
+void by_id(std::span<const std::uint32_t> ids, std::initializer_list<std::span<const float>> comps,
+           std::vector<float>& out) {
+  const std::size_t k = comps.size();
+  std::size_t c = 0;
+  for (const auto& a : comps) {
+    for (std::size_t i = 0; i < ids.size(); ++i) out[k * ids[i] + c] = a[i];
+    ++c;
+  }
+}
+
 class SphSolver final : public Solver {
  public:
   explicit SphSolver(const SphScene& sc) : scene_(sc), sys_(sc.params) {
@@ -67,6 +80,9 @@ class SphSolver final : public Solver {
     sph_heightfield_init(scene_.surface, sc.params.container_m[0], sc.params.container_m[1], hf_);
     sys_.stats()[surface_stage_].bytes = (hf_.height.size() + hf_.normal.size()) * sizeof(float);
     pos_.assign(sys_.count() * 3, 0.f);
+    vel_.assign(sys_.count() * 3, 0.f);
+    density_.assign(sys_.count(), 0.f);
+    pressure_.assign(sys_.count(), 0.f);
   }
   MemoryEstimate memory() const override { return sph_memory(scene_); }
 
@@ -83,10 +99,20 @@ class SphSolver final : public Solver {
     return t;
   }
 
+  /// pos and vel (n, 3), density and pressure (n) in particle-id order, eta (rows, cols). The density
+  /// and pressure are those of the last step's density pass (the positions before its move; at
+  /// step 0 those of the initial positions).
   std::vector<OutputField> outputs() override {
+    const std::size_t n = sys_.count();
     sys_.positions_by_id(pos_);
+    by_id(sys_.ids(), {sys_.vx(), sys_.vy(), sys_.vz()}, vel_);
+    by_id(sys_.ids(), {sys_.density()}, density_);
+    by_id(sys_.ids(), {sys_.pressure()}, pressure_);
     auto h = height();
-    return {OutputField{"pos", {sys_.count(), 3}, std::span<const float>(pos_)},
+    return {OutputField{"pos", {n, 3}, std::span<const float>(pos_), {}, 0, true},
+            OutputField{"vel", {n, 3}, std::span<const float>(vel_), {}, 0, true},
+            OutputField{"density", {n}, std::span<const float>(density_), {}, 0, true},
+            OutputField{"pressure", {n}, std::span<const float>(pressure_), {}, 0, true},
             OutputField{"eta", {hf_.rows, hf_.cols}, h}};
   }
 
@@ -127,9 +153,21 @@ class SphSolver final : public Solver {
             {"tait_gamma", p.tait_gamma},
             {"grid", {{"rows", hf_.rows}, {"cols", hf_.cols}, {"dx", hf_.cell_m}}},
             {"dx", hf_.cell_m},
-            {"visible", {{"row0", 0}, {"row1", hf_.rows}, {"col0", 0}, {"col1", hf_.cols}}},
+            {"visible",
+             {{"row0", 0},
+              {"row1", hf_.rows},
+              {"col0", 0},
+              {"col1", hf_.cols},
+              {"origin_m", {0.5 * hf_.cell_m, 0.5 * hf_.cell_m}},
+              {"note", "origin_m is (x, y) of point (0, 0), the centre of heightfield cell (0, 0)"}}},
             {"eta_reference", "height of the iso-surface above the floor z = 0 (m); 0 where dry"},
             {"pos_order", "particle id (stable across dumps)"},
+            {"fields",
+             {{"pos", "particle positions (m), (n, 3), particle-id order"},
+              {"vel", "particle velocities (m/s), (n, 3)"},
+              {"density", "particle densities of the last density pass (kg/m^3), (n)"},
+              {"pressure", "particle pressures of the last density pass (Pa), (n)"},
+              {"eta", "heightfield (m), (rows, cols)"}}},
             {"surface", {{"iso", scene_.surface.iso}, {"radius_m", scene_.surface.radius_m}}},
             {"dt",
              {{"steps", d.count},
@@ -201,8 +239,8 @@ class SphSolver final : public Solver {
   SphScene scene_;
   SphSystem sys_;
   SphHeightfield hf_;
-  std::vector<float> pos_;
-  std::vector<float> particles_;  // x, y, z, |v| per particle (particles())
+  std::vector<float> pos_, vel_, density_, pressure_;  // outputs(), in particle-id order
+  std::vector<float> particles_;                       // x, y, z, |v| per particle (particles())
   int surface_stage_ = -1;
   bool surface_valid_ = false;
 };
@@ -456,10 +494,10 @@ MemoryEstimate sph_memory(const SphScene& scene) {
   MemoryEstimate m;
   m.size_key = "$.sph.spacing_m";
   // 22 float arrays per particle (system.hpp), the grid's cell and order per particle, a dump's
-  // (n, 3) positions; the grid's two cell arrays; the heightfield's columns (height, normals)
-  // (DFSPH: 10 more, dfsph.hpp)
+  // (n, 3) positions and velocities, (n) densities and pressures; the grid's two cell arrays; the
+  // heightfield's columns (height, normals) (DFSPH: 10 more, dfsph.hpp)
   const double arrays = p.method == SphMethod::dfsph ? 32 : 22;
-  m.add("particles", static_cast<std::uint64_t>(particles * (arrays * 4 + 2 * 4 + 3 * 4)),
+  m.add("particles", static_cast<std::uint64_t>(particles * (arrays * 4 + 2 * 4 + 8 * 4)),
         "$.sph.fluid (its blocks' volume / $.sph.spacing_m^3)");
   m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4), "$.sph.container_m / $.sph.spacing_m");
   m.add("heightfield", static_cast<std::uint64_t>(columns * 4 * 4), "$.sph.container_m / $.sph.surface.cell_m");

@@ -26,12 +26,15 @@ namespace huygens {
 /// its C-order shape, `data` a view valid until the next step. On MPI ranks (comm.hpp) a rank
 /// holds rows [row0, row0 + shape[0]) of the field's `global_shape` (the dump writes them at
 /// their place in one file); empty `global_shape` means the rank holds it all (one process).
+/// A grid field has shape (rows, cols) or (rows, cols, k) on the visible grid; a `per_particle`
+/// field has shape (n) or (n, k), row i the particle of id i ("pos" holds their positions).
 struct OutputField {
   std::string name;
   std::vector<std::size_t> shape;
   std::span<const float> data;
   std::vector<std::size_t> global_shape = {};
   std::size_t row0 = 0;
+  bool per_particle = false;
 
   /// The shape of the whole field (global_shape, or shape when it is empty).
   const std::vector<std::size_t>& full_shape() const { return global_shape.empty() ? shape : global_shape; }
