@@ -46,3 +46,7 @@ class CommandRefused(ValueError):
     def __init__(self, message: str, command: str = ""):
         super().__init__(message)
         self.command = command
+
+
+for _cls in (SceneError, RunStopped, MemoryRefused, CommandRefused):
+    _cls.__module__ = "huygens"  # tracebacks say huygens.SceneError
