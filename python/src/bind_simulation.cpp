@@ -72,6 +72,16 @@ The ship leaves its scene path now and heads for (x_m, y_m), arriving with
 velocity (vx_mps, vy_mps). Huygens scenes with ships only; CommandRefused
 otherwise (no ships, an index out of range).)";
 
+constexpr const char* kToggleDoc = R"(Switches a feature on or off as the viewer's check boxes do.
+
+Huygens: 'stokes' (the second-order Stokes height) and 'wind' (a scene with a
+wind sea). CommandRefused for anything else.)";
+
+constexpr const char* kParamDoc = R"(Sets a solver parameter as the viewer does.
+
+SPH: 'gravity_x', 'gravity_y', 'gravity_z' (m/s^2, |g| <= 1000: tilts or
+shakes the container). CommandRefused for anything else.)";
+
 void bind_stepping(py::class_<Simulation>& c) {
   c.def(py::init<const py::object&, bool>(), py::arg("scene"), py::kw_only(), py::arg("fast_plans") = false)
       .def("step", &Simulation::step, py::arg("n") = 1, kStepDoc)
@@ -105,12 +115,8 @@ void bind_commands(py::class_<Simulation>& c) {
         py::arg("depth_m") = 0.01, kDropDoc)
       .def("steer_ship", &Simulation::steer_ship, py::arg("ship"), py::arg("x_m"), py::arg("y_m"),
            py::arg("vx_mps") = 0.0, py::arg("vy_mps") = 0.0, kSteerDoc)
-      .def("toggle", &Simulation::toggle, py::arg("feature"), py::arg("on") = true,
-           "Switches a feature on or off as the viewer's check boxes do: Huygens 'stokes' (second-order height) "
-           "and 'wind' (a scene with a wind sea). CommandRefused for anything else.")
-      .def("set_param", &Simulation::set_param, py::arg("name"), py::arg("value"),
-           "Sets a solver parameter as the viewer does: SPH 'gravity_x', 'gravity_y', 'gravity_z' (m/s^2, "
-           "|g| <= 1000: tilts or shakes the container). CommandRefused for anything else.")
+      .def("toggle", &Simulation::toggle, py::arg("feature"), py::arg("on") = true, kToggleDoc)
+      .def("set_param", &Simulation::set_param, py::arg("name"), py::arg("value"), kParamDoc)
       .def("ship_poses", &Simulation::ship_poses,
            "Where the ships are now (steered or on their path): dicts with x_m, y_m, heading_rad, speed_mps.");
 }

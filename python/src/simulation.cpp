@@ -126,9 +126,9 @@ std::vector<OutputField> Simulation::outputs() {
 
 std::vector<std::string> Simulation::field_names() {
   Busy busy(*this);
-  std::vector<std::string> names;
-  for (const OutputField& f : outputs()) names.push_back(f.name);
-  return names;
+  if (names_.empty())  // a solver's fields are fixed: asked once (outputs() refreshes the buffers)
+    for (const OutputField& f : outputs()) names_.push_back(f.name);
+  return names_;
 }
 
 namespace {

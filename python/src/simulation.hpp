@@ -77,6 +77,7 @@ class Simulation {
   RunOptions options_;
   std::shared_ptr<Solver> solver_;
   std::optional<RunStoppedError> stop_;
+  std::vector<std::string> names_;  ///< field_names(), once
   mutable std::atomic<bool> busy_{false};
 };
 
