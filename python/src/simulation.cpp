@@ -27,11 +27,21 @@ MemoryEstimate one_process_memory(const Scene& scene) {
 
 }  // namespace
 
-Simulation::Busy::Busy(const Simulation& s) : s_(s) {
-  if (s_.busy_.exchange(true))
-    throw std::runtime_error("this huygens.Simulation is in use by another thread (a call has not returned)");
+Simulation::Busy::Busy(const Simulation& s, bool reading) : s_(s) {
+  if (s_.busy_.exchange(true)) {
+    if (reading && s_.owner_.load() == std::this_thread::get_id()) return;  // between two steps of its own call
+    throw std::runtime_error(
+        "this huygens.Simulation is in use by another thread (or by the call a signal handler interrupted): "
+        "one call at a time");
+  }
+  s_.owner_.store(std::this_thread::get_id());
+  owns_ = true;
 }
-Simulation::Busy::~Busy() { s_.busy_.store(false); }
+Simulation::Busy::~Busy() {
+  if (!owns_) return;
+  s_.owner_.store(std::thread::id());
+  s_.busy_.store(false);
+}
 
 Simulation::Simulation(const py::object& scene, bool fast_plans) : scene_(scene_from(scene, &label_)) {
   options_.measure_plans = !fast_plans;
@@ -205,16 +215,22 @@ void Simulation::set_param(const std::string& name, double value) {
   apply(cmd::SetParam{CommandName(name), value}, fmt("set_param('%s', %g)", name.c_str(), value));
 }
 
-double Simulation::time_s() const { return solver().time(); }
-std::int64_t Simulation::step_count() const { return solver().steps(); }
+double Simulation::time_s() const {
+  Busy busy(*this, true);
+  return solver().time();
+}
+std::int64_t Simulation::step_count() const {
+  Busy busy(*this, true);
+  return solver().steps();
+}
 
 py::object Simulation::meta() const {
-  Busy busy(*this);
+  Busy busy(*this, true);
   return to_python(solver().meta());
 }
 
 py::list Simulation::stats() const {
-  Busy busy(*this);
+  Busy busy(*this, true);
   py::list out;
   for (const StageStat& s : solver().stats().all())
     out.append(py::dict(py::arg("stage") = s.name, py::arg("calls") = s.calls, py::arg("total_ms") = s.ns * 1e-6,
@@ -224,14 +240,14 @@ py::list Simulation::stats() const {
 }
 
 py::dict Simulation::memory() const {
-  Busy busy(*this);
+  Busy busy(*this, true);
   py::dict d = estimate_dict(solver().memory());
   d["available_bytes"] = available_memory();
   return d;
 }
 
 py::list Simulation::ship_poses() const {
-  Busy busy(*this);
+  Busy busy(*this, true);
   std::vector<ShipState> poses(256);
   poses.resize(solver().ship_poses(poses));
   py::list out;
@@ -242,6 +258,8 @@ py::list Simulation::ship_poses() const {
 }
 
 std::string Simulation::repr() const {
+  if (busy_.load() && owner_.load() != std::this_thread::get_id())
+    return "<huygens.Simulation " + label_ + " (" + scene_.solver + "), in use by another thread>";
   if (!solver_) return "<huygens.Simulation " + label_ + " (" + scene_.solver + "), no solver>";
   return fmt("<huygens.Simulation %s (%s): step %lld, t = %.6g s%s>", label_.c_str(), scene_.solver.c_str(),
              static_cast<long long>(solver_->steps()), solver_->time(), stop_ ? ", stopped" : "");

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "errors.hpp"
@@ -53,15 +54,18 @@ class Simulation {
 
  private:
   /// Marks the simulation busy for one call (a second thread gets RuntimeError, not a data race).
+  /// `reading`: a read of the state may also come from the thread whose call is under way (a
+  /// signal handler Python runs between two steps, when the state is whole).
   class Busy {
    public:
-    explicit Busy(const Simulation& s);
+    explicit Busy(const Simulation& s, bool reading = false);
     ~Busy();
     Busy(const Busy&) = delete;
     Busy& operator=(const Busy&) = delete;
 
    private:
     const Simulation& s_;
+    bool owns_ = false;
   };
   std::int64_t advance(std::int64_t max_steps, double until_s);
   /// One step with the GIL released; a non-finite value or a dry LBM cell becomes RunStoppedError.
@@ -79,6 +83,7 @@ class Simulation {
   std::optional<RunStoppedError> stop_;
   std::vector<std::string> names_;  ///< field_names(), once
   mutable std::atomic<bool> busy_{false};
+  mutable std::atomic<std::thread::id> owner_{};
 };
 
 void bind_simulation(py::module_& m);

@@ -84,3 +84,28 @@ def test_a_second_thread_is_refused_while_one_steps_and_ctrl_c_stops_it():
     assert seen and "in use by another thread" in seen[0]
     n = sim.step_count
     assert n > 0 and sim.step(1) == 1 and np.isfinite(sim.field("eta")).all()
+
+
+def test_a_signal_handler_reads_the_state_between_steps_but_changes_nothing():
+    sim = huygens.Simulation(small_ring(), fast_plans=True)
+    seen = {}
+
+    def handler(signum, frame):
+        seen["step"], seen["time"] = sim.step_count, sim.time_s  # the state is whole between two steps
+        try:
+            sim.drop(7.5, 7.5)
+        except RuntimeError as e:
+            seen["drop"] = str(e)
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, handler)
+    try:
+        timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):
+            sim.run(until_s=math.inf)
+        timer.join()
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert seen["step"] == sim.step_count > 0 and seen["time"] == sim.time_s
+    assert "one call at a time" in seen["drop"]
