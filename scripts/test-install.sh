@@ -34,4 +34,19 @@ cmake --build "$tmp/build" -j "$(nproc)" >"$tmp/build.log" 2>&1 || {
   fail "building tests/install"
 }
 "$tmp/build/huygens-install-test" || fail "tests/install's program"
+# the Python package (HUYGENS_PYTHON): installed under the prefix where the interpreter it was built
+# for looks (lib/python3.X/dist-packages or site-packages), importable from there alone
+python=$(sed -n 's/^Python3_EXECUTABLE:FILEPATH=//p' "$build/CMakeCache.txt")
+if grep -q '^HUYGENS_PYTHON:BOOL=ON' "$build/CMakeCache.txt"; then
+  echo "== install test: import huygens from the installed package ($python)"
+  init=$(find "$tmp/prefix" -path '*/huygens/__init__.py' | head -n 1)
+  [ -n "$init" ] || fail "no huygens/__init__.py installed"
+  (cd "$tmp" && PYTHONPATH=$(dirname "$(dirname "$init")") "$python" -c "
+import huygens
+assert huygens.__file__.startswith('$tmp/prefix'), huygens.__file__
+s = huygens.Simulation('ring', fast_plans=True)
+s.run(until_s=0.1)
+print('installed huygens:', huygens.__file__, s.field('eta').shape)
+") || fail "importing the installed Python package"
+fi
 echo "== install test: passed"

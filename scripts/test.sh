@@ -12,9 +12,9 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-deps.sh"
 # habits checked before the build: every C++ file clang-formatted, no function over 80 lines in
-# core/, validation/, viz/, cli/ and benchmarks/ (tests are lists of cases and may run longer)
+# core/, validation/, viz/, cli/, benchmarks/ and python/ (tests are lists of cases and may run longer)
 bash "$root/scripts/check-format.sh"
-(cd "$root" && python3 scripts/function_lengths.py core validation viz cli benchmarks)
+(cd "$root" && python3 scripts/function_lengths.py core validation viz cli benchmarks python)
 # The Release suite and the bench are built for the AVX2 + FMA baseline most users' CPUs have
 # (x86-64-v3; HUYGENS_ISA=native measures this machine's own ISA), so CI measures what they get.
 export HUYGENS_ISA=${HUYGENS_ISA:-x86-64-v3}
