@@ -8,6 +8,11 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/install-deps.sh"
 bash "$root/scripts/build.sh"
 build=${HUYGENS_BUILD_DIR:-$root/build}
+# the Python package where Debian's python3 finds it (/usr/local/lib/python3.*/dist-packages), so
+# `python3 -c "import huygens"` works after this set-up; as root only (else: PYTHONPATH=build/python)
+if [ "$(id -u)" -eq 0 ] && [ -d "$build/python/huygens" ]; then
+  cmake --install "$build" --component python >/dev/null && echo "== python3: import huygens (installed under /usr/local) =="
+fi
 scene=${HUYGENS_SCENE:-$root/scenes/default.json}
 if [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
   exec "$build/viz/app/huygens-viz" "$scene" "$@"
