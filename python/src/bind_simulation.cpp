@@ -45,8 +45,9 @@ RunStopped).)";
 constexpr const char* kFieldDoc = R"(A field of the current state as a NumPy float32 array (C order, SI units).
 
 The names (Simulation.fields): Huygens "eta" (m, rows = y, cols = x, the
-visible region); SPH "pos" (particles x 3, m, by particle id) and "eta" (the
-surface height above the floor, m); LBM "h" (depth, m), "u" (rows x cols x 2,
+visible region); SPH "pos" (particles x 3, m, by particle id), "vel" (particles
+x 3, m/s), "density" (kg/m^3), "pressure" (the density pass's) and "eta" (the surface height
+above the floor, m); LBM "h" (depth, m), "u" (rows x cols x 2,
 m/s) and "eta" (h + bed, m). An unknown name raises KeyError.
 
 copy=False (default): a read-only view of the solver's own output buffer, no

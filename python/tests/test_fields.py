@@ -12,10 +12,12 @@ def data_pointer(a):
     return a.__array_interface__["data"][0]
 
 
-@pytest.mark.parametrize("scene,names", [(small_ring, ["eta"]), (small_sph, ["pos", "eta"]), ("dam_break", ["h", "u", "eta"])])
+@pytest.mark.parametrize("scene,names", [(small_ring, ["eta"]), (small_sph, ["pos", "vel", "density", "pressure", "eta"]),
+                                         ("dam_break", ["h", "u", "eta"])])
 def test_every_field_is_a_view_of_the_solvers_buffer(scene, names):
     sim = huygens.Simulation(scene() if callable(scene) else scene, fast_plans=True)
     sim.step(2)
+    assert sim.fields == names
     for name in names:
         a = sim.field(name)
         assert a.dtype == np.float32 and a.flags.c_contiguous

@@ -71,7 +71,7 @@ def test_meta_stats_memory_repr(ring):
 
 def test_sph_and_lbm_fields():
     sph = huygens.Simulation(small_sph())
-    assert sph.solver == "sph" and sph.fields == ["pos", "eta"]
+    assert sph.solver == "sph" and sph.fields == ["pos", "vel", "density", "pressure", "eta"]
     pos = sph.field("pos")
     assert pos.ndim == 2 and pos.shape[1] == 3 and pos.shape[0] == sph.meta["particles"]
     sph.run(until_s=0.01)
