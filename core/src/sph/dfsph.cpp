@@ -57,7 +57,7 @@ bool SphSystem::dfsph_factors_pass() {
       const float xi = X[i], yi = Y[i], zi = Z[i];
       const int cx = grid_.ix(xi), cy = grid_.iy(yi), cz = grid_.iz(zi);
       std::uint32_t k = pos, near = 0;
-      float fb[8] = {};
+      float fb[9] = {};
       cur.visit(cx, cy, cz, [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
         if (bnd) {
           sph_dfsph_boundary_range(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, grav, fb);
@@ -78,6 +78,7 @@ bool SphSystem::dfsph_factors_pass() {
         }
       });
       if (!fits) k = pos;  // this pass is repeated with a larger list
+      dvok_[i] = float(k - pos) + fb[8] >= float(p_.dfsph_min_neighbours) ? 1.f : 0.f;
       const std::uint32_t end = (k + 7u) & ~7u;
       for (std::uint32_t u = k; u < end; ++u) nj_[u] = static_cast<std::uint32_t>(i);
       nbeg_[i] = pos;
@@ -129,7 +130,8 @@ void SphSystem::dfsph_kick(float dt) {
 
 // Drho_i/Dt = -m 48/(pi h^5) (sum_j f(q) v_ij . x_ij + v_i . gb_i)  (BK15 eq. 6, boundary at rest);
 // density: kappa_i += (rho_i + dt Drho_i/Dt - rho0) alpha_i / dt^2 (eq. 12-13), error max(0, rho* - rho0) / rho0;
-// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0; both kept >= 0;
+// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0, Drho_i/Dt taken as 0
+// for a particle with too few neighbours (dvok_ = 0); both kept >= 0;
 // with the Chebyshev weight wc: kappa_i = max(0, wc (kappa_Jacobi - kappa_prev) + kappa_prev) (Wang 2015).
 double SphSystem::dfsph_update(float dt, bool density, float wc) {
   const std::size_t n = n_;
@@ -145,7 +147,8 @@ double SphSystem::dfsph_update(float dt, bool density, float wc) {
     float s = VX[i] * gbx_[i] + VY[i] * gby_[i] + VZ[i] * gbz_[i];
     if (alpha_[i] != 0.f) s += sph_dfsph_list_divergence(l, i, VX, VY, VZ);
     const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
-    const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho;
+    // the divergence-free solve leaves out the particles with too few neighbours (dvok_ = 0)
+    const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho * dvok_[i];
     const float inc = (oneside ? std::max(res, 0.f) : res) * alpha_[i] * w;
     const float kj = std::max(kap[i] + inc, 0.f);
     const float k = wc == 1.f ? kj : std::max(wc * (kj - prev[i]) + prev[i], 0.f);
@@ -168,7 +171,7 @@ int SphSystem::dfsph_solve(float dt, bool density) {
   const float wf = p_.dfsph_warm_start;
   bool warm = false;
   for (std::size_t i = 0; i < n_; ++i) {
-    kap[i] *= wf;
+    kap[i] *= density ? wf : wf * dvok_[i];  // no warm start where the divergence is not solved
     kick_[i] = kap[i] * irho_[i];
     warm = warm || kap[i] != 0.f;
   }

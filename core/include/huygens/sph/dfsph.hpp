@@ -29,6 +29,11 @@
 // the smooth modes (eigenvalues near 0, the hydrostatic pressure of a deep column) converge ~2x faster.
 // Warm start (BK15 section 4.3): kappa and kappa^v persist per particle (sorted with it); each solve
 // first applies dfsph_warm_start (0.8) times the last step's values, then iterates on them.
+// Particle deficiency (SPlisHSPlasH's rule): a particle with fewer than dfsph_min_neighbours (20) fluid and
+// boundary neighbours within h takes no part in the divergence-free solve (its Drho/Dt counts as 0, its
+// kappa^v stays 0, so nothing is warm-started): at the edge of a wall's support a lone particle's gradient
+// sum, hence its change of density per kappa, is near 0 and its kappa^v huge, and the next step's warm
+// start applied it to a steeper gradient (docs/sph.md, "DFSPH at the walls").
 // Time step (BK15 section 4.3): dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max).
 // Boundary particles (boundary.hpp, sampled volume V_b = w_b m / rho0): b adds m_b W_ib to the density
 // and, at rest, m_b v_i . grad W_ib to Drho_i/Dt. Its pressure in the pair term
@@ -76,20 +81,22 @@ inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, flo
 
 /// Boundary factor sums of particle (xi, yi, zi) over boundary candidates, each weighted by W (the mass
 /// ratio): acc[0] value sum sum W w, acc[1..3] gradient sum sum W f x_ib, acc[4] the first moment sum W f r^2,
-/// acc[5..7] the hydrostatic sum sum W f (g . x_bi) x_ib (g = gravity, m/s^2).
+/// acc[5..7] the hydrostatic sum sum W f (g . x_bi) x_ib (g = gravity, m/s^2), acc[8] the candidates within h.
 [[gnu::noinline]] inline void sph_dfsph_boundary_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
                                                        float yi, float zi, float h, float h2, float rmin,
-                                                       const float g[3], float acc[8]) {
+                                                       const float g[3], float acc[9]) {
   const float rmin2 = rmin * rmin, ih = 1.f / h;
   const float *X = v.X, *Y = v.Y, *Z = v.Z, *W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
   const float g0 = g[0], g1 = g[1], g2 = g[2];
-  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;
-#pragma omp simd reduction(+ : sw, gx, gy, gz, sm, hx, hy, hz) aligned(X, Y, Z, W : 32)
+  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f, sn = 0.f;
+#pragma omp simd reduction(+ : sw, gx, gy, gz, sm, hx, hy, hz, sn) aligned(X, Y, Z, W : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
     const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
+    const bool in = (r2 < h2) & (j >= b) & (j < e);
     float w, f;
-    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    sph_cubic_shapes(in, r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    sn += sph_keep(in, 1.f);
     sw += w * W[j];
     const float gr = f * W[j];
     gx += gr * dx;
@@ -109,6 +116,7 @@ inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, flo
   acc[5] += hx;
   acc[6] += hy;
   acc[7] += hz;
+  acc[8] += sn;
 }
 
 /// The DFSPH neighbour list of one step (SphSystem::dfsph_factors builds it with the factors, at the

@@ -58,6 +58,13 @@ struct SphParams {
   float dfsph_warm_start = 0.8f;
   /// DFSPH: most Jacobi iterations of either solve in one step (unit: 1).
   int dfsph_max_iterations = 100;
+  /// DFSPH: fewest neighbours within the support, fluid and boundary particles, for a particle to take part in the
+  /// divergence-free solve (and its warm start) (unit: 1). A spray particle whose only neighbours are boundary
+  /// particles at the edge of its support has a gradient sum near 0, so a factor alpha ~3e9 times the bulk's and
+  /// a huge kappa^v, which the warm start applied to the next step's steeper gradient: it was thrown across the slab at
+  /// a speed that grew until the step went non-finite (docs/sph.md, "DFSPH at the walls"). 20: SPlisHSPlasH's rule for
+  /// the same support (4 particle radii) ("in case of particle deficiency do not perform a divergence solve").
+  int dfsph_min_neighbours = 20;
   /// Initial particle spacing, the lattice constant of the fluid blocks (unit: m).
   float spacing_m = 0.01f;
   /// Support radius h as a multiple of the spacing (unit: 1). 2.0 keeps the poly6 lattice sum within 1 %.

@@ -198,8 +198,9 @@ class SphSystem {
   std::vector<std::uint32_t> id_, tid_;
   // DFSPH per particle (sized by allocate() with method dfsph): alpha, kappa, kappa^v (warm start,
   // sorted with the particle), K = change of kappa / rho of the last update, the boundary gradient
-  // sum gb, the error of the last update, the sort buffers of kappa and kappa^v
-  AlignedBuffer<float> alpha_, kappa_, kappav_, kick_, gbx_, gby_, gbz_, err_, tkappa_, tkappav_;
+  // sum gb, the error of the last update, the sort buffers of kappa and kappa^v; 1 where the particle
+  // takes part in the divergence-free solve, else 0 (SphParams::dfsph_min_neighbours)
+  AlignedBuffer<float> alpha_, kappa_, kappav_, kick_, gbx_, gby_, gbz_, err_, tkappa_, tkappav_, dvok_;
   // DFSPH neighbour list (dfsph.hpp SphDfsphList): slots [nbeg_[i], nend_[i]) of nj_ (index) and ngx_, ngy_,
   // ngz_ (f x_ij); capacity nlist_ slots (allocate(): 56 per particle at h = 2 dx; doubled when a step overflows it);
   // nflag_: the candidate flags, per thread
