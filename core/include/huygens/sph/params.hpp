@@ -58,6 +58,13 @@ struct SphParams {
   float dfsph_warm_start = 0.8f;
   /// DFSPH: most Jacobi iterations of either solve in one step (unit: 1).
   int dfsph_max_iterations = 100;
+  /// DFSPH: contact range r_c of the walls and obstacles, as a multiple of the spacing (unit: 1; 0 = off). The
+  /// constant-density solve also keeps every fluid particle's centre r_c from each boundary particle at the end of the
+  /// step, by a push of the wall alone (dfsph.hpp, "Walls"). 0.9: above sqrt(3)/2 = 0.866, the distance from a wall
+  /// face to the four first-layer particles around a hollow of the layer, so the contact acts before a centre reaches
+  /// the face anywhere on it; 0.8 let centres 0.02-0.08 dx past the floor and the ceiling, 0.87 held them but failed
+  /// the hydrostatic column's stillness row (docs/sph.md, "DFSPH at the walls").
+  float dfsph_contact_range = 0.9f;
   /// DFSPH: fewest neighbours within the support, fluid and boundary particles, for a particle to take part in the
   /// divergence-free solve (and its warm start) (unit: 1). A spray particle whose only neighbours are boundary
   /// particles at the edge of its support has a gradient sum near 0, so a factor alpha ~3e9 times the bulk's and
