@@ -77,3 +77,11 @@ TEST(SphPhysics, DfsphKeepsEveryCentreInsideTheContainer) {
 TEST(SphPhysics, DfsphKeepsEveryCentreInsideTheContainer20Across) {
   expect_rows_pass(sph_containment_rows(20, 2.f, 4.f, 1.0, SphMethod::dfsph));
 }
+
+// WCSPH keeps every particle centre inside the container: 10 across, the column a high, in an 8a box, 1 s. With the
+// contact density's range at 0.8 dx (SphParams::wall_contact_range) a particle at rest density (p ~5 Pa) sank into a
+// hollow of the floor's first boundary layer, 0.87 dx from its four particles at the face: 0.02 dx below the floor
+// face at t = 1 s and still sinking. ~10-20 s on one thread.
+TEST(SphPhysics, WcsphKeepsEveryCentreInsideTheContainer) {
+  expect_rows_pass(sph_containment_rows(10, 1.f, 8.f, 1.0, SphMethod::wcsph));
+}

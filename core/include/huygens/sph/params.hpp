@@ -94,10 +94,12 @@ struct SphParams {
   /// Contact range r_c of the contact density, as a multiple of the spacing (unit: 1; 0 = off): a
   /// boundary particle nearer than r_c to a fluid particle compresses it in the pressure of their
   /// pair, by the excess of its kernel value over the one at r_c, on top of rho0 (forces.cpp,
-  /// SphSystem::compute_density). 0.8: below the closest approach of settled water to the first
-  /// boundary layer (0.88 dx), above the 0.71 dx from a 90-degree edge to its corner particle
-  /// (docs/sph.md, "Convex edges").
-  float wall_contact_range = 0.8f;
+  /// SphSystem::compute_density). 0.87: above sqrt(3)/2 = 0.866, the distance from a wall face to the
+  /// four first-layer particles around a hollow of the layer, so it acts before a centre reaches the face
+  /// anywhere on it (at 0.8 a particle at rest density sank into a hollow, 0.02 dx below the floor face
+  /// after 1 s, docs/sph.md "DFSPH at the walls"); above the 0.71 dx from a 90-degree edge to its corner
+  /// particle ("Convex edges"); at 0.9 the settled hydrostatic column (closest approach 0.84 dx) moved.
+  float wall_contact_range = 0.87f;
   /// Speed of sound c0 of the Tait equation; 0 = automatic, 10 sqrt(2 g H) with H the fluid height (unit: m/s).
   float sound_speed_mps = 0.f;
   /// Tait exponent gamma (unit: 1).
