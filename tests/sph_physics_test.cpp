@@ -59,3 +59,29 @@ TEST(SphPhysics, NoParticlePassesAnObstacleShort) {
     }
   EXPECT_EQ(asserted, 3);
 }
+
+// DFSPH keeps every particle centre inside the container (no clamp anywhere): a dam break of 10 particles across
+// a, columns 2a and a high, in a 4a box, 1 s (the surge, its impact on the end wall, the jet up it and onto the
+// ceiling, the return wave onto the back wall), every step. Measured (dx; < 0: the closest any centre came, from
+// inside): -0.15 and -0.11. Without the walls' contact in the constant-density solve (dfsph.hpp, "Walls") centres went
+// 0.25 and 0.19 dx beyond the ceiling, the end wall and the side walls; without the divergence solve's
+// particle-deficiency rule (SphParams::dfsph_min_neighbours) as well, the 2a column's run went non-finite at t =
+// 0.46 s. ~3 s on one thread.
+TEST(SphPhysics, DfsphKeepsEveryCentreInsideTheContainer) {
+  for (const float aspect : {2.f, 1.f}) expect_rows_pass(sph_containment_rows(10, aspect, 4.f, 1.0, SphMethod::dfsph));
+}
+
+// The same at 20 across, column 2a high: -0.11 dx (without the contact 0.24 dx beyond the side walls; without either
+// change 0.20 dx and non-finite at t = 0.53 s). ~12-25 s on one thread. 16 and 24 across and both columns: `huygens
+// validate sph_no_leakage_dfsph`.
+TEST(SphPhysics, DfsphKeepsEveryCentreInsideTheContainer20Across) {
+  expect_rows_pass(sph_containment_rows(20, 2.f, 4.f, 1.0, SphMethod::dfsph));
+}
+
+// WCSPH keeps every particle centre inside the container: 10 across, the column a high, in an 8a box, 1 s. With the
+// contact density's range at 0.8 dx (SphParams::wall_contact_range) a particle at rest density (p ~5 Pa) sank into a
+// hollow of the floor's first boundary layer, 0.87 dx from its four particles at the face: 0.02 dx below the floor
+// face at t = 1 s and still sinking. ~10-20 s on one thread.
+TEST(SphPhysics, WcsphKeepsEveryCentreInsideTheContainer) {
+  expect_rows_pass(sph_containment_rows(10, 1.f, 8.f, 1.0, SphMethod::wcsph));
+}

@@ -30,18 +30,18 @@ void SphSystem::dfsph_factors() {
 // Fluid neighbours from the cell rows into the list (positions stream, no kernel), then over the list:
 // rho_i = m 8/(pi h^3) (sum_j w_j w(q) + the near count, w(0) = 1); G_i = sum_j m_j grad W_ij =
 // -m 48/(pi h^5) (gf + gb); alpha_i = rho_i / (|G_i|^2 + (m 48/(pi h^5))^2 sum_fluid f^2 r^2) (BK15 eq. 11);
-// l_i from the moment.
+// l_i from the moment; the wall contact at the expected position x_i + dt_prev v_i (dfsph.hpp, "Walls").
 bool SphSystem::dfsph_factors_pass() {
   const std::size_t n = n_;
   const SphView bv{bx_.data(), by_.data(), bz_.data(), nullptr, nullptr,
                    nullptr,    nullptr,    nullptr,    nullptr, bw_.data()};
   const SphView v{x_.data(), y_.data(), z_.data(), nullptr, nullptr, nullptr, nullptr, nullptr, nullptr};
   const float *X = v.X, *Y = v.Y, *Z = v.Z;
-  const float h = h_, h2 = k_.h2, mk = mass_ * k_.cubic_k, rmin = 1e-6f * h_, rmin2 = rmin * rmin;
-  const float mg = mass_ * k_.cubic_g, mg2 = mg * mg;
-  const float mb = p_.dfsph_wall == SphDfsphWall::akinci ? 0.f : 1.f;
-  const float ch = p_.dfsph_wall == SphDfsphWall::hydrostatic ? mg / p_.rest_density_kgpm3 : 0.f;
+  const float h = h_, h2 = k_.h2, rmin = 1e-6f * h_, rmin2 = rmin * rmin;
   const float grav[3] = {g_[0], g_[1], g_[2]};
+  // the contact range, and the longest expected displacement whose boundary particles within r_c the cells hold
+  const float rc = std::min(std::max(p_.dfsph_contact_range, 0.f) * p_.spacing_m, 0.5f * h), dmax = h - rc;
+  const float q0 = h2 - rc * rc, tp = static_cast<float>(dt_prev_);
   bool fits = true;
 #pragma omp parallel if (n > kSphParallelMin) reduction(&& : fits)
   {
@@ -57,10 +57,13 @@ bool SphSystem::dfsph_factors_pass() {
       const float xi = X[i], yi = Y[i], zi = Z[i];
       const int cx = grid_.ix(xi), cy = grid_.iy(yi), cz = grid_.iz(zi);
       std::uint32_t k = pos, near = 0;
-      float fb[8] = {};
+      SphDfsphContact c{{tp * vx_[i], tp * vy_[i], tp * vz_[i]}, rc * rc, q0 * q0 * q0};
+      const float dl = std::sqrt(c.d[0] * c.d[0] + c.d[1] * c.d[1] + c.d[2] * c.d[2]);
+      for (float& dd : c.d) dd *= dl > dmax ? dmax / dl : 1.f;
+      float fb[13] = {};
       cur.visit(cx, cy, cz, [&](bool g, bool bnd, std::uint32_t b, std::uint32_t e) {
         if (bnd) {
-          sph_dfsph_boundary_range(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, grav, fb);
+          sph_dfsph_boundary_range(g ? sbv : bv, b, e, xi, yi, zi, h, h2, rmin, grav, c, fb);
         } else if (!fits || k + (e - b) + 8u > lim) {  // room for every candidate and the padding
           fits = false;
         } else if (g) {  // flags over the gathered copies, then the sorted indices of the flagged ones
@@ -85,27 +88,52 @@ bool SphSystem::dfsph_factors_pass() {
       float f[6] = {};
       sph_dfsph_list_factors(X, Y, Z, nj_.data(), ngx_.data(), ngy_.data(), ngz_.data(), pos, end, xi, yi, zi, h, h2,
                              rmin, f);
+      dfsph_store_factors(i, f, fb, near, k - pos, c.d);
       pos = end;
-      const float rho =
-          std::isfinite(xi + yi + zi) ? mk * (f[0] + float(near) + fb[0]) : std::numeric_limits<float>::quiet_NaN();
-      // the velocity change per kappa_i is along gf + 2 gb where the wall term mirrors p_i (counted twice)
-      const float gx = f[1] + fb[1], gy = f[2] + fb[2], gz = f[3] + fb[3];
-      const float gx2 = gx + mb * fb[1], gy2 = gy + mb * fb[2], gz2 = gz + mb * fb[3];
-      const float den = mg2 * (std::max(gx * gx2 + gy * gy2 + gz * gz2, 0.f) + f[4]);
-      rho_[i] = rho;
-      irho_[i] = 1.f / rho;
-      alpha_[i] = den > 1e-6f * rho * rho ? rho / den : 0.f;
-      corr_[i] = gradient_correction(f[5] + fb[4]);
-      gbx_[i] = fb[1];
-      gby_[i] = fb[2];
-      gbz_[i] = fb[3];
-      // the walls' hydrostatic share, p_b - p_i = rho0 g . (x_b - x_i): m 48/(pi h^5) / rho0 x the sum
-      ax_[i] = ch * fb[5];
-      ay_[i] = ch * fb[6];
-      az_[i] = ch * fb[7];
     }
   }
   return fits;
+}
+
+// rho_i, 1/rho_i, alpha_i, l_i, gb_i, the walls' hydrostatic push (into ax_), whether the particle takes part in the
+// divergence-free solve, and its wall contact (dfsph.hpp, "Walls"): E*(v) = cex - dt cg . v, the excess expanded to
+// first order about the expected position x_p = x_i + d, and ccd = 2 m 48/(pi h^5) cg . gb, so that the contact's
+// kick dv_i = dt m 48/(pi h^5) 2 Kc gb_i changes E* by -dt^2 ccd Kc.
+void SphSystem::dfsph_store_factors(std::size_t i, const float f[6], const float fb[13], std::uint32_t near,
+                                    std::uint32_t nf, const float d[3]) {
+  const float mk = mass_ * k_.cubic_k, mg = mass_ * k_.cubic_g, mg2 = mg * mg;
+  const float mb = p_.dfsph_wall == SphDfsphWall::akinci ? 0.f : 1.f;
+  const float ch = p_.dfsph_wall == SphDfsphWall::hydrostatic ? mg / p_.rest_density_kgpm3 : 0.f;
+  const float rho = std::isfinite(x_[i] + y_[i] + z_[i]) ? mk * (f[0] + float(near) + fb[0])
+                                                         : std::numeric_limits<float>::quiet_NaN();
+  // the velocity change per kappa_i is along gf + 2 gb where the wall term mirrors p_i (counted twice)
+  const float gx = f[1] + fb[1], gy = f[2] + fb[2], gz = f[3] + fb[3];
+  const float gx2 = gx + mb * fb[1], gy2 = gy + mb * fb[2], gz2 = gz + mb * fb[3];
+  const float den = mg2 * (std::max(gx * gx2 + gy * gy2 + gz * gz2, 0.f) + f[4]);
+  rho_[i] = rho;
+  irho_[i] = 1.f / rho;
+  alpha_[i] = den > 1e-6f * rho * rho ? rho / den : 0.f;
+  corr_[i] = gradient_correction(f[5] + fb[4]);
+  gbx_[i] = fb[1];
+  gby_[i] = fb[2];
+  gbz_[i] = fb[3];
+  // the walls' hydrostatic share, p_b - p_i = rho0 g . (x_b - x_i): m 48/(pi h^5) / rho0 x the sum
+  ax_[i] = ch * fb[5];
+  ay_[i] = ch * fb[6];
+  az_[i] = ch * fb[7];
+  dvok_[i] = float(nf) + fb[8] >= float(p_.dfsph_min_neighbours) ? 1.f : 0.f;
+  // the contact excess m 315/(64 pi h^9) sum, its gradient -6 m 315/(64 pi h^9) sum q^2 x_pb = -cg; the contact pushes
+  // along the wall term's gb, which must not be more than 75 degrees off cg
+  const float m6 = mass_ * k_.poly6_k, cx = 6.f * m6 * fb[10], cy = 6.f * m6 * fb[11], cz = 6.f * m6 * fb[12];
+  const float cd = 2.f * mg * (cx * fb[1] + cy * fb[2] + cz * fb[3]);
+  const float cn =
+      2.f * mg * std::sqrt((cx * cx + cy * cy + cz * cz) * (fb[1] * fb[1] + fb[2] * fb[2] + fb[3] * fb[3]));
+  const bool contact = p_.dfsph_contact_range > 0.f && fb[9] > 0.f && cd > 0.26f * cn;  // cos 75 degrees
+  cex_[i] = contact ? m6 * fb[9] + cx * d[0] + cy * d[1] + cz * d[2] : 0.f;
+  cgx_[i] = cx;
+  cgy_[i] = cy;
+  cgz_[i] = cz;
+  ccd_[i] = contact ? cd : 0.f;
 }
 
 // v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f(q) x_ij + c K_i gb_i)  (BK15 eq. 16; wall: c = 2 with p_b = p_i +
@@ -129,7 +157,8 @@ void SphSystem::dfsph_kick(float dt) {
 
 // Drho_i/Dt = -m 48/(pi h^5) (sum_j f(q) v_ij . x_ij + v_i . gb_i)  (BK15 eq. 6, boundary at rest);
 // density: kappa_i += (rho_i + dt Drho_i/Dt - rho0) alpha_i / dt^2 (eq. 12-13), error max(0, rho* - rho0) / rho0;
-// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0; both kept >= 0;
+// divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0, Drho_i/Dt taken as 0
+// for a particle with too few neighbours (dvok_ = 0); both kept >= 0;
 // with the Chebyshev weight wc: kappa_i = max(0, wc (kappa_Jacobi - kappa_prev) + kappa_prev) (Wang 2015).
 double SphSystem::dfsph_update(float dt, bool density, float wc) {
   const std::size_t n = n_;
@@ -145,7 +174,8 @@ double SphSystem::dfsph_update(float dt, bool density, float wc) {
     float s = VX[i] * gbx_[i] + VY[i] * gby_[i] + VZ[i] * gbz_[i];
     if (alpha_[i] != 0.f) s += sph_dfsph_list_divergence(l, i, VX, VY, VZ);
     const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
-    const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho;
+    // the divergence-free solve leaves out the particles with too few neighbours (dvok_ = 0)
+    const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho * dvok_[i];
     const float inc = (oneside ? std::max(res, 0.f) : res) * alpha_[i] * w;
     const float kj = std::max(kap[i] + inc, 0.f);
     const float k = wc == 1.f ? kj : std::max(wc * (kj - prev[i]) + prev[i], 0.f);
@@ -160,6 +190,28 @@ double SphSystem::dfsph_update(float dt, bool density, float wc) {
   return n ? sum / double(n) : 0.0;
 }
 
+// The wall contact after a kick of the constant-density solve (dfsph.hpp, "Walls"), particle by particle (a
+// Gauss-Seidel step after the Jacobi step of kappa): Kc_i = max(0, Kc_i + E*_i / (dt^2 ccd_i)), E*_i = cex - dt cg .
+// v_i the predicted contact excess (kg/m^3), and v_i += dt m 48/(pi h^5) 2 dKc gb_i (the wall term, as kappa's), which
+// sets E*_i to 0 where Kc_i > 0. Returns the particles with Kc > 0.
+std::size_t SphSystem::dfsph_contact(float dt) {
+  const std::size_t n = n_;
+  const float c = 2.f * dt * mass_ * k_.cubic_g, idt2 = 1.f / (dt * dt);
+  std::size_t active = 0;
+#pragma omp parallel for schedule(static) if (n > kSphParallelMin) reduction(+ : active)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (ccd_[i] == 0.f) continue;
+    const float e = cex_[i] - dt * (cgx_[i] * vx_[i] + cgy_[i] * vy_[i] + cgz_[i] * vz_[i]);
+    const float k = std::max(kc_[i] + e * idt2 / ccd_[i], 0.f), dk = c * (k - kc_[i]);
+    kc_[i] = k;
+    vx_[i] += dk * gbx_[i];
+    vy_[i] += dk * gby_[i];
+    vz_[i] += dk * gbz_[i];
+    active += k > 0.f;
+  }
+  return active;
+}
+
 // Warm start (BK15 section 4.3: the last step's kappa, scaled by dfsph_warm_start, applied first), then Jacobi
 // iterations until the mean error is at most the tolerance (at least 2 density / 1 divergence iterations, BK15 Alg.
 // 2-3), accelerated by Chebyshev's semi-iteration (Wang 2015, dfsph.hpp).
@@ -168,11 +220,12 @@ int SphSystem::dfsph_solve(float dt, bool density) {
   const float wf = p_.dfsph_warm_start;
   bool warm = false;
   for (std::size_t i = 0; i < n_; ++i) {
-    kap[i] *= wf;
+    kap[i] *= density ? wf : wf * dvok_[i];  // no warm start where the divergence is not solved
     kick_[i] = kap[i] * irho_[i];
     warm = warm || kap[i] != 0.f;
   }
   if (warm) dfsph_kick(dt);
+  if (density) std::fill(kc_.data(), kc_.data() + n_, 0.f);  // the contact starts from 0 in each step
   const double eta = density ? p_.dfsph_density_error : p_.dfsph_divergence_error;
   const int min_iter = density ? 2 : 1;
   int it = 0;
@@ -185,8 +238,10 @@ int SphSystem::dfsph_solve(float dt, bool density) {
     if (r2 > 0.f && it >= 2) wc = it == 2 ? 2.f / (2.f - r2) : 4.f / (4.f - r2 * wc);
     err = dfsph_update(dt, density, wc);
     dfsph_kick(dt);
+    if (density) contacts_ = dfsph_contact(dt);
     ++it;
   } while ((err > eta || it < min_iter) && it < p_.dfsph_max_iterations);
+  if (density) total_contacts_ += static_cast<std::int64_t>(contacts_);
   return it;
 }
 

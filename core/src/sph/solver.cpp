@@ -495,8 +495,8 @@ MemoryEstimate sph_memory(const SphScene& scene) {
   m.size_key = "$.sph.spacing_m";
   // 22 float arrays per particle (system.hpp), the grid's cell and order per particle, a dump's
   // (n, 3) positions and velocities, (n) densities and pressures; the grid's two cell arrays; the
-  // heightfield's columns (height, normals) (DFSPH: 10 more, dfsph.hpp)
-  const double arrays = p.method == SphMethod::dfsph ? 32 : 22;
+  // heightfield's columns (height, normals) (DFSPH: 17 more, system.hpp)
+  const double arrays = p.method == SphMethod::dfsph ? 39 : 22;
   m.add("particles", static_cast<std::uint64_t>(particles * (arrays * 4 + 2 * 4 + 8 * 4)),
         "$.sph.fluid (its blocks' volume / $.sph.spacing_m^3)");
   m.add("neighbour grid", static_cast<std::uint64_t>(cells * 2 * 4), "$.sph.container_m / $.sph.spacing_m");

@@ -20,7 +20,8 @@ void SphSystem::allocate(std::size_t n) {
     *b = AlignedBuffer<float>(n + 8);  // padded to whole vectors (masked lanes read the zero tail)
   const double occ = std::pow(double(p_.support_factor), 3);  // (h/dx)^3
   if (p_.method == SphMethod::dfsph) {
-    for (auto* b : {&alpha_, &kappa_, &kappav_, &kick_, &gbx_, &gby_, &gbz_, &err_, &tkappa_, &tkappav_})
+    for (auto* b : {&alpha_, &kappa_, &kappav_, &kick_, &gbx_, &gby_, &gbz_, &err_, &tkappa_, &tkappav_, &dvok_, &cex_,
+                    &cgx_, &cgy_, &cgz_, &ccd_, &kc_})
       *b = AlignedBuffer<float>(n + 8);
     nbeg_ = AlignedBuffer<std::uint32_t>(n + 8);
     nend_ = AlignedBuffer<std::uint32_t>(n + 8);

@@ -29,6 +29,11 @@
 // the smooth modes (eigenvalues near 0, the hydrostatic pressure of a deep column) converge ~2x faster.
 // Warm start (BK15 section 4.3): kappa and kappa^v persist per particle (sorted with it); each solve
 // first applies dfsph_warm_start (0.8) times the last step's values, then iterates on them.
+// Particle deficiency (SPlisHSPlasH's rule): a particle with fewer than dfsph_min_neighbours (20) fluid and
+// boundary neighbours within h takes no part in the divergence-free solve (its Drho/Dt counts as 0, its
+// kappa^v stays 0, so nothing is warm-started): at the edge of a wall's support a lone particle's gradient
+// sum, hence its change of density per kappa, is near 0 and its kappa^v huge, and the next step's warm
+// start applied it to a steeper gradient (docs/sph.md, "DFSPH at the walls").
 // Time step (BK15 section 4.3): dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max).
 // Boundary particles (boundary.hpp, sampled volume V_b = w_b m / rho0): b adds m_b W_ib to the density
 // and, at rest, m_b v_i . grad W_ib to Drho_i/Dt. Its pressure in the pair term
@@ -46,12 +51,32 @@
 // (k_i / rho_i + k_j / rho_j) equals (l_i p_i / rho_i^2 + l_j p_j / rho_j^2) of the WCSPH force with
 // the gradient correction l (system.hpp, here from the cubic spline's first moment), so p is the
 // field whose corrected gradient the solve applies.
+// Walls: the contact (dfsph_contact_range r_c = 0.9 dx). The density constraint alone does not keep a particle
+// out of a wall: a boundary particle counts in rho_i as a fluid particle would, so a particle whose own fluid
+// share is below what the wall adds at its face (0.5 rho0 there; a lone spray particle has 0.32, a sheet 0.5-0.7:
+// the surge tip, the jet up a wall) reaches rho0 only past the face, with kappa_i = 0 (expanding) until then, and a
+// particle whose fluid neighbours recede keeps rho0 while it moves into the wall (the density sum does not tell
+// wall from fluid); the divergence-free solve has the same blind spot and leaves gravity's part of the step to the
+// density solve. So the constant-density solve also keeps each particle's centre r_c from every boundary particle
+// at the end of the step: the contact excess E*_i = m 315/(64 pi h^9) sum_b w_b max(0, (h^2 - r_ib*^2)^3 - (h^2 -
+// r_c^2)^3) (WCSPH's contact density, forces.cpp, at r_ib*, the distance at the end of the step) must be 0. It is
+// taken to first order about the position the particle is expected to reach, x_p = x_i + dt_prev v_i (the factor
+// pass sums it and its gradient over the b nearer than r_c to x_p): E*(v) = cex - dt cg . v, so a particle is
+// caught on the step that would take it into the range, not one step later (at dt = dfsph_cfl dx / v_max a
+// particle moves up to 0.4 dx in a step). The wall pushes with a multiplier Kc_i of its own in the wall term only,
+// dv_i = dt m 48/(pi h^5) 2 Kc_i gb_i (as kappa's wall term: the wall's pressure on the particle, normal to the
+// wall, not against the fluid neighbours), Kc_i = max(0, Kc_i + E*_i / (dt^2 2 m 48/(pi h^5) cg . gb)), 0 where cg
+// and gb are more than 75 degrees apart; it is set particle by particle after each kick of the solve (a
+// Gauss-Seidel step after the Jacobi step of kappa), starting from 0 in every step. r_c = 0.9 dx: above sqrt(3)/2 dx,
+// the distance from a wall face to the four first-layer particles around a hollow of the layer, so the contact
+// acts before a centre reaches the face anywhere on it (docs/sph.md, "DFSPH at the walls").
 // Neighbour list: the factor pass, once per step after the sort, stores each particle's fluid neighbours
 // within the support (index j and f(q) x_ij, grad W_ij = -48/(pi h^5) f x_ij) in SphDfsphList; the
 // passes of both solves and the viscous term stream it (no cell search, no square root, no kernel in the
 // iterations). x_ij = x_i - x_j, r = |x_ij|, q = r / h, w(q), f(q) the cubic spline's value and gradient
 // shapes. Sums below (whole 8-float vectors, branch-free, in the style of forces.hpp):
-//   boundary    over boundary candidates: sum W w, sum W f x_ib, sum W f r^2, sum W f (g . x_bi) x_ib
+//   boundary    over boundary candidates: sum W w, sum W f x_ib, sum W f r^2, sum W f (g . x_bi) x_ib, the count,
+//               and over those nearer than r_c to x_p (q = h^2 - r_pb^2): sum W (q^3 - q_c^3), sum W q^2 x_pb
 //   list        the list of particle i from its candidates (flags, then the indices), then over it:
 //               sum w, sum f x_ij, sum f^2 r^2, sum f r^2 and the stored f x_ij
 //   divergence  sum f (v_i - v_j) . x_ij      (x -m 48/(pi h^5) = Drho/Dt)
@@ -74,41 +99,55 @@ inline void sph_cubic_shapes(bool in, float r2, float ri, float h, float ih, flo
   f = sph_keep(inner, 2.f - 3.f * q) + sph_keep(outer, om * om * h * ri);
 }
 
+/// The wall contact of one particle in a DFSPH step (dfsph.hpp header, "Walls"): the displacement d it is expected to
+/// take (m; dt_prev v, at most h - r_c), the squared contact range r_c^2 (m^2) and (h^2 - r_c^2)^3 (m^6).
+struct SphDfsphContact {
+  float d[3];
+  float rc2, q0c;
+};
+
 /// Boundary factor sums of particle (xi, yi, zi) over boundary candidates, each weighted by W (the mass
 /// ratio): acc[0] value sum sum W w, acc[1..3] gradient sum sum W f x_ib, acc[4] the first moment sum W f r^2,
-/// acc[5..7] the hydrostatic sum sum W f (g . x_bi) x_ib (g = gravity, m/s^2).
+/// acc[5..7] the hydrostatic sum sum W f (g . x_bi) x_ib (g = gravity, m/s^2), acc[8] the candidates within h;
+/// the contact at the expected position x_p = x_i + c.d over the candidates nearer than r_c to it, with q = h^2 -
+/// r_pb^2: acc[9] the excess sum W (q^3 - (h^2 - r_c^2)^3) (m^6) and acc[10..12] sum W q^2 x_pb (m^5).
 [[gnu::noinline]] inline void sph_dfsph_boundary_range(const SphView& v, std::uint32_t b, std::uint32_t e, float xi,
                                                        float yi, float zi, float h, float h2, float rmin,
-                                                       const float g[3], float acc[8]) {
-  const float rmin2 = rmin * rmin, ih = 1.f / h;
+                                                       const float g[3], const SphDfsphContact& c, float acc[13]) {
+  const float rmin2 = rmin * rmin, ih = 1.f / h, rc2 = c.rc2, q0c = c.q0c;
   const float *X = v.X, *Y = v.Y, *Z = v.Z, *W = v.W;
   const std::uint32_t b0 = b & ~7u, e0 = (e + 7u) & ~7u;
-  const float g0 = g[0], g1 = g[1], g2 = g[2];
-  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f;
-#pragma omp simd reduction(+ : sw, gx, gy, gz, sm, hx, hy, hz) aligned(X, Y, Z, W : 32)
+  const float g0 = g[0], g1 = g[1], g2 = g[2], d0 = c.d[0], d1 = c.d[1], d2 = c.d[2];
+  float sw = 0.f, gx = 0.f, gy = 0.f, gz = 0.f, sm = 0.f, hx = 0.f, hy = 0.f, hz = 0.f, sn = 0.f;
+  float se = 0.f, ex = 0.f, ey = 0.f, ez = 0.f;
+#pragma omp simd reduction(+ : sw, gx, gy, gz, sm, hx, hy, hz, sn, se, ex, ey, ez) aligned(X, Y, Z, W : 32)
   for (std::uint32_t j = b0; j < e0; ++j) {
     const auto [dx, dy, dz, r2] = sph_offset(X, Y, Z, j, xi, yi, zi);
+    const bool range = (j >= b) & (j < e), in = (r2 < h2) & range;
     float w, f;
-    sph_cubic_shapes((r2 < h2) & (j >= b) & (j < e), r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    sph_cubic_shapes(in, r2, sph_rsqrt(std::max(r2, rmin2)), h, ih, w, f);
+    sn += sph_keep(in, 1.f);
     sw += w * W[j];
     const float gr = f * W[j];
     gx += gr * dx;
     gy += gr * dy;
     gz += gr * dz;
     sm += gr * r2;
-    const float c = -gr * (g0 * dx + g1 * dy + g2 * dz);
-    hx += c * dx;
-    hy += c * dy;
-    hz += c * dz;
+    const float cg = -gr * (g0 * dx + g1 * dy + g2 * dz);
+    hx += cg * dx;
+    hy += cg * dy;
+    hz += cg * dz;
+    // the contact at the expected position: x_p - x_b = x_ib + d (poly6's shape: no square root)
+    const float px = dx + d0, py = dy + d1, pz = dz + d2, p2 = px * px + py * py + pz * pz;
+    const bool inc = (p2 < rc2) & range;
+    const float q = sph_keep(inc, h2 - p2), qw = q * W[j];
+    se += sph_keep(inc, (q * q * q - q0c) * W[j]);
+    ex += qw * q * px;
+    ey += qw * q * py;
+    ez += qw * q * pz;
   }
-  acc[0] += sw;
-  acc[1] += gx;
-  acc[2] += gy;
-  acc[3] += gz;
-  acc[4] += sm;
-  acc[5] += hx;
-  acc[6] += hy;
-  acc[7] += hz;
+  const float sums[13] = {sw, gx, gy, gz, sm, hx, hy, hz, sn, se, ex, ey, ez};
+  for (int k = 0; k < 13; ++k) acc[k] += sums[k];
 }
 
 /// The DFSPH neighbour list of one step (SphSystem::dfsph_factors builds it with the factors, at the

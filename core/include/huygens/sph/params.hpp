@@ -58,6 +58,20 @@ struct SphParams {
   float dfsph_warm_start = 0.8f;
   /// DFSPH: most Jacobi iterations of either solve in one step (unit: 1).
   int dfsph_max_iterations = 100;
+  /// DFSPH: contact range r_c of the walls and obstacles, as a multiple of the spacing (unit: 1; 0 = off). The
+  /// constant-density solve also keeps every fluid particle's centre r_c from each boundary particle at the end of the
+  /// step, by a push of the wall alone (dfsph.hpp, "Walls"). 0.9: above sqrt(3)/2 = 0.866, the distance from a wall
+  /// face to the four first-layer particles around a hollow of the layer, so the contact acts before a centre reaches
+  /// the face anywhere on it; 0.8 let centres 0.02-0.08 dx past the floor and the ceiling, 0.87 held them but failed
+  /// the hydrostatic column's stillness row (docs/sph.md, "DFSPH at the walls").
+  float dfsph_contact_range = 0.9f;
+  /// DFSPH: fewest neighbours within the support, fluid and boundary particles, for a particle to take part in the
+  /// divergence-free solve (and its warm start) (unit: 1). A spray particle whose only neighbours are boundary
+  /// particles at the edge of its support has a gradient sum near 0, so a factor alpha ~3e9 times the bulk's and
+  /// a huge kappa^v, which the warm start applied to the next step's steeper gradient: it was thrown across the slab at
+  /// a speed that grew until the step went non-finite (docs/sph.md, "DFSPH at the walls"). 20: SPlisHSPlasH's rule for
+  /// the same support (4 particle radii) ("in case of particle deficiency do not perform a divergence solve").
+  int dfsph_min_neighbours = 20;
   /// Initial particle spacing, the lattice constant of the fluid blocks (unit: m).
   float spacing_m = 0.01f;
   /// Support radius h as a multiple of the spacing (unit: 1). 2.0 keeps the poly6 lattice sum within 1 %.
@@ -80,10 +94,12 @@ struct SphParams {
   /// Contact range r_c of the contact density, as a multiple of the spacing (unit: 1; 0 = off): a
   /// boundary particle nearer than r_c to a fluid particle compresses it in the pressure of their
   /// pair, by the excess of its kernel value over the one at r_c, on top of rho0 (forces.cpp,
-  /// SphSystem::compute_density). 0.8: below the closest approach of settled water to the first
-  /// boundary layer (0.88 dx), above the 0.71 dx from a 90-degree edge to its corner particle
-  /// (docs/sph.md, "Convex edges").
-  float wall_contact_range = 0.8f;
+  /// SphSystem::compute_density). 0.87: above sqrt(3)/2 = 0.866, the distance from a wall face to the
+  /// four first-layer particles around a hollow of the layer, so it acts before a centre reaches the face
+  /// anywhere on it (at 0.8 a particle at rest density sank into a hollow, 0.02 dx below the floor face
+  /// after 1 s, docs/sph.md "DFSPH at the walls"); above the 0.71 dx from a 90-degree edge to its corner
+  /// particle ("Convex edges"); at 0.9 the settled hydrostatic column (closest approach 0.84 dx) moved.
+  float wall_contact_range = 0.87f;
   /// Speed of sound c0 of the Tait equation; 0 = automatic, 10 sqrt(2 g H) with H the fluid height (unit: m/s).
   float sound_speed_mps = 0.f;
   /// Tait exponent gamma (unit: 1).

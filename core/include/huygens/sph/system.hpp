@@ -63,6 +63,10 @@ class SphSystem {
   /// their totals over all steps (unit: 1; 0 with WCSPH).
   int dfsph_divergence_iterations() const { return div_iter_; }
   int dfsph_density_iterations() const { return dens_iter_; }
+  /// DFSPH: particles that the wall contact (SphParams::dfsph_contact_range) pushed at the end of the last step's
+  /// constant-density solve, and the sum of these counts over all steps (unit: 1; 0 with WCSPH).
+  std::size_t dfsph_contacts() const { return contacts_; }
+  std::int64_t dfsph_total_contacts() const { return total_contacts_; }
   std::int64_t dfsph_total_iterations() const { return total_iter_; }
 
   // State, in the current (cell-sorted) order. Valid until the next step.
@@ -159,8 +163,15 @@ class SphSystem {
   void dfsph_factors();
   /// One factor pass; false (and nothing usable) when the neighbour list overflowed its capacity.
   bool dfsph_factors_pass();
+  /// Stores the factors of particle i from its fluid sums f (sph_dfsph_list_factors) and boundary sums fb
+  /// (sph_dfsph_boundary_range, its contact taken at the expected displacement d, m), `near` coincident particles
+  /// and nf fluid neighbours.
+  void dfsph_store_factors(std::size_t i, const float f[6], const float fb[13], std::uint32_t near, std::uint32_t nf,
+                           const float d[3]);
   /// v_i += dt m 48/(pi h^5) (sum_j (K_i + K_j) f x_ij + c K_i gb_i), K = kick_, c = 2 (1 with akinci walls).
   void dfsph_kick(float dt);
+  /// The wall contact's Gauss-Seidel step after a kick of the constant-density solve; returns the particles it pushes.
+  std::size_t dfsph_contact(float dt);
   /// One Jacobi update of kappa (density: true) or kappa^v from the predicted density or the
   /// divergence of the current velocities, with the Chebyshev weight wc over the previous iterate (in
   /// tkappa_); K = the change / rho into kick_; returns the mean error.
@@ -198,8 +209,13 @@ class SphSystem {
   std::vector<std::uint32_t> id_, tid_;
   // DFSPH per particle (sized by allocate() with method dfsph): alpha, kappa, kappa^v (warm start,
   // sorted with the particle), K = change of kappa / rho of the last update, the boundary gradient
-  // sum gb, the error of the last update, the sort buffers of kappa and kappa^v
-  AlignedBuffer<float> alpha_, kappa_, kappav_, kick_, gbx_, gby_, gbz_, err_, tkappa_, tkappav_;
+  // sum gb, the error of the last update, the sort buffers of kappa and kappa^v; 1 where the particle
+  // takes part in the divergence-free solve, else 0 (SphParams::dfsph_min_neighbours); the wall contact of the
+  // step (dfsph.hpp, "Walls"): the predicted excess at v = 0 (cex_, kg/m^3), its change per dt v (cgx_, cgy_,
+  // cgz_, kg/m^4, E* = cex - dt cg . v), its change per contact multiplier / dt^2 (ccd_, 0: no contact), and the
+  // multiplier Kc (kc_)
+  AlignedBuffer<float> alpha_, kappa_, kappav_, kick_, gbx_, gby_, gbz_, err_, tkappa_, tkappav_, dvok_;
+  AlignedBuffer<float> cex_, cgx_, cgy_, cgz_, ccd_, kc_;
   // DFSPH neighbour list (dfsph.hpp SphDfsphList): slots [nbeg_[i], nend_[i]) of nj_ (index) and ngx_, ngy_,
   // ngz_ (f x_ij); capacity nlist_ slots (allocate(): 56 per particle at h = 2 dx; doubled when a step overflows it);
   // nflag_: the candidate flags, per thread
@@ -209,6 +225,8 @@ class SphSystem {
   void dfsph_list_allocate(std::size_t slots);
   int div_iter_ = 0, dens_iter_ = 0;
   std::int64_t total_iter_ = 0;
+  std::size_t contacts_ = 0;
+  std::int64_t total_contacts_ = 0;
   double dt_prev_ = 0;
   float vmax_ = 0, amax_ = 0;
   SphDtStats dts_;

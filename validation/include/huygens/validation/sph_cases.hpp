@@ -31,6 +31,14 @@ std::vector<ValidationRow> sph_dam_break_rows(int na, double T_end, const std::v
 /// container_len a long: inside the container, finite, max speed (every step) < 1.5 sqrt(2 g H).
 std::vector<ValidationRow> sph_leakage_rows(int na, double t_end, float container_len);
 
+/// No particle centre leaves the container, with either method: a dam break (column a wide and aspect a high,
+/// `na` particles across a, 4 layers thick, box container_len a long and 4 a high) over t_end seconds, every
+/// step: the largest distance of a centre beyond a container face (in spacings; negative: the closest any centre
+/// came to a face, from inside), the most centres beyond a face at a step, non-finite. Case "sph_no_leakage_dfsph"
+/// with DFSPH.
+std::vector<ValidationRow> sph_containment_rows(int na, float aspect, float container_len, double t_end,
+                                                SphMethod method);
+
 /// No particle enters an obstacle: a dam break (spacing dx, m) onto a wedge read as an OBJ mesh,
 /// a sphere, a vertical cylinder and a box, all boundary particles, over t_end seconds.
 std::vector<ValidationRow> sph_obstacle_rows(float dx, double t_end);
