@@ -60,6 +60,7 @@ void bench_interp(Context&);
 void bench_render(Context&);
 void bench_load(Context&);
 void bench_mpi(Context&);
+void bench_solvers(Context&);
 // the solver parts of "stress" (called by bench_stress; `stress:huygens` etc. runs one)
 void stress_huygens(Context&);
 void stress_sph(Context&);

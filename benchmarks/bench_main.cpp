@@ -17,6 +17,7 @@
 #include "huygens/common/isa.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/shipped_scenes.hpp"
+#include "huygens/pipeline/registry.hpp"
 
 namespace huygens::bench {
 
@@ -61,16 +62,28 @@ const char* kUsage =
     "usage: huygens-bench [SECTION[:PART]...] [--quick] [--csv FILE] [--threads LIST]\n"
     "sections: all (default)";
 
-// The parts a section offers (SECTION:PART); other sections have none.
-const std::map<std::string, std::vector<std::string>> kParts = {{"stress", {"huygens", "sph", "lbm"}},
-                                                                {"sph", {"throughput", "grid", "front", "methods"}}};
+// The parts a section offers (SECTION:PART); other sections have none. "solvers" offers one per
+// registered solver.
+std::map<std::string, std::vector<std::string>> section_parts() {
+  std::map<std::string, std::vector<std::string>> parts = {{"stress", {"huygens", "sph", "lbm"}},
+                                                           {"sph", {"throughput", "grid", "front", "methods"}}};
+  for (const huygens::SolverEntry& e : huygens::registered_solvers()) parts["solvers"].push_back(e.name);
+  return parts;
+}
+
+// "stress:huygens, stress:sph, ..." for the help and a refusal
+std::string part_list() {
+  std::string list;
+  for (const auto& [section, parts] : section_parts())
+    for (const std::string& part : parts) list += (list.empty() ? "" : ", ") + section + ":" + part;
+  return list;
+}
 
 void print_help(const std::map<std::string, huygens::bench::Section>& sections) {
   std::printf("%s", kUsage);
   for (const auto& [name, fn] : sections) std::printf(", %s", name.c_str());
+  std::printf("\n  SECTION:PART runs one part of a section (%s)\n", part_list().c_str());
   std::printf(
-      "\n  SECTION:PART runs one part of a section (stress:huygens, stress:sph, stress:lbm, sph:throughput, sph:grid, "
-      "sph:front, sph:methods)\n"
       "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
       "  --csv FILE also write every table's rows as CSV (checked before the run, written atomically)\n"
       "  --threads  comma-separated thread counts to sweep, each in [1, 1024] (default 1,<cores>)\n"
@@ -109,11 +122,11 @@ bool parse_bench_args(int argc, char** argv, const std::map<std::string, huygens
       chosen.push_back(a);
     } else if (const auto colon = a.find(':'); colon != std::string::npos) {
       const std::string section = a.substr(0, colon), part = a.substr(colon + 1);
-      const auto parts = kParts.find(section);
-      if (parts == kParts.end() || std::find(parts->second.begin(), parts->second.end(), part) == parts->second.end())
-        throw UsageError(
-            "unknown section part '" + a +
-            "' (parts: stress:huygens, stress:sph, stress:lbm, sph:throughput, sph:grid, sph:front, sph:methods)");
+      const auto all_parts = section_parts();
+      const auto parts = all_parts.find(section);
+      if (parts == all_parts.end() ||
+          std::find(parts->second.begin(), parts->second.end(), part) == parts->second.end())
+        throw UsageError("unknown section part '" + a + "' (parts: " + part_list() + ")");
       chosen.push_back(section);  // SECTION:PART runs one part (e.g. stress:sph)
       ctx.parts.push_back(part);
     } else {
@@ -131,6 +144,7 @@ int bench_main(int argc, char** argv) {
       {"huygens", bench_huygens}, {"pipeline", bench_pipeline}, {"ships", bench_ships}, {"lbm", bench_lbm},
       {"sph", bench_sph},         {"accuracy", bench_accuracy}, {"skip", bench_skip},   {"stress", bench_stress},
       {"interp", bench_interp},   {"render", bench_render},     {"load", bench_load},   {"mpi", bench_mpi},
+      {"solvers", bench_solvers},
   };
   Context ctx;
   std::string csv;

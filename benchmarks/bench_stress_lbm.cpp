@@ -4,7 +4,7 @@
 // speed and Froude number, shallowest wet cell) and a verdict; then the edge of its limits: the
 // CFL number, the depth ratio of a dam and the relaxation time tau swept until the scene is refused
 // before the run (SceneError naming the JSON path and the reason) or the run stops naming the
-// cell (LbmDryError) or the stage (NonFiniteError). Nothing may go non-finite silently.
+// cell (LbmDryError) or the stage (NonFiniteError), both a RunStopped. Nothing may go non-finite silently.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -60,9 +60,7 @@ std::string run_lbm(const nlohmann::json& j, long steps, LbmBudget* last = nullp
     return b.finite ? "finite and bounded" : "NON-FINITE, NOT REPORTED";
   } catch (const SceneError& e) {
     return std::string("refused before the run: ") + e.what();
-  } catch (const LbmDryError& e) {
-    return std::string("stopped: ") + e.what();
-  } catch (const NonFiniteError& e) {
+  } catch (const RunStopped& e) {
     return std::string("stopped: ") + e.what();
   }
 }

@@ -30,12 +30,12 @@ int cmd_dry_run(const std::string& scene_file, int ranks, double rank_gib) {
   const std::string where = rank_gib > 0 ? format_bytes(limit) + " per rank (--rank-memory)"
                                          : format_bytes(limit) + " (available here; --rank-memory GIB for other nodes)";
   if (!z.distributed) {
-    std::printf("sph runs on one process (not distributed, docs/scale.md): %s; %s %s\n", m.summary().c_str(),
-                m.total() <= limit ? "fits in" : "does not fit in", where.c_str());
+    std::printf("%s runs on one process (not distributed, docs/scale.md): %s; %s %s\n", z.solver.c_str(),
+                m.summary().c_str(), m.total() <= limit ? "fits in" : "does not fit in", where.c_str());
     return kExitOk;
   }
   if (ranks > z.max_ranks)
-    std::printf("%d ranks: refused (each rank needs 3 rows at least: at most %d ranks)\n", ranks, z.max_ranks);
+    std::printf("%d ranks: refused (%s: at most %d ranks)\n", ranks, z.split_rule.c_str(), z.max_ranks);
   else
     std::printf("%d rank%s: %s per rank\n", ranks, ranks == 1 ? "" : "s", m.summary().c_str());
   Table t({"ranks", "per rank", "all ranks", rank_gib > 0 ? "fits --rank-memory" : "fits here"});

@@ -19,7 +19,6 @@
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/common/shipped_scenes.hpp"
-#include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens {
@@ -175,13 +174,10 @@ int run_steps(const RunArgs& a, Solver& solver, DumpWriter* dumps) {
       if (dumps && s % a.every == 0) dumps->dump();
       if (bar) bar->update(s);
     }
-  } catch (const NonFiniteError& e) {
+  } catch (const RunStopped& e) {
+    // a non-finite value, or a solver's own stop (an LBM depth below 0): a named stage and step
     return stop({{"stage", e.stage()}, {"step", e.step()}, {"reason", e.what()}},
                 std::string("run stopped: ") + e.what() + "; the dumps listed in meta.json are valid", kExitNonFinite);
-  } catch (const LbmDryError& e) {
-    // not a non-finite value but the same kind of stop: a named step and cell, earlier dumps valid
-    return stop({{"stage", "negative_depth"}, {"step", solver.steps()}, {"reason", e.what()}},
-                std::string("run stopped: a negative depth: ") + e.what(), kExitNonFinite);
   } catch (const IoError& e) {
     // meta.json keeps its last good version (it may be the file that failed)
     if (comm::root())

@@ -103,9 +103,8 @@ py::dict memory_estimate(const py::object& scene, int ranks) {
   const Scene s = scene_from(scene, &label);
   const SceneSizing z = scene_sizing(s);
   if (z.distributed && ranks > z.max_ranks)
-    throw py::value_error(label + " runs on at most " + std::to_string(z.max_ranks) + " ranks (" +
-                          (z.solver == "lbm" ? "3 rows per rank at least" : "a row per rank at least") + "), not " +
-                          std::to_string(ranks));
+    throw py::value_error(label + " runs on at most " + std::to_string(z.max_ranks) + " ranks (" + z.split_rule +
+                          "), not " + std::to_string(ranks));
   const int p = z.distributed ? ranks : 1;
   py::dict d = estimate_dict(scene_rank_memory(s)(p));
   const std::uint64_t available = available_memory();

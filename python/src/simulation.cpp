@@ -12,7 +12,6 @@
 #include "huygens/common/finite.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
-#include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/sizing.hpp"
 
 namespace huygens::python {
@@ -57,7 +56,7 @@ void Simulation::reset() {
     solver_ = make_solver(scene_, options_);
   } catch (const ResourceError& e) {
     throw MemoryRefusedError(e.what(), one_process_memory(scene_), available_memory());
-  } catch (const NonFiniteError& e) {
+  } catch (const RunStopped& e) {
     throw RunStoppedError(std::string("run stopped: ") + e.what(), e.stage(), e.step(), 0.0);
   }
 }
@@ -70,11 +69,8 @@ Solver& Simulation::solver() const {
 void Simulation::stopped(std::exception_ptr e) {
   try {
     std::rethrow_exception(e);  // anything but the two stops leaves as it is
-  } catch (const NonFiniteError& x) {
+  } catch (const RunStopped& x) {
     stop_.emplace(std::string("run stopped: ") + x.what(), x.stage(), x.step(), solver().time());
-  } catch (const LbmDryError& x) {
-    stop_.emplace(std::string("run stopped: a negative depth: ") + x.what(), "negative_depth", solver().steps(),
-                  solver().time());
   }
   throw *stop_;
 }

@@ -70,7 +70,7 @@ class Simulation {
   std::int64_t advance(std::int64_t max_steps, double until_s);
   /// One step with the GIL released; a non-finite value or a dry LBM cell becomes RunStoppedError.
   void step_once();
-  /// Turns a NonFiniteError or LbmDryError in flight into RunStoppedError (and remembers it).
+  /// Turns a RunStopped (a non-finite value, an LBM depth below 0) in flight into RunStoppedError (and remembers it).
   [[noreturn]] void stopped(std::exception_ptr e);
   void apply(const Command& c, const std::string& what);
   Solver& solver() const;

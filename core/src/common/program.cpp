@@ -96,8 +96,8 @@ int run_program(const char* name, char** argv, const std::function<int()>& body)
   } catch (const SceneError& e) {
     std::fprintf(stderr, "%s: scene error: %s\n", name, e.what());
     return kExitUsage;
-  } catch (const NonFiniteError& e) {
-    std::fprintf(stderr, "%s: %s\n", name, e.what());
+  } catch (const RunStopped& e) {
+    std::fprintf(stderr, "%s: run stopped: %s\n", name, e.what());
     return kExitNonFinite;
   } catch (const StopRequested& e) {
     std::fprintf(stderr, "%s: stopped by %s: %s\n", name, stop_request::signal_name(), e.what());

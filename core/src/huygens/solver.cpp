@@ -12,7 +12,9 @@
 #include "huygens/common/comm.hpp"
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 #include "huygens/huygens/slab_solver.hpp"
+#include "huygens/pipeline/registry.hpp"
 #include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens {
@@ -554,6 +556,7 @@ RenderInfo HuygensSolver::render_info() {
   // signed indices), a 1024^2 transform per frame and 40 MB at most beside the solver's memory
   if (wind_) r.ambient_sea = RenderAmbientSea{scene_.wind, p.water, std::min(p.n, kMaxAmbientModes), p.length_m};
   r.request = scene_.render;
+  r.default_look = wind_ ? LookRequest::ocean : LookRequest::pool;  // open sea with wind, else a pool
   return r;
 }
 
@@ -567,6 +570,47 @@ std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions
     return std::make_unique<HuygensSlabSolver>(parse_huygens_scene(scene, options), comm::world());
 #endif
   return std::make_unique<HuygensSolver>(parse_huygens_scene(scene, options));
+}
+
+namespace {
+
+// The estimate of the largest of `ranks`: the slab solver's own (what a run under mpirun checks)
+// when MPI is built, else each part scaled to ceil(N / P) rows.
+MemoryEstimate huygens_rank_memory(const HuygensScene& s, int ranks) {
+  const MemoryEstimate whole = huygens_memory(s);
+#ifdef HUYGENS_HAVE_MPI
+  if (ranks > 1) return huygens_slab_memory(s, ranks);
+#endif
+  const std::uint64_t n = static_cast<std::uint64_t>(s.params.n);
+  const std::uint64_t rows = (n + static_cast<std::uint64_t>(ranks) - 1) / static_cast<std::uint64_t>(ranks);
+  MemoryEstimate m;
+  m.size_key = whole.size_key;
+  for (const MemoryEstimate::Part& part : whole.parts)
+    m.add(part.name, part.name == "ship patches" ? part.bytes : (part.bytes * rows + n - 1) / n, part.key);
+  return m;
+}
+
+SceneSizing huygens_sizing(const Scene& scene) {
+  const long long n = scene.root().object("grid").integer("n", 16, 1 << 20);
+  return SceneSizing{"huygens", std::to_string(n) + " x " + std::to_string(n), static_cast<int>(n), true};
+}
+
+}  // namespace
+
+SolverEntry huygens_solver_entry() {
+  SolverEntry e;
+  e.name = "huygens";
+  e.summary = "FFT Huygens propagation with Kelvin ships, wind and second-order Stokes (paper 000)";
+  e.make = [](const Scene& s, const RunOptions& o) { return make_huygens_solver(s, o); };
+  e.sizing = huygens_sizing;
+  e.rank_memory = [](const Scene& scene) -> std::function<MemoryEstimate(int)> {
+    const MemoryCheckOff sizing_only;  // parsed to be sized, not run
+    auto hs = std::make_shared<const HuygensScene>(parse_huygens_scene(scene));
+    return [hs](int p) { return huygens_rank_memory(*hs, p); };
+  };
+  e.bench_scene = std::string(shipped_scene_text("default.json"));
+  e.bench_steps = 200;
+  return e;
 }
 
 }  // namespace huygens

@@ -1299,9 +1299,9 @@ void LbmShallow::throw_bad_cell() const {
   }
   if (first == kNoCell) return;
   const float h = static_cast<float>(depth);
-  throw LbmDryError("step " + std::to_string(steps_) + ": cell (row " + std::to_string(first / p_.cols) + ", col " +
-                    std::to_string(first % p_.cols) + ") fell to depth " + g6(h) + " m" +
-                    (h < 0.0f ? " < 0" : " < min_depth_m with the naive bed term (no wet/dry form)"));
+  throw LbmDryError(steps_, "step " + std::to_string(steps_) + ": cell (row " + std::to_string(first / p_.cols) +
+                                ", col " + std::to_string(first % p_.cols) + ") fell to depth " + g6(h) + " m" +
+                                (h < 0.0f ? " < 0" : " < min_depth_m with the naive bed term (no wet/dry form)"));
 }
 
 double LbmShallow::volume_m3() const {

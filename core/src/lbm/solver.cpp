@@ -14,8 +14,10 @@
 #include "huygens/common/npy.hpp"
 #include "huygens/common/npy_read.hpp"
 #include "huygens/common/report.hpp"
+#include "huygens/common/shipped_scenes.hpp"
 #include "huygens/lbm/shallow.hpp"
 #include "huygens/lbm/stoker.hpp"
+#include "huygens/pipeline/registry.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens {
@@ -100,6 +102,7 @@ class LbmSolver final : public Solver {
     if (r.rest_level_m > 0.0) r.depth_m = r.rest_level_m;
     r.bed_m = bed_;
     r.dt_s = r.frame_dt_s = p.dt_s;
+    r.default_look = r.rest_level_m != 0.0 ? LookRequest::shallow : LookRequest::pool;  // water over a bed
     return r;
   }
   /// The scene's render block and obstacle shapes (set by make_lbm_solver).
@@ -562,6 +565,33 @@ std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene) {
 
 std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions&) {
   return make_lbm_solver(parse_lbm_scene(scene));
+}
+
+namespace {
+
+// at least 3 rows per rank (docs/scale.md)
+SceneSizing lbm_sizing(const Scene& scene) {
+  const JsonIn g = scene.root().object("lbm").object("grid");
+  const long long rows = g.integer("rows", 1, 16384), cols = g.integer("cols", 1, 16384);
+  return SceneSizing{"lbm", std::to_string(rows) + " rows x " + std::to_string(cols) + " cols",
+                     static_cast<int>(std::max(1LL, rows / 3)), true, "3 rows per rank at least"};
+}
+
+}  // namespace
+
+SolverEntry lbm_solver_entry() {
+  SolverEntry e;
+  e.name = "lbm";
+  e.summary = "lattice Boltzmann shallow water (D2Q9) with beds, wet/dry fronts and obstacles";
+  e.make = [](const Scene& s, const RunOptions& o) { return make_lbm_solver(s, o); };
+  e.sizing = lbm_sizing;
+  e.rank_memory = [](const Scene& scene) -> std::function<MemoryEstimate(int)> {
+    const bool carry = lbm_scene_may_start_dry(scene);
+    return [&scene, carry](int p) { return lbm_scene_memory(scene, p, carry); };
+  };
+  e.bench_scene = std::string(shipped_scene_text("dam_break.json"));
+  e.bench_steps = 200;
+  return e;
 }
 
 }  // namespace huygens

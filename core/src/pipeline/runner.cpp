@@ -250,7 +250,7 @@ void Runner::run() {
       if (!run_once(pending, last_time, steps_origin)) break;
     }
     status_.store(kFinished, std::memory_order_release);
-  } catch (const NonFiniteError& e) {
+  } catch (const RunStopped& e) {
     error_ = RunnerError{e.stage(), e.step(), e.what(), true};
     exception_ = std::current_exception();
     status_.store(kFailed, std::memory_order_release);

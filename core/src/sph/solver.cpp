@@ -11,6 +11,8 @@
 
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
+#include "huygens/common/shipped_scenes.hpp"
+#include "huygens/pipeline/registry.hpp"
 #include "huygens/sph/solver.hpp"
 #include "huygens/sph/surface.hpp"
 #include "huygens/sph/system.hpp"
@@ -232,6 +234,7 @@ class SphSolver final : public Solver {
     r.particle_box_m = std::array<double, 3>{box[0], box[1], box[2]};
     r.particle_spacing_m = sys_.params().spacing_m;
     r.request = scene_.render;
+    r.default_look = r.rest_level_m != 0.0 ? LookRequest::sph : LookRequest::pool;
     return r;
   }
 
@@ -516,6 +519,23 @@ std::unique_ptr<Solver> make_sph_solver(const Scene& scene, const RunOptions&) {
   } catch (const std::invalid_argument& e) {
     throw SceneError("$.sph", e.what());
   }
+}
+
+SolverEntry sph_solver_entry() {
+  SolverEntry e;
+  e.name = "sph";
+  e.summary = "3D SPH (WCSPH or DFSPH) with boundary particles and a heightfield surface (paper 000)";
+  e.make = [](const Scene& s, const RunOptions& o) { return make_sph_solver(s, o); };
+  // not distributed: one process holds it all, whatever the ranks (docs/scale.md)
+  e.sizing = [](const Scene&) { return SceneSizing{"sph", "", 1 << 16, false}; };
+  e.rank_memory = [](const Scene& scene) -> std::function<MemoryEstimate(int)> {
+    const MemoryCheckOff sizing_only;
+    const MemoryEstimate m = sph_memory(parse_sph_scene(scene));
+    return [m](int) { return m; };
+  };
+  e.bench_scene = std::string(shipped_scene_text("pool.json"));
+  e.bench_steps = 200;
+  return e;
 }
 
 }  // namespace huygens

@@ -88,7 +88,7 @@ class JsonIn {
 /// A loaded scene document: the file it came from and its parsed JSON.
 struct Scene {
   std::string file;
-  std::string solver;  ///< "huygens", "sph" or "lbm"
+  std::string solver;  ///< a registered solver's name ("huygens", "sph", "lbm"; pipeline/registry.hpp)
   std::shared_ptr<const nlohmann::json> doc;
   /// The folder a file the scene names (an OBJ mesh) is relative to: the scene file's own
   /// folder, made absolute by load_scene (so it does not depend on the working directory);

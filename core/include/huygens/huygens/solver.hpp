@@ -21,6 +21,8 @@
 
 namespace huygens {
 
+struct SolverEntry;  // pipeline/registry.hpp
+
 /// An elevation released from rest (initial "gaussian" or a timed drop).
 struct GaussianSource {
   /// Release time (unit: s); 0 for initial conditions.
@@ -186,5 +188,8 @@ class HuygensSolver : public Solver {
   double still_energy_ = 0.0;
   bool still_ = false, height_dirty_ = false;
 };
+
+/// The registry entry (pipeline/registry.hpp): name "huygens", factory, sizing, memory, bench scene.
+SolverEntry huygens_solver_entry();
 
 }  // namespace huygens

@@ -36,6 +36,7 @@
 
 #include "huygens/common/comm.hpp"
 #include "huygens/common/fft.hpp"
+#include "huygens/common/finite.hpp"
 #include "huygens/common/stats.hpp"
 
 namespace huygens {
@@ -126,9 +127,11 @@ class LbmRefused : public std::invalid_argument {
 };
 
 /// A fluid cell's depth went negative during the run (the wet/dry rule could not keep it >= 0).
-class LbmDryError : public std::runtime_error {
+/// Stage "negative_depth"; what() reads "a negative depth: step N: cell (row r, col c) fell to ...".
+class LbmDryError : public RunStopped {
  public:
-  using std::runtime_error::runtime_error;
+  LbmDryError(std::int64_t step, const std::string& where)
+      : RunStopped("negative_depth", step, "a negative depth: " + where) {}
 };
 
 /// Derived lattice quantities (dimensionless unless stated).

@@ -15,6 +15,8 @@
 
 namespace huygens {
 
+struct SolverEntry;  // pipeline/registry.hpp
+
 class Solver;
 struct RunOptions;
 
@@ -51,5 +53,8 @@ MemoryEstimate lbm_scene_memory(const Scene& scene, int ranks, bool carry);
 std::unique_ptr<Solver> make_lbm_solver(const LbmScene& scene);
 /// parse_lbm_scene() then make_lbm_solver() (this solver uses no RunOptions).
 std::unique_ptr<Solver> make_lbm_solver(const Scene& scene, const RunOptions& options);
+
+/// The registry entry (pipeline/registry.hpp): name "lbm", factory, sizing, memory, bench scene.
+SolverEntry lbm_solver_entry();
 
 }  // namespace huygens

@@ -153,6 +153,9 @@ struct RenderInfo {
   /// Features cmd::Toggle switches; anything else is refused (no control for it).
   std::vector<RenderToggle> toggles;
   RenderRequest request;
+  /// The look the solver's water is drawn with unless the scene's "render.look" names one: each
+  /// solver states its own (the viewer guesses nothing from the fields it is given).
+  LookRequest default_look = LookRequest::pool;
   /// The ambient sea (a Huygens scene with a wind block); nullopt otherwise. It is on while the
   /// "wind" toggle is.
   std::optional<RenderAmbientSea> ambient_sea;

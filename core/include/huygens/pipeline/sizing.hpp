@@ -1,7 +1,8 @@
 #pragma once
 // A scene sized for P MPI ranks before anything is allocated (docs/scale.md): the memory of the largest
-// rank from the solvers' own estimates (memory.hpp), and how far the scene can be split. Shared by
-// `huygens run --dry-run` (cli/dry_run.cpp) and the Python package's memory_estimate().
+// rank from the solver's own estimate (memory.hpp), and how far the scene can be split. Shared by
+// `huygens run --dry-run` (cli/dry_run.cpp) and the Python package's memory_estimate(); each solver
+// gives both through its registry entry (registry.hpp):
 //   LBM: lbm_memory(params, P) (its largest rank: ceil(rows / P) rows, halos, the whole scene
 //        fields every rank parses; the mass carry plane when the scene starts dry).
 //   Huygens: the slab solver's huygens_slab_memory(scene, P) (its slabs of
@@ -18,7 +19,7 @@ namespace huygens {
 
 /// What splitting a scene over ranks depends on.
 struct SceneSizing {
-  /// "huygens", "sph" or "lbm".
+  /// The solver's registered name ("huygens", "sph", "lbm").
   std::string solver;
   /// The grid as text ("512 x 512", "200 rows x 400 cols"); "" for SPH.
   std::string grid;
@@ -26,6 +27,8 @@ struct SceneSizing {
   int max_ranks = 1 << 16;
   /// False for SPH (one process whatever P).
   bool distributed = true;
+  /// Why max_ranks is the limit ("a row per rank at least"); for a refusal's message.
+  std::string split_rule = "a row per rank at least";
 };
 
 /// The sizing of a parsed scene. Throws SceneError (JSON path) for a bad grid.

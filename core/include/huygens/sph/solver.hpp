@@ -22,6 +22,8 @@
 
 namespace huygens {
 
+struct SolverEntry;  // pipeline/registry.hpp
+
 class Solver;
 struct RunOptions;
 
@@ -45,5 +47,8 @@ std::unique_ptr<Solver> make_sph_solver(const SphScene& scene);
 /// parse_sph_scene() then make_sph_solver() (this solver uses no RunOptions); an unusable set-up
 /// is a SceneError at "$.sph".
 std::unique_ptr<Solver> make_sph_solver(const Scene& scene, const RunOptions& options);
+
+/// The registry entry (pipeline/registry.hpp): name "sph", factory, sizing, memory, bench scene.
+SolverEntry sph_solver_entry();
 
 }  // namespace huygens

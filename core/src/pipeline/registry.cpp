@@ -1,0 +1,50 @@
+// The solver registry (huygens/pipeline/registry.hpp).
+#include "huygens/pipeline/registry.hpp"
+
+#include <stdexcept>
+
+#include "huygens/huygens/solver.hpp"
+#include "huygens/lbm/solver.hpp"
+#include "huygens/sph/solver.hpp"
+
+namespace huygens {
+
+namespace {
+
+// The library's solvers: one line each.
+std::vector<SolverEntry> builtin_solvers() {
+  return {
+      huygens_solver_entry(),
+      sph_solver_entry(),
+      lbm_solver_entry(),
+  };
+}
+
+std::vector<SolverEntry>& registry() {
+  static std::vector<SolverEntry> entries = builtin_solvers();
+  return entries;
+}
+
+}  // namespace
+
+void register_solver(SolverEntry entry) {
+  if (entry.name.empty()) throw std::invalid_argument("register_solver: an entry needs a name");
+  if (!entry.make || !entry.sizing || !entry.rank_memory)
+    throw std::invalid_argument("register_solver: \"" + entry.name + "\" needs make, sizing and rank_memory");
+  for (const SolverEntry& e : registry())
+    if (e.name == entry.name) throw std::invalid_argument("register_solver: \"" + entry.name + "\" is registered");
+  registry().push_back(std::move(entry));
+}
+
+const std::vector<SolverEntry>& registered_solvers() { return registry(); }
+
+const SolverEntry& solver_entry(const std::string& name) {
+  std::string names;
+  for (const SolverEntry& e : registry()) {
+    if (e.name == name) return e;
+    names += (names.empty() ? "\"" : ", \"") + e.name + "\"";
+  }
+  throw SceneError("$.solver", "\"" + name + "\" is not one of " + names + " (the registered solvers)");
+}
+
+}  // namespace huygens

@@ -1,0 +1,10 @@
+// The toy solver's one registration: linked into a program as an object file, its static
+// initializer adds the entry before main (pipeline/registry.hpp).
+#include "toy_solver.hpp"
+
+namespace {
+const bool kRegistered = [] {
+  huygens::register_solver(huygens::toy::toy_solver_entry());
+  return true;
+}();
+}  // namespace
