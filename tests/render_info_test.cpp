@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "huygens/huygens/solver.hpp"
+#include "huygens/pipeline/render_request.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
 #include "scenes_dir.hpp"

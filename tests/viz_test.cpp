@@ -29,6 +29,7 @@
 #include "foam.hpp"
 #include "gl.hpp"
 #include "headless.hpp"
+#include "huygens/huygens/ambient_slopes.hpp"  // the Huygens solver's far sea, built here as its render_info does
 #include "huygens/pipeline/runner.hpp"
 #include "plot.hpp"
 #include "renderer.hpp"
@@ -1840,11 +1841,11 @@ TEST_F(VizRender, FarSeaGlitterHasCoxAndMunksSlopeVariance) {
   const GridPlacement g = test_grid();
   WaterRenderer r(g, -kDepth, 4);
   r.set_heights(std::vector<float>(kN * kN, 0.0f));
-  RenderAmbientSea sea;
-  sea.wind.speed_mps = 6.0, sea.wind.fetch_m = 10000.0, sea.wind.seed = 7;
-  sea.n = 64, sea.length_m = 100.0;
+  WindParams wind;
+  wind.speed_mps = 6.0, wind.fetch_m = 10000.0, wind.seed = 7;
+  const RenderAmbientSea sea{std::make_shared<AmbientSeaSlopes>(wind, Water{}, 64, 100.0), wind.speed_mps};
   r.set_ambient_sea(sea);
-  const double cox_munk = 0.003 + 5.12e-3 * sea.wind.speed_mps;
+  const double cox_munk = 0.003 + 5.12e-3 * wind.speed_mps;
   ASSERT_GT(r.unresolved_slope_var(), 0.1 * cox_munk) << "a grid that leaves part of the slopes unresolved";
   ASSERT_LT(r.unresolved_slope_var(), 0.9 * cox_munk) << "and resolves part of them";
   const OrbitCamera cam = top_down(3000.0, 3000.0, 2000.0);
@@ -1894,8 +1895,8 @@ TEST_F(VizRender, AmbientSeaIsComputedOnlyForAPictureThatDrawsIt) {
   const GridPlacement g = test_grid();
   WaterRenderer r(g, -kDepth, 4);
   r.set_heights(std::vector<float>(kN * kN, 0.0f));
-  RenderAmbientSea sea;
-  sea.n = 64, sea.length_m = 2.0 * kWidth;
+  const RenderAmbientSea sea{std::make_shared<AmbientSeaSlopes>(WindParams{}, Water{}, 64, 2.0 * kWidth),
+                             WindParams{}.speed_mps};
   r.set_ambient_sea(sea);
   EXPECT_TRUE(std::isnan(r.sea_slopes_time())) << "nothing drawn yet";
   OrbitCamera cam = default_camera(g.x0, g.y0, kWidth, kWidth);

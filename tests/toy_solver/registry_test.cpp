@@ -1,8 +1,9 @@
 // The solver registry (pipeline/registry.hpp) with the test-only toy solver registered from outside
 // the library (register_solver.cpp, register_cases.cpp): found by name, built, sized, validated.
+#include "huygens/pipeline/registry.hpp"
+
 #include <gtest/gtest.h>
 
-#include "huygens/pipeline/registry.hpp"
 #include "huygens/pipeline/sizing.hpp"
 #include "huygens/validation/validation.hpp"
 #include "toy_solver.hpp"

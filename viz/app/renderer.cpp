@@ -520,18 +520,19 @@ void WaterRenderer::build_ground_texture(const RenderSettings& s) {
 }
 
 void WaterRenderer::set_ambient_sea(const RenderAmbientSea& sea) {
-  sea_ = std::make_unique<AmbientSlopes>(sea.wind, sea.water, sea.n, sea.length_m);
+  sea_ = sea.slopes;
+  const int n = sea_->n();
   sea_time_ = std::numeric_limits<double>::quiet_NaN();
   // every level down to 1 x 1: far away a texel averages the slopes (the sea flattens to its mean
   // colour instead of aliasing); anisotropic where the driver offers it (grazing views)
-  sea_tex_ = gl::Texture(sea.n, sea.n, GL_RGBA32F, static_cast<int>(std::bit_width(static_cast<unsigned>(sea.n))));
-  sea_texels_.assign(4 * static_cast<std::size_t>(sea.n) * sea.n, 0.0f);
+  sea_tex_ = gl::Texture(n, n, GL_RGBA32F, static_cast<int>(std::bit_width(static_cast<unsigned>(n))));
+  sea_texels_.assign(4 * static_cast<std::size_t>(n) * n, 0.0f);
   // Cox & Munk's mean square slope less what the texture's slopes resolve (spectral) and what
   // the region's normals resolve (central differences of the heights on the same grid); both
   // are constant in time (each mode's amplitude is)
-  const double cox_munk = 0.003 + 5.12e-3 * sea.wind.speed_mps;
-  sea_unresolved_var_ = std::max(cox_munk - sea_->mean_square_slope(0.0, false), 0.0);
-  region_unresolved_var_ = std::max(cox_munk - sea_->mean_square_slope(0.0, true), 0.0);
+  const double cox_munk = 0.003 + 5.12e-3 * sea.wind_speed_mps;
+  sea_unresolved_var_ = std::max(cox_munk - sea_->mean_square_slope(false), 0.0);
+  region_unresolved_var_ = std::max(cox_munk - sea_->mean_square_slope(true), 0.0);
   sea_tex_.set_filter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
   sea_tex_.set_wrap(GL_REPEAT);
   if (epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic")) {

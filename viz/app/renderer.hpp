@@ -34,7 +34,6 @@
 
 #include "camera.hpp"
 #include "gl.hpp"
-#include "huygens/huygens/ambient_slopes.hpp"
 #include "huygens/pipeline/render_info.hpp"
 #include "refraction.hpp"
 
@@ -253,7 +252,7 @@ class WaterRenderer {
   /// inside the solid), and the plan view shows its footprint's outline.
   void set_obstacles(std::span<const RenderObstacle> obstacles);
   /// The ambient wind sea (deep_water looks): the flat sea beyond the visible region is shaded with
-  /// its slopes at the time set_sea_time gives (AmbientSlopes, n x n on its periodic grid, a
+  /// its slopes at the time set_sea_time gives (the solver's FarSeaSlopes, n x n on its periodic grid, a
   /// mipmapped texture repeated every length_m), so the sea goes on to the horizon.
   void set_ambient_sea(const RenderAmbientSea& sea);
   /// The ambient sea's time (unit: s; the display time of the heights). Its slopes are computed
@@ -342,7 +341,7 @@ class WaterRenderer {
   std::vector<float> mesh_top_;             // per grid point: a mesh obstacle's top (m), -inf off it
   std::vector<std::uint32_t> mesh_from_;    // per grid point: the nearest point outside the meshes' footprints
   std::vector<std::uint8_t> mesh_outline_;  // per grid point: on a mesh footprint's outline
-  std::unique_ptr<AmbientSlopes> sea_;      // set_ambient_sea
+  std::shared_ptr<FarSeaSlopes> sea_;       // set_ambient_sea: the solver's
   double sea_time_ = std::numeric_limits<double>::quiet_NaN(), sea_request_ = 0.0;
   std::vector<float> sea_texels_;       // per texel d eta/dx, d eta/dy, their squares' sum, 0
   double sea_unresolved_var_ = 0.0;     // unresolved_slope_var

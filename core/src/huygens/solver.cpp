@@ -13,8 +13,10 @@
 #include "huygens/common/finite.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/shipped_scenes.hpp"
+#include "huygens/huygens/ambient_slopes.hpp"
 #include "huygens/huygens/slab_solver.hpp"
 #include "huygens/pipeline/registry.hpp"
+#include "huygens/pipeline/render_request.hpp"
 #include "huygens/pipeline/time_interp.hpp"
 
 namespace huygens {
@@ -554,7 +556,10 @@ RenderInfo HuygensSolver::render_info() {
   if (wind_) r.toggles.push_back(RenderToggle{"wind", "wind", wind_on_});
   // the sea beyond, at most 1024^2 modes: the same sea's longest waves (modes are keyed by their
   // signed indices), a 1024^2 transform per frame and 40 MB at most beside the solver's memory
-  if (wind_) r.ambient_sea = RenderAmbientSea{scene_.wind, p.water, std::min(p.n, kMaxAmbientModes), p.length_m};
+  if (wind_)
+    r.ambient_sea = RenderAmbientSea{
+        std::make_shared<AmbientSeaSlopes>(scene_.wind, p.water, std::min(p.n, kMaxAmbientModes), p.length_m),
+        scene_.wind.speed_mps};
   r.request = scene_.render;
   r.default_look = wind_ ? LookRequest::ocean : LookRequest::pool;  // open sea with wind, else a pool
   return r;

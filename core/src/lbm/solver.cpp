@@ -18,6 +18,7 @@
 #include "huygens/lbm/shallow.hpp"
 #include "huygens/lbm/stoker.hpp"
 #include "huygens/pipeline/registry.hpp"
+#include "huygens/pipeline/render_request.hpp"
 #include "huygens/pipeline/solver.hpp"
 
 namespace huygens {

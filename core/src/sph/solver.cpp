@@ -13,6 +13,7 @@
 #include "huygens/common/report.hpp"
 #include "huygens/common/shipped_scenes.hpp"
 #include "huygens/pipeline/registry.hpp"
+#include "huygens/pipeline/render_request.hpp"
 #include "huygens/sph/solver.hpp"
 #include "huygens/sph/surface.hpp"
 #include "huygens/sph/system.hpp"

@@ -8,12 +8,14 @@
 // inverse transform of X(k) = (kx + i ky) D(k), D(k) = -(k/omega) (Z^(k) - conj Z^(-k)) / 2 gives
 // d eta1/dx as its real part and d eta1/dy as its imaginary part.
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "huygens/common/dispersion.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/huygens/wind.hpp"
+#include "huygens/pipeline/render_info.hpp"
 
 namespace huygens {
 
@@ -43,6 +45,32 @@ class AmbientSlopes {
   std::vector<float> kx_, ky_;   // per column / row (unit: rad/m)
   AlignedBuffer<cfloat> z_, x_;  // Z^(t) scaled by -k/omega, and the transform's input / output
   Fft2D fft_;
+};
+
+/// The far sea of a Huygens scene as the viewer reads it (RenderInfo::ambient_sea, FarSeaSlopes):
+/// AmbientSlopes built on its first use, on the viewer's thread (its n^2 buffers and FFT plan are
+/// taken only by a picture that draws the sea).
+class AmbientSeaSlopes : public FarSeaSlopes {
+ public:
+  AmbientSeaSlopes(const WindParams& wind, const Water& water, int n, double length_m)
+      : wind_(wind), water_(water), n_(n), length_m_(length_m) {}
+  int n() const override { return n_; }
+  double length_m() const override { return length_m_; }
+  std::span<const float> compute(double t) override { return slopes().compute(t); }
+  double mean_square_slope(bool central_differences) override {
+    return slopes().mean_square_slope(0.0, central_differences);  // each mode's amplitude is constant
+  }
+
+ private:
+  AmbientSlopes& slopes() {
+    if (!slopes_) slopes_ = std::make_unique<AmbientSlopes>(wind_, water_, n_, length_m_);
+    return *slopes_;
+  }
+  WindParams wind_;
+  Water water_;
+  int n_;
+  double length_m_;
+  std::unique_ptr<AmbientSlopes> slopes_;
 };
 
 }  // namespace huygens

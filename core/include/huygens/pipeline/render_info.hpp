@@ -8,13 +8,11 @@
 // after rest_level_m is subtracted), as in scene files (docs/design.md 6).
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
-
-#include "huygens/common/scene.hpp"
-#include "huygens/huygens/wind.hpp"
 
 namespace huygens {
 
@@ -112,17 +110,35 @@ struct RenderToggle {
   bool on = false;
 };
 
-/// The ambient wind sea of a Huygens scene (wind.hpp): its modes on the periodic grid of n x n
-/// points (the solver's, at most kMaxAmbientModes a side: the sea's longest waves) and side
-/// length_m whose point (0, 0) is at the origin of the full grid's frame. A viewer
-/// draws the sea beyond the visible region with its slopes (AmbientSlopes): the same sea, without
-/// the ships' and the drops' waves and without the second-order (Stokes) part.
+/// The sea beyond the visible region as the solver computes it: its slopes on a periodic tile of
+/// n x n points and side length_m whose point (0, 0) is at the origin of the full grid's frame (a
+/// Huygens scene's wind sea without the ships', the drops' and the second-order waves; its
+/// implementation is the solver's, huygens/ambient_slopes.hpp). Called on the viewer's thread.
+class FarSeaSlopes {
+ public:
+  virtual ~FarSeaSlopes() = default;
+  /// Points per side of the tile (unit: points).
+  virtual int n() const = 0;
+  /// Side of the tile (unit: m).
+  virtual double length_m() const = 0;
+  /// Slopes (d eta/dx, d eta/dy) at time t (unit: s) at point (row r = y, column c = x),
+  /// interleaved, row-major, 2 n^2 floats (unit: 1), valid until the next call. No allocation
+  /// after the first call.
+  virtual std::span<const float> compute(double t) = 0;
+  /// Mean square slope |grad eta|^2 over the tile (unit: 1; constant in time); with
+  /// `central_differences`, of the slopes central differences on the tile's grid resolve.
+  virtual double mean_square_slope(bool central_differences) = 0;
+};
+
+/// At most this many points a side for the far sea's tile (its longest waves).
 constexpr int kMaxAmbientModes = 1024;
+/// The ambient wind sea of a scene, for the open-ocean look's sea beyond the region.
 struct RenderAmbientSea {
-  WindParams wind;
-  Water water;
-  int n = 0;
-  double length_m = 0.0;
+  /// The solver's slope source.
+  std::shared_ptr<FarSeaSlopes> slopes;
+  /// Wind speed at 10 m (unit: m/s): Cox and Munk's mean square slope 0.003 + 5.12e-3 U of the
+  /// sea's waves down to the shortest, of which the tile resolves a part.
+  double wind_speed_mps = 0.0;
 };
 
 struct RenderInfo {
@@ -165,10 +181,6 @@ struct RenderInfo {
 /// level above a floor, taken before the first step; 0 for an empty field.
 double mean_level(std::span<const float> height);
 
-/// Reads the scene's optional "render" block below `root`: {"caustics": bool, "blur":
-/// "accumulation" | "float" | "none", "caustics_mode": ..., "look": ..., "view": "perspective" |
-/// "plan", "camera": {"target_m", "distance_m", "yaw_deg", "pitch_deg", "follow_ship"}, "sun":
-/// {"elevation_deg", "azimuth_deg"}}; throws SceneError naming the path of a bad or unknown key.
-RenderRequest parse_render_request(const JsonIn& root);
+/// (pipeline/render_request.hpp reads the scene's "render" block into a RenderRequest.)
 
 }  // namespace huygens
