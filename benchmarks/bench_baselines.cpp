@@ -37,8 +37,8 @@
 #include "bench.hpp"
 #include "huygens/common/dispersion.hpp"
 #include "huygens/common/fft.hpp"
-#include "huygens/huygens/propagator.hpp"
-#include "huygens/pipeline/time_interp.hpp"
+#include "huygens/common/time_interp.hpp"
+#include "huygens/spectral/propagator.hpp"
 #include "huygens/validation/reference/cauchy_poisson.hpp"
 
 namespace huygens::bench {

@@ -16,7 +16,7 @@
 
 #include "bench.hpp"
 #include "huygens/common/fft.hpp"
-#include "huygens/huygens/propagator.hpp"
+#include "huygens/spectral/propagator.hpp"
 #include "huygens/validation/validation.hpp"
 
 namespace huygens::bench {

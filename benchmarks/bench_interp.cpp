@@ -15,6 +15,7 @@
 #include "bench.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 
 namespace huygens::bench {
 

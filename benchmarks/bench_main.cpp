@@ -17,7 +17,7 @@
 #include "huygens/common/isa.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/shipped_scenes.hpp"
-#include "huygens/pipeline/registry.hpp"
+#include "huygens/solvers/registry.hpp"
 
 namespace huygens::bench {
 

@@ -29,8 +29,8 @@
 
 #include "huygens/common/scene.hpp"
 #include "huygens/common/slab_fft.hpp"
-#include "huygens/huygens/slab_solver.hpp"
-#include "huygens/huygens/solver.hpp"
+#include "huygens/spectral/slab_solver.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
 
 namespace {
 // bytes addressed to other ranks by the intercepted calls (MPI profiling interface)

@@ -31,12 +31,12 @@
 #include "huygens/common/fft.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
-#include "huygens/huygens/propagator.hpp"
-#include "huygens/huygens/ship_waves.hpp"
-#include "huygens/huygens/solver.hpp"
-#include "huygens/huygens/stokes.hpp"
-#include "huygens/huygens/wind.hpp"
-#include "huygens/pipeline/time_interp.hpp"
+#include "huygens/common/time_interp.hpp"
+#include "huygens/spectral/propagator.hpp"
+#include "huygens/spectral/ship_waves.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
+#include "huygens/spectral/stokes.hpp"
+#include "huygens/spectral/wind.hpp"
 
 namespace huygens::bench {
 

@@ -20,6 +20,7 @@
 #include "huygens/pipeline/frame.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 
 namespace huygens::bench {
 

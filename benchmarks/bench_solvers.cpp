@@ -1,4 +1,4 @@
-// Section "solvers": every solver of the registry (pipeline/registry.hpp) stepping the scene its
+// Section "solvers": every solver of the registry (solvers/registry.hpp) stepping the scene its
 // entry names, one thread and the machine's count: ms per step, simulated seconds per wall second, and
 // the stage that took the most time (the solver's own StageStats). A solver registered outside the
 // library (tests/toy_solver/) appears here with no edit to the bench. `solvers:NAME` runs one.
@@ -9,7 +9,7 @@
 
 #include "bench.hpp"
 #include "huygens/common/report.hpp"
-#include "huygens/pipeline/registry.hpp"
+#include "huygens/solvers/registry.hpp"
 
 namespace huygens::bench {
 

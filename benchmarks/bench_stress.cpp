@@ -26,9 +26,9 @@
 #include "huygens/common/fft.hpp"
 #include "huygens/common/finite.hpp"
 #include "huygens/common/scene.hpp"
-#include "huygens/huygens/propagator.hpp"
-#include "huygens/huygens/solver.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/spectral/propagator.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
 
 namespace huygens::bench {
 

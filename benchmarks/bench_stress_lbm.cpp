@@ -16,6 +16,7 @@
 #include "huygens/common/scene.hpp"
 #include "huygens/lbm/shallow.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 
 namespace huygens::bench {
 

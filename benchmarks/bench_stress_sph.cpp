@@ -17,7 +17,7 @@
 #include "bench.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
-#include "huygens/sph/solver.hpp"
+#include "huygens/sph/sph_solver.hpp"
 #include "huygens/sph/system.hpp"
 
 namespace huygens::bench {

@@ -1,5 +1,5 @@
 // huygens run SCENE --dry-run [--ranks P] [--rank-memory GIB]: the memory a scene needs on each of P
-// MPI ranks, from the solvers' own estimates (huygens/pipeline/sizing.hpp) before anything is
+// MPI ranks, from the solvers' own estimates (huygens/solvers/sizing.hpp) before anything is
 // allocated, and the fewest ranks (powers of two) on which it fits a given memory per rank. Nothing runs.
 #include <algorithm>
 #include <cstdint>
@@ -13,7 +13,7 @@
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/common/shipped_scenes.hpp"
-#include "huygens/pipeline/sizing.hpp"
+#include "huygens/solvers/sizing.hpp"
 
 namespace huygens {
 

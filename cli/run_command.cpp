@@ -20,6 +20,7 @@
 #include "huygens/common/scene.hpp"
 #include "huygens/common/shipped_scenes.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 
 namespace huygens {
 

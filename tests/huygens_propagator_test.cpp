@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "huygens/huygens/propagator.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/spectral/propagator.hpp"
 
 using namespace huygens;
 using cd = std::complex<double>;

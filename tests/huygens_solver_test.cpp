@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "huygens/huygens/solver.hpp"
+#include "huygens/solvers/registry.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
 
 using namespace huygens;
 

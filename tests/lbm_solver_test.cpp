@@ -1,6 +1,8 @@
 // "solver": "lbm" scenes (lbm/solver.hpp): the shipped scenes run, outputs have the documented
 // shapes, parse_lbm_scene resolves the time step, viscosity and fields, and bad or unstable scenes
 // are refused with the JSON path of the offending value in every block of the scene.
+#include "huygens/lbm/lbm_solver.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,9 +16,9 @@
 #include "huygens/common/npy.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/scene.hpp"
-#include "huygens/lbm/solver.hpp"
 #include "huygens/lbm/stoker.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 #include "scenes_dir.hpp"
 
 using namespace huygens;

@@ -26,9 +26,10 @@
 #include "huygens/common/finite.hpp"
 #include "huygens/common/npy.hpp"
 #include "huygens/common/scene.hpp"
-#include "huygens/huygens/solver.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
 #include "scenes_dir.hpp"
 
 using namespace huygens;

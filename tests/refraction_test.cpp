@@ -14,6 +14,7 @@
 #include "camera.hpp"
 #include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 #include "scenes_dir.hpp"
 
 using namespace huygens;

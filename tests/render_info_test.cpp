@@ -15,10 +15,11 @@
 #include <thread>
 #include <vector>
 
-#include "huygens/huygens/solver.hpp"
 #include "huygens/pipeline/render_request.hpp"
 #include "huygens/pipeline/runner.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
 #include "scenes_dir.hpp"
 
 using namespace huygens;

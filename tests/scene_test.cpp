@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 
 using namespace huygens;
 

@@ -1,6 +1,6 @@
 // Ship waves of paper 004 eq. 2: the kernels' rigid-translation identity, alpha -> 0,
 // no waves from a stationary hull, step-size consistency, sub-cell positions, paths.
-#include "huygens/huygens/ship_waves.hpp"
+#include "huygens/spectral/ship_waves.hpp"
 
 #include <gtest/gtest.h>
 

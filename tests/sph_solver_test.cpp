@@ -1,6 +1,8 @@
-// The SPH solver adapter (huygens/sph/solver.hpp): every key of the "sph" block lands in its
+// The SPH solver adapter (huygens/sph/sph_solver.hpp): every key of the "sph" block lands in its
 // parameter, errors name the JSON path (an old key names its new one), and the shipped scenes
 // build, run, dump and take commands.
+#include "huygens/sph/sph_solver.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,7 +15,7 @@
 #include <vector>
 
 #include "huygens/pipeline/solver.hpp"
-#include "huygens/sph/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 #include "scenes_dir.hpp"
 
 using namespace huygens;

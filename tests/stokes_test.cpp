@@ -1,7 +1,7 @@
 // Second-order Stokes height of paper 004 eq. 3 and its generalisation chi^2: the
 // progressive Stokes profile, first-order symmetry, the documented behaviour on a
 // standing pattern, and the packed transforms against separate reference transforms.
-#include "huygens/huygens/stokes.hpp"
+#include "huygens/spectral/stokes.hpp"
 
 #include <gtest/gtest.h>
 

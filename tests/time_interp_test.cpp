@@ -1,7 +1,7 @@
 // Cubic Hermite time interpolation (paper 004 section 3): the paper's weights at s = 1/3
 // exactly, exactness for cubics, and the dt^4 error law on a wind sea whose true states are
 // evaluated analytically in the spectral domain (with the second-order Stokes height).
-#include "huygens/pipeline/time_interp.hpp"
+#include "huygens/common/time_interp.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "huygens/huygens/stokes.hpp"
-#include "huygens/huygens/wind.hpp"
+#include "huygens/spectral/stokes.hpp"
+#include "huygens/spectral/wind.hpp"
 
 using namespace huygens;
 

@@ -29,8 +29,9 @@
 #include "foam.hpp"
 #include "gl.hpp"
 #include "headless.hpp"
-#include "huygens/huygens/ambient_slopes.hpp"  // the Huygens solver's far sea, built here as its render_info does
 #include "huygens/pipeline/runner.hpp"
+#include "huygens/solvers/registry.hpp"
+#include "huygens/spectral/ambient_slopes.hpp"  // the Huygens solver's far sea, built here as its render_info does
 #include "plot.hpp"
 #include "renderer.hpp"
 #include "scene_view.hpp"

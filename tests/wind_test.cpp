@@ -1,7 +1,7 @@
 // Wind sea: JONSWAP spectrum and its wavenumber-plane Jacobian, determinism by seed,
 // a progressive (downwind only) sea, the realised variance, drift-free advancing, and the
 // ambient sea's slopes (ambient_slopes.hpp).
-#include "huygens/huygens/wind.hpp"
+#include "huygens/spectral/wind.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "huygens/common/scene.hpp"
-#include "huygens/huygens/ambient_slopes.hpp"
-#include "huygens/huygens/stokes.hpp"
+#include "huygens/spectral/ambient_slopes.hpp"
+#include "huygens/spectral/stokes.hpp"
 
 using namespace huygens;
 using cd = std::complex<double>;

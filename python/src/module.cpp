@@ -10,7 +10,7 @@
 #include "convert.hpp"
 #include "huygens/common/isa.hpp"
 #include "huygens/common/shipped_scenes.hpp"
-#include "huygens/pipeline/sizing.hpp"
+#include "huygens/solvers/sizing.hpp"
 #include "huygens/validation/validation.hpp"
 #include "simulation.hpp"
 

@@ -12,7 +12,8 @@
 #include "huygens/common/finite.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
-#include "huygens/pipeline/sizing.hpp"
+#include "huygens/solvers/registry.hpp"
+#include "huygens/solvers/sizing.hpp"
 
 namespace huygens::python {
 

@@ -11,10 +11,10 @@
 
 #include "huygens/common/program.hpp"
 #include "huygens/common/scene.hpp"
-#include "huygens/huygens/solver.hpp"
-#include "huygens/lbm/solver.hpp"
+#include "huygens/lbm/lbm_solver.hpp"
 #include "huygens/pipeline/solver.hpp"
-#include "huygens/sph/solver.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
+#include "huygens/sph/sph_solver.hpp"
 
 namespace {
 

@@ -10,6 +10,7 @@
 
 #include "huygens/common/scene.hpp"
 #include "huygens/pipeline/solver.hpp"
+#include "huygens/solvers/registry.hpp"
 #include "huygens/validation/reference/cauchy_poisson.hpp"
 
 namespace {

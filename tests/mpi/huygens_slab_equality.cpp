@@ -19,8 +19,8 @@
 
 #include "huygens/common/scene.hpp"
 #include "huygens/common/slab_fft.hpp"
-#include "huygens/huygens/slab_solver.hpp"
-#include "huygens/huygens/solver.hpp"
+#include "huygens/spectral/slab_solver.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
 
 namespace {
 

@@ -1,5 +1,6 @@
 // The toy solver's one registration: linked into a program as an object file, its static
-// initializer adds the entry before main (pipeline/registry.hpp).
+// initializer adds the entry before main (solvers/registry.hpp).
+#include "huygens/solvers/registry.hpp"
 #include "toy_solver.hpp"
 
 namespace {

@@ -1,10 +1,10 @@
-// The solver registry (pipeline/registry.hpp) with the test-only toy solver registered from outside
+// The solver registry (solvers/registry.hpp) with the test-only toy solver registered from outside
 // the library (register_solver.cpp, register_cases.cpp): found by name, built, sized, validated.
-#include "huygens/pipeline/registry.hpp"
+#include "huygens/solvers/registry.hpp"
 
 #include <gtest/gtest.h>
 
-#include "huygens/pipeline/sizing.hpp"
+#include "huygens/solvers/sizing.hpp"
 #include "huygens/validation/validation.hpp"
 #include "toy_solver.hpp"
 

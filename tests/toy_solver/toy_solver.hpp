@@ -1,5 +1,5 @@
 #pragma once
-// A test-only solver added through the registry (pipeline/registry.hpp), with no edit to the library
+// A test-only solver added through the registry (solvers/registry.hpp), with no edit to the library
 // or the programs: the linear long-wave equation eta_tt = g H (eta_xx + eta_yy) on a periodic square
 // grid, central differences in space, leapfrog in time. Its scene block:
 //   "solver": "toy", "toy": {"n": 64, "length_m": 1, "depth_m": 0.1, "dt_s": 0.005, "amplitude_m": 0.01,
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "huygens/pipeline/registry.hpp"
+#include "huygens/pipeline/solver_entry.hpp"
 #include "huygens/validation/validation.hpp"
 
 namespace huygens::toy {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "huygens/common/report.hpp"
-#include "huygens/huygens/propagator.hpp"
-#include "huygens/huygens/solver.hpp"
+#include "huygens/spectral/propagator.hpp"
+#include "huygens/spectral/spectral_solver.hpp"
 #include "huygens/validation/reference/cauchy_poisson.hpp"
 #include "huygens/validation/reference/kelvin.hpp"
 #include "huygens/validation/validation.hpp"

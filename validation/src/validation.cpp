@@ -3,7 +3,7 @@
 #include <cmath>
 #include <utility>
 
-#include "huygens/pipeline/registry.hpp"
+#include "huygens/solvers/registry.hpp"
 
 namespace huygens {
 

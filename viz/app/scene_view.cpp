@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "huygens/common/shipped_scenes.hpp"
+#include "huygens/solvers/registry.hpp"
 #include "plot.hpp"
 
 namespace huygens {

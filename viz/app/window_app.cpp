@@ -24,6 +24,7 @@
 #include "huygens/common/program.hpp"
 #include "huygens/pipeline/command.hpp"
 #include "huygens/pipeline/runner.hpp"
+#include "huygens/solvers/registry.hpp"
 #include "scene_view.hpp"
 
 namespace huygens {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "huygens/common/fft.hpp"
-#include "huygens/huygens/propagator.hpp"
+#include "huygens/spectral/propagator.hpp"
 
 namespace huygens {
 

@@ -43,7 +43,7 @@ ValidationRow report_only(std::string case_name, std::string quantity, double me
 std::vector<ValidationCase> huygens_validation_cases();
 std::vector<ValidationCase> sph_validation_cases();
 std::vector<ValidationCase> lbm_validation_cases();
-/// Adds the cases of a solver outside the library (its registry name, pipeline/registry.hpp); the
+/// Adds the cases of a solver outside the library (its registry name, solvers/registry.hpp); the
 /// library's own are listed in validation.cpp, one line per solver. Not thread-safe: call it from a
 /// static initializer or main.
 void register_validation_cases(const std::string& solver, std::function<std::vector<ValidationCase>()> cases);

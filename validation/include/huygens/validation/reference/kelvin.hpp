@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "huygens/common/dispersion.hpp"
-#include "huygens/huygens/ship_waves.hpp"
+#include "huygens/spectral/ship_waves.hpp"
 
 namespace huygens {
 

@@ -1,0 +1,28 @@
+# cmake -DBUILD_DIR=... -P expect_build.cmake: the control compiles; each forbidden include fails,
+# on its own header not being found (the module's include path lacks it).
+function(build target out rc)
+  execute_process(COMMAND ${CMAKE_COMMAND} --build ${BUILD_DIR} --target ${target} RESULT_VARIABLE r OUTPUT_VARIABLE o
+                  ERROR_VARIABLE e)
+  set(${out} "${o}${e}" PARENT_SCOPE)
+  set(${rc} ${r} PARENT_SCOPE)
+endfunction()
+build(layer_allowed_includes out rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "the control did not compile:\n${out}")
+endif()
+message(STATUS "ok: the viewer's allowed includes compile")
+foreach(case IN ITEMS viewer_includes_solver:huygens/spectral/spectral_solver.hpp sph_includes_lbm:huygens/lbm/shallow.hpp
+                      pipeline_includes_validation:huygens/validation/validation.hpp)
+  string(REPLACE ":" ";" case ${case})
+  list(GET case 0 name)
+  list(GET case 1 header)
+  build(layer_${name} out rc)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "layer_${name} compiled: ${header} is reachable where the design forbids it")
+  endif()
+  string(FIND "${out}" "${header}: No such file or directory" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "layer_${name} failed, but not on ${header}:\n${out}")
+  endif()
+  message(STATUS "ok: ${name} fails to build (${header} not on its include path)")
+endforeach()
