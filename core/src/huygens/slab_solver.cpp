@@ -45,7 +45,9 @@ MemoryEstimate huygens_slab_memory(const HuygensScene& s, int ranks) {
   if (s.display_per_step > 1) m.add("interpolation", 3 * f * vslab);
   if (!s.ships.empty()) {
     const std::uint64_t p2 = static_cast<std::uint64_t>(s.ship_patch) * s.ship_patch;
-    m.add("ship patches", c * p2 * (1 + 2 * s.ships.size()) + sizeof(double) * p2, "$.ships");
+    // huygens_memory: K patches per ship kept and K - 1 delay tables with the round trip every K steps
+    const std::uint64_t k = static_cast<std::uint64_t>(std::max(1, s.params.round_trip_every));
+    m.add("ship patches", c * p2 * (1 + (2 + k) * s.ships.size() + (k - 1)) + sizeof(double) * p2, "$.ships");
   }
   return m;
 }
