@@ -137,9 +137,9 @@ void bench_huygens(Context& ctx) {
         tr.push_back(seconds_since(t0));
       }
       const double step = median(ts), fft = median(tr), fin = median(tf);
-      const int tps = prop.transforms_per_step();
+      const double tps = prop.transforms_per_step();
       t.add({std::to_string(n), std::to_string(threads), fmt("%.3f", step * 1e3), fmt("%.3f", fft * 1e3),
-             fmt("%.3f", step / fft), fmt("%.3f", fin * 1e3), fmt("%.3f", median(ratio_in)), std::to_string(tps),
+             fmt("%.3f", step / fft), fmt("%.3f", fin * 1e3), fmt("%.3f", median(ratio_in)), fmt("%g", tps),
              fmt("%.3f", median(std::vector<double>(ts.begin(), ts.end())) * 1e3 - fin * 1e3), std::to_string(reps)});
     }
   }

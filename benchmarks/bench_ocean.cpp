@@ -25,6 +25,9 @@
 #include <cmath>
 #include <ctime>
 #include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <vector>
 
 #include "bench.hpp"
@@ -266,13 +269,59 @@ void ships_solver_row(const ShipsCase& c, Table& step) {
                                c.n, len, c.margin, c.dt, 0.3 * len, 0.5 * len, 0.3 * len + 1.2e4, 0.5 * len);
   RunOptions ro;
   ro.measure_plans = true;
-  HuygensSolver solver(parse_huygens_scene(parse_scene_text(text), ro));
+  // the round trip every step: the raw twin performs those transforms (the every-K steps are in
+  // ships_scene_rows)
+  HuygensScene scene = parse_huygens_scene(parse_scene_text(text), ro);
+  scene.params.round_trip_every = 1;
+  HuygensSolver solver(scene);
   const HuygensParams& sp = solver.scene().params;
   Pipeline raw(sp, true, c.wp, solver.scene().ship_patch);
   const Paired p = paired(
       c.warm, c.reps, [&] { solver.step(); }, [&] { raw.raw(); });
   const double t_disp = median_seconds(c.reps, [&] { (void)solver.display_outputs(1); });
-  add_step_row(c, step, "HuygensSolver: ship + wind + 2nd-order Stokes", p, solver.transforms_per_step(), "-", t_disp);
+  add_step_row(c, step, "HuygensSolver: ship + wind + 2nd-order Stokes", p,
+               static_cast<int>(std::lround(solver.transforms_per_step())), "-", t_disp);
+}
+
+// The shipped scenes (default, ocean, kelvin) as HuygensSolver at n (the margin scaled with n, so
+// the margin in metres and the automatic K stay), with the round trip every step (K = 1, before
+// issue 37 item 2) and every K = grid.round_trip_every steps (automatic), alternated in blocks of
+// K steps in one run. transforms/step is counted by the stages; step/raw = ms per step over
+// transforms/step x one raw N x N c2c transform (an Fft2D of the same size, effort and threads).
+void ships_scene_rows(const Context& ctx, int n, int threads, Table& t) {
+  const double raw = [&] {
+    AlignedBuffer<cfloat> b(static_cast<std::size_t>(n) * n);
+    for (std::size_t i = 0; i < b.size(); ++i) b[i] = cfloat(1e-3f * static_cast<float>(i % 97), 0.0f);
+    Fft2D f(n, n, b.data(), b.data(), Fft2D::backward, PlanEffort::measure);
+    return median_seconds(ctx.quick ? 20 : 60, [&] { f.execute(); });
+  }();
+  for (const char* name : {"default", "ocean", "kelvin"}) {
+    nlohmann::json j = nlohmann::json::parse(shipped_scene(std::string(name) + ".json"));
+    j["grid"]["margin"] = j["grid"]["margin"].get<int>() * n / j["grid"]["n"].get<int>();
+    j["grid"]["n"] = n;
+    RunOptions ro;
+    ro.measure_plans = true;
+    std::unique_ptr<HuygensSolver> s[2];
+    for (int v = 0; v < 2; ++v) {
+      j["grid"]["round_trip_every"] = v == 0 ? 1 : 0;
+      s[v] = std::make_unique<HuygensSolver>(parse_huygens_scene(parse_scene_text(j.dump()), ro));
+    }
+    const int k = s[1]->scene().params.round_trip_every, blocks = ctx.quick ? 6 : (n <= 512 ? 16 : 6);
+    std::vector<double> ms[2];
+    for (int b = 0; b < blocks; ++b)
+      for (int v = 0; v < 2; ++v) {
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int i = 0; i < k; ++i) s[v]->step();
+        ms[v].push_back(1e3 * seconds_since(t0) / k);
+      }
+    for (int v = 0; v < 2; ++v) {
+      std::uint64_t tr = 0;
+      for (const auto& st : s[v]->stats().all()) tr += st.transforms;
+      const double per = static_cast<double>(tr) / (static_cast<double>(blocks) * k), m = median(ms[v]);
+      t.add({std::to_string(n), std::to_string(threads), name, v == 0 ? "1 (every step)" : std::to_string(k), num(m, 3),
+             num(per, 3), num(1e3 * raw, 3), num(m / (per * 1e3 * raw), 3), std::to_string(blocks * k)});
+    }
+  }
 }
 
 }  // namespace
@@ -285,6 +334,8 @@ void bench_ships(Context& ctx) {
   Table step({"n", "threads", "pipeline", "ms/full step", "raw FFTs ms", "transforms/step", "step/raw (wall)",
               "q25-q75", "step/raw (ratio of medians)", "step/raw (CPU)", "step/in-step FFT", "ms/displayed frame",
               "transforms/frame", "reps"});
+  Table scenes({"n", "threads", "scene", "round trip every", "ms/step", "transforms/step", "raw FFT ms",
+                "step/raw transforms", "steps"});
   for (const int threads : thread_counts)
     for (int n : sizes) {
       // the same thread count for every plan and pass of this row (plans made after this)
@@ -294,6 +345,7 @@ void bench_ships(Context& ctx) {
       ships_stage_rows(c, stages);
       ships_step_rows(c, step);
       ships_solver_row(c, step);
+      if (n >= 512) ships_scene_rows(ctx, n, threads, scenes);
     }
   fft_set_threads(omp_get_num_procs());
   omp_set_num_threads(omp_get_num_procs());
@@ -308,6 +360,11 @@ void bench_ships(Context& ctx) {
              "ratios (target <= 1.2); displayed frame at display_per_step = 3; paper 004 Table 1: 52 + 6 ms per "
              "displayed frame at n = 512 (Pentium 4, 2003)",
              step);
+  ctx.report("ships",
+             "shipped scenes (margin scaled with n) with the spatial round trip every step and every K = "
+             "grid.round_trip_every steps (automatic), alternated in blocks of K steps; transforms/step counted by the "
+             "stages; step/raw transforms = ms/step / (transforms/step x one raw N x N c2c transform)",
+             scenes);
 }
 
 }  // namespace huygens::bench

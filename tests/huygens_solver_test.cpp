@@ -11,6 +11,7 @@
 
 #include "huygens/solvers/registry.hpp"
 #include "huygens/spectral/spectral_solver.hpp"
+#include "scenes_dir.hpp"
 
 using namespace huygens;
 
@@ -82,7 +83,8 @@ TEST(HuygensSolver, OutputsAreTheVisibleRegion) {
   EXPECT_EQ(out[0].shape, (std::vector<std::size_t>{48, 48}));
   const auto meta = solver->meta();
   EXPECT_EQ(meta["display_per_step"], 3);
-  EXPECT_EQ(meta["transforms_per_step"], 3);
+  EXPECT_EQ(meta["round_trip_every"], 3);  // auto_round_trip_every of this grid and step
+  EXPECT_DOUBLE_EQ(meta["transforms_per_step"].get<double>(), 1.0 + 2.0 / 3.0);
   EXPECT_DOUBLE_EQ(meta["dx"].get<double>(), 2.0 / 64);
 }
 
@@ -238,4 +240,21 @@ TEST(HuygensSolver, ShipTargetRefusesInvalidCommands) {
   EXPECT_FALSE(calm->apply(Command{cmd::ShipTarget{0, 1.0f, 1.0f, 0.0f, 0.0f}}));  // no ships at all
   std::array<ShipState, kMaxFrameShips> p{};
   EXPECT_EQ(calm->ship_poses(p), 0u);
+}
+
+// The shipped scenes with the cutoff, ships, wind and Stokes: the round trip every K steps brings
+// them to at most 3.5 N x N transforms per step (issue 37 item 2), counted by the stages.
+TEST(HuygensSolver, ShippedScenesTakeAtMostThreeAndAHalfTransformsPerStep) {
+  for (const char* name : {"default", "ocean", "kelvin"}) {
+    SCOPED_TRACE(name);
+    auto s = make_solver(load_scene(test::scenes_dir() + "/" + name + ".json"), RunOptions{false});
+    const double per_step = s->meta()["transforms_per_step"].get<double>();
+    EXPECT_LE(per_step, 3.5);
+    const int k = s->meta()["round_trip_every"].get<int>();
+    EXPECT_GT(k, 1);
+    for (int i = 0; i < 2 * k; ++i) s->step();
+    std::uint64_t total = 0;
+    for (const auto& st : s->stats().all()) total += st.transforms;
+    EXPECT_DOUBLE_EQ(static_cast<double>(total) / (2 * k), per_step);
+  }
 }

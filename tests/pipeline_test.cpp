@@ -40,7 +40,8 @@ namespace {
 /// A Huygens scene: n x n grid, 10 m side, margin n/8, a Gaussian hump, optional drops.
 std::string scene_text(int n, bool cutoff, bool initial, bool drops, double dt = 0.02) {
   json s = {{"solver", "huygens"},
-            {"grid", {{"n", n}, {"length_m", 10.0}, {"margin", n / 8}, {"cutoff", cutoff}}},
+            // the round trip every step (the stage counts below are per step)
+            {"grid", {{"n", n}, {"length_m", 10.0}, {"margin", n / 8}, {"cutoff", cutoff}, {"round_trip_every", 1}}},
             {"time", {{"dt_s", dt}}}};
   if (initial)
     s["initial"] =

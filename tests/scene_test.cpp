@@ -334,3 +334,11 @@ TEST(JsonIn, ARepeatedKeyIsRefusedNamingItsPath) {
       "fluid": [{"min_m": [0, 0, 0], "max_m": [0.1, 0.1, 0.05]}, {"min_m": [0, 0, 0.06], "max_m": [0.1, 0.1, 0.08]}]}})"),
             "<no error>");
 }
+
+TEST(HuygensScene, RoundTripEveryIsCheckedAndResolved) {
+  for (const char* bad : {R"({"n": 64, "length_m": 2.0, "margin": 8, "round_trip_every": -1})",
+                          R"({"n": 64, "length_m": 2.0, "margin": 8, "round_trip_every": 65})",
+                          R"({"n": 64, "length_m": 2.0, "margin": 8, "round_trip_every": 2.5})",
+                          R"({"n": 64, "length_m": 2.0, "margin": 8, "round_trip_every": "4"})"})
+    EXPECT_EQ(error_path_of(huygens_scene(bad)), "$.grid.round_trip_every") << bad;
+}

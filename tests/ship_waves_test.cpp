@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "huygens/common/scene.hpp"
+#include "huygens/spectral/propagator.hpp"
 
 using namespace huygens;
 using cd = std::complex<double>;
@@ -460,4 +461,55 @@ TEST(ShipSteering, SceneSteeringBlock) {
   } catch (const SceneError& e) {
     EXPECT_EQ(e.path(), "$.ships[0].steering.top_speed");
   }
+}
+
+// The round trip every K steps (HuygensPropagator::round_trip_every): a ship's patch of the step
+// k steps before the round trip is turned by e^{-i omega k dt} on the patch (ShipWaves::gather).
+// With the patch as large as the grid the patch's periodicity is the grid's, so the gathered
+// sources must give the every-step field to float rounding (no cutoff: nothing else differs).
+TEST(ShipWaves, GatheredOverKStepsEqualsEveryStepInjection) {
+  const int n = 64, k_every = 4, steps = 3 * k_every;
+  const double dt = 0.05;
+  Ship s;
+  s.path = ShipPath({{0.0, 2.0, 3.2}, {10.0, 12.0, 3.2}});  // 1 m/s along +x
+  auto params = [&](int k) {
+    HuygensParams p;
+    p.n = n;
+    p.length_m = 6.4;
+    p.margin = 0;
+    p.absorber = Absorber::off;
+    p.spatial = true;
+    p.dt_s = dt;
+    p.effort = PlanEffort::estimate;
+    p.round_trip_every = k;
+    return p;
+  };
+  HuygensPropagator every(params(1)), gathered(params(k_every));
+  ShipWaves a(Water{}, n, 6.4, n, {s}, PlanEffort::estimate), b(Water{}, n, 6.4, n, {s}, PlanEffort::estimate);
+  b.reserve_gather(k_every);
+  for (int i = 0; i < steps; ++i) {
+    every.propagate();
+    ASSERT_TRUE(a.add(every.field().data(), i * dt, dt));
+    every.spectrum();
+    every.height();
+    every.end_step();
+    gathered.propagate();
+    EXPECT_EQ(gathered.steps_to_round_trip(), (k_every - 1 - i % k_every));
+    ASSERT_TRUE(b.gather(i * dt, dt, gathered.steps_to_round_trip()));
+    if (gathered.round_trip_now()) b.scatter_rows(gathered.field().data(), 0, n);
+    gathered.spectrum();
+    gathered.height();
+    gathered.end_step();
+  }
+  EXPECT_EQ(b.gathered(), 0);
+  double num = 0, den = 0;
+  const auto x = every.eta(), y = gathered.eta();
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    num += std::pow(double(x[i]) - y[i], 2);
+    den += std::pow(double(x[i]), 2);
+  }
+  ASSERT_GT(den, 0);
+  EXPECT_LT(std::sqrt(num / den), 2e-6) << "relative L2 of eta after " << steps << " steps";
+  EXPECT_EQ(gathered.stats()[gathered.stats().find("spectrum")].transforms,
+            static_cast<std::uint64_t>(steps / k_every));
 }

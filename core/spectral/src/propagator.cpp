@@ -39,11 +39,12 @@ std::string huygens_params_error(const HuygensParams& p) {
   if (!(p.water.depth_m > 0)) return "depth must be > 0 (or infinite)";
   if (p.check_every < 0) return "check_every must be >= 0";
   if (!(p.cutoff_time_s >= 0) || !std::isfinite(p.cutoff_time_s)) return "cutoff_time_s must be >= 0";
+  if (p.round_trip_every < 1 || p.round_trip_every > 64) return "round_trip_every must be in [1, 64]";
   return {};
 }
 
 HuygensPropagator::HuygensPropagator(const HuygensParams& p)
-    : p_(p), spatial_(p.absorber != Absorber::off || p.spatial) {
+    : p_(p), spatial_(p.absorber != Absorber::off || p.spatial), every_(std::clamp(p.round_trip_every, 1, 64)) {
   if (auto e = huygens_params_error(p); !e.empty()) throw std::invalid_argument(e);
   const std::size_t nn = static_cast<std::size_t>(p.n) * p.n;
   const std::size_t vv = static_cast<std::size_t>(visible_size()) * visible_size();
@@ -89,8 +90,10 @@ double HuygensPropagator::wavenumber(int i) const { return fft_wavenumber(i, p_.
 void HuygensPropagator::build_tables() {
   const int n = p_.n;
   const double inv_nn = 1.0 / (static_cast<double>(n) * n);
-  // the rotation carries the 1/N^2 of the FFT round trip only when there is one
-  const double rot_scale = spatial_ ? inv_nn : 1.0;
+  // the rotation carries the 1/N^2 of the FFT round trip when every step takes it; with the
+  // round trip every K > 1 steps the tables are unscaled and propagate() passes 1/N^2 (a power
+  // of two: the same bits as a scaled table) on the steps that take it
+  const double rot_scale = spatial_ && every_ == 1 ? inv_nn : 1.0;
   const int q = n / 2 + 1;  // quadrant tables: index (|row index|, |col index|), 0..N/2
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (int r = 0; r < q; ++r) {
@@ -245,12 +248,15 @@ void HuygensPropagator::check_stage(int stage, std::span<const cfloat> v) const 
 
 void HuygensPropagator::propagate() {
   check_now_ = p_.check_every > 0 && (steps_ + 1) % p_.check_every == 0;
+  // the round trip at the end of steps K, 2K, ...: between them Z^ only rotates (exact, eq. 1)
+  trip_now_ = spatial_ && (steps_ + 1) % every_ == 0;
   {
     StageTimer timer(stats_[st_propagate_]);
     const int n = p_.n;
-    // spectral rotation into Z (then IFFT), or in place on Z^ without the spatial round trip
+    // spectral rotation into Z (then IFFT), or in place on Z^ on a step without the round trip
     const float* s = reinterpret_cast<const float*>(s_.data());
-    float* z = reinterpret_cast<float*>(spatial_ ? z_.data() : s_.data());
+    float* z = reinterpret_cast<float*>(trip_now_ ? z_.data() : s_.data());
+    const float scale = trip_now_ && every_ > 1 ? 1.0f / (static_cast<float>(n) * static_cast<float>(n)) : 1.0f;
     const float *ta = rot_a_.data(), *tb = rot_b_.data(), *tc = rot_c_.data();
     const int q = n / 2 + 1;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
@@ -258,21 +264,21 @@ void HuygensPropagator::propagate() {
       // quadrant tables: row r reads table row min(r, N - r)
       const std::size_t qo = static_cast<std::size_t>(r <= n / 2 ? r : n - r) * q;
       rotate_row(p_.rotation, ta + qo, tb + qo, tc == nullptr ? nullptr : tc + qo,
-                 s + 2 * static_cast<std::size_t>(r) * n, z + 2 * static_cast<std::size_t>(r) * n, n);
+                 s + 2 * static_cast<std::size_t>(r) * n, z + 2 * static_cast<std::size_t>(r) * n, n, scale);
     }
-    if (spatial_) {
+    if (trip_now_) {
       const auto t0 = std::chrono::steady_clock::now();
       inv_prop_->execute();
       fft_ns_ += elapsed_ns(t0);
       stats_[st_propagate_].transforms += 1;
     }
   }
-  if (inject_due_for_test(st_propagate_)) (spatial_ ? z_ : s_)[mid_index()] = std::numeric_limits<float>::quiet_NaN();
-  if (check_now_) check_stage(st_propagate_, spatial_ ? z_.span() : s_.span());
+  if (inject_due_for_test(st_propagate_)) (trip_now_ ? z_ : s_)[mid_index()] = std::numeric_limits<float>::quiet_NaN();
+  if (check_now_) check_stage(st_propagate_, trip_now_ ? z_.span() : s_.span());
 }
 
 void HuygensPropagator::cutoff() {
-  if (st_cutoff_ < 0) return;
+  if (st_cutoff_ < 0 || !trip_now_) return;
   {
     StageTimer timer(stats_[st_cutoff_]);
     apply_cutoff_rows(reinterpret_cast<float*>(z_.data()), cut_.data(), p_.n, p_.margin, 0, p_.n);
@@ -282,7 +288,7 @@ void HuygensPropagator::cutoff() {
 }
 
 void HuygensPropagator::spectrum() {
-  if (!spatial_) return;
+  if (!trip_now_) return;
   {
     StageTimer timer(stats_[st_spectrum_]);
     const auto t0 = std::chrono::steady_clock::now();
@@ -369,8 +375,8 @@ void HuygensPropagator::diagnose_nonfinite() const {
   // The buffers still hold each stage's output: Z after propagate/cutoff (the cutoff cannot
   // create a non-finite value from finite ones), Z^ after spectrum (and spectral sources,
   // which check themselves), P after height. Name the first non-finite one.
-  if (spatial_ && !all_finite(z_.span())) throw NonFiniteError(stats_[st_propagate_].name, steps_ + 1);
-  if (!all_finite(s_.span())) throw NonFiniteError(stats_[spatial_ ? st_spectrum_ : st_propagate_].name, steps_ + 1);
+  if (trip_now_ && !all_finite(z_.span())) throw NonFiniteError(stats_[st_propagate_].name, steps_ + 1);
+  if (!all_finite(s_.span())) throw NonFiniteError(stats_[trip_now_ ? st_spectrum_ : st_propagate_].name, steps_ + 1);
   throw NonFiniteError(stats_[st_height_].name, steps_ + 1);
 }
 

@@ -33,16 +33,24 @@ namespace {
 }
 }  // namespace
 
-void rotate_row(Rotation kind, const float* a, const float* b, const float* c, const float* sr, float* zr, int n) {
+void rotate_row(Rotation kind, const float* a, const float* b, const float* c, const float* sr, float* zr, int n,
+                float scale) {
   const int h = n / 2;
   if (kind == Rotation::complex) {
 #pragma omp simd
     for (int col = 0; col < n; ++col) {
       const int j = col <= h ? col : n - col;
-      const float x = sr[2 * col], y = sr[2 * col + 1];
-      zr[2 * col] = a[j] * x - b[j] * y;
-      zr[2 * col + 1] = a[j] * y + b[j] * x;
+      const float x = sr[2 * col], y = sr[2 * col + 1], aj = a[j] * scale, bj = b[j] * scale;
+      zr[2 * col] = aj * x - bj * y;
+      zr[2 * col + 1] = aj * y + bj * x;
     }
+    return;
+  }
+  if (scale != 1.0f) {
+#pragma omp simd
+    for (int col = 0; col <= h; ++col) lift(sr, zr, col, a[col], b[col], c[col] * scale);
+#pragma omp simd
+    for (int col = h + 1; col < n; ++col) lift(sr, zr, col, a[n - col], b[n - col], c[n - col] * scale);
     return;
   }
   // columns 0..N/2 read the tables forward, N/2+1..N-1 backward: two loops, each contiguous

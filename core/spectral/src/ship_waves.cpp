@@ -264,7 +264,8 @@ ShipWaves::ShipWaves(const Water& water, int n, double length_m, int patch, std:
 }
 
 std::size_t ShipWaves::bytes() const {
-  return (buf_.size() + ph_.size() + 2 * cache_.size() * buf_.size()) * sizeof(cfloat) + omega_.size() * sizeof(double);
+  return (buf_.size() + ph_.size() + 2 * cache_.size() * buf_.size() + store_.size() + delay_.size()) * sizeof(cfloat) +
+         omega_.size() * sizeof(double);
 }
 
 void ShipWaves::check_step(double dt) const {
@@ -472,35 +473,90 @@ void ShipWaves::patch_spectrum(int i, double t, double dt, cfloat* out, int& row
 
 bool ShipWaves::add(cfloat* z, double t, double dt) { return add_rows(z, 0, n_, t, dt); }
 
+bool ShipWaves::make_patch(int i, double t, double dt, int delay, int& r0, int& c0) {
+  patch_spectrum(i, t, dt, buf_.data(), r0, c0);
+  if (delay > 0) {
+    // observed delay steps later: the spectral propagation of eq. 1, e^{-i omega delay dt}
+    if (delay > max_delay_) throw std::logic_error("ShipWaves::gather: delay beyond reserve_gather");
+    if (delay_dt_ != dt) build_delays(dt);
+    const cfloat* f = delay_.data() + static_cast<std::size_t>(delay - 1) * buf_.size();
+    for (std::size_t m = 0; m < buf_.size(); ++m) buf_[m] *= f[m];
+  }
+  inverse_.execute();
+  if (poison_) {
+    buf_[0] = cfloat(NAN, 0.0f);
+    poison_ = false;
+  }
+  if (!all_finite(buf_.span())) return false;
+  // the step is taken: commit the motion (steering state, last velocity and heading)
+  const std::size_t k = static_cast<std::size_t>(i);
+  const Motion& mo = motion_[k];
+  last_[k] = Last{true, t + dt, mo.vx, mo.vy, mo.h1};
+  Steer& st = steer_[k];
+  if (st.active) {
+    st.x = mo.x1, st.y = mo.y1, st.vx = mo.vx, st.vy = mo.vy, st.h = mo.h1;
+  }
+  return true;
+}
+
+void ShipWaves::scatter_patch(const cfloat* src0, int r0, int c0, cfloat* z, int row0, int rows) {
+  // scatter-add with periodic wrap at the grid edge
+  for (int j = 0; j < p_; ++j) cols_[static_cast<std::size_t>(j)] = ((c0 + fft_signed_index(j, p_)) % n_ + n_) % n_;
+  for (int r = 0; r < p_; ++r) {
+    const int row = ((r0 + fft_signed_index(r, p_)) % n_ + n_) % n_;
+    if (row < row0 || row >= row0 + rows) continue;  // another rank's row
+    cfloat* dst = z + static_cast<std::size_t>(row - row0) * n_;
+    const cfloat* src = src0 + static_cast<std::size_t>(r) * p_;
+    for (int j = 0; j < p_; ++j) dst[cols_[static_cast<std::size_t>(j)]] += src[j];
+  }
+}
+
 bool ShipWaves::add_rows(cfloat* z, int row0, int rows, double t, double dt) {
   for (int i = 0; i < ships(); ++i) {
     int r0, c0;
-    patch_spectrum(i, t, dt, buf_.data(), r0, c0);
-    inverse_.execute();
-    if (poison_) {
-      buf_[0] = cfloat(NAN, 0.0f);
-      poison_ = false;
-    }
-    if (!all_finite(buf_.span())) return false;
-    // scatter-add with periodic wrap at the grid edge
-    for (int j = 0; j < p_; ++j) cols_[static_cast<std::size_t>(j)] = ((c0 + fft_signed_index(j, p_)) % n_ + n_) % n_;
-    for (int r = 0; r < p_; ++r) {
-      const int row = ((r0 + fft_signed_index(r, p_)) % n_ + n_) % n_;
-      if (row < row0 || row >= row0 + rows) continue;  // another rank's row
-      cfloat* dst = z + static_cast<std::size_t>(row - row0) * n_;
-      const cfloat* src = buf_.data() + static_cast<std::size_t>(r) * p_;
-      for (int j = 0; j < p_; ++j) dst[cols_[static_cast<std::size_t>(j)]] += src[j];
-    }
-    // the step is taken: commit the motion (steering state, last velocity and heading)
-    const std::size_t k = static_cast<std::size_t>(i);
-    const Motion& mo = motion_[k];
-    last_[k] = Last{true, t + dt, mo.vx, mo.vy, mo.h1};
-    Steer& st = steer_[k];
-    if (st.active) {
-      st.x = mo.x1, st.y = mo.y1, st.vx = mo.vx, st.vy = mo.vy, st.h = mo.h1;
-    }
+    if (!make_patch(i, t, dt, 0, r0, c0)) return false;
+    scatter_patch(buf_.data(), r0, c0, z, row0, rows);
   }
   return true;
+}
+
+void ShipWaves::reserve_gather(int k) {
+  const int slots = std::max(1, k) * ships();
+  if (slots > slots_) {
+    store_ = AlignedBuffer<cfloat>(static_cast<std::size_t>(slots) * buf_.size());
+    slots_ = slots;
+    pending_.reserve(static_cast<std::size_t>(slots));
+  }
+  if (k - 1 > max_delay_) {
+    max_delay_ = k - 1;
+    delay_ = AlignedBuffer<cfloat>(static_cast<std::size_t>(max_delay_) * buf_.size());
+    delay_dt_ = -1;
+  }
+}
+
+void ShipWaves::build_delays(double dt) {
+  const std::size_t pp = buf_.size();
+  for (int d = 1; d <= max_delay_; ++d)
+    for (std::size_t m = 0; m < pp; ++m)
+      delay_[static_cast<std::size_t>(d - 1) * pp + m] = cfloat(std::exp(cd(0.0, -omega_[m] * d * dt)));
+  delay_dt_ = dt;
+}
+
+bool ShipWaves::gather(double t, double dt, int delay) {
+  for (int i = 0; i < ships(); ++i) {
+    if (static_cast<int>(pending_.size()) >= slots_) throw std::logic_error("ShipWaves::gather: beyond reserve_gather");
+    int r0, c0;
+    if (!make_patch(i, t, dt, delay, r0, c0)) return false;
+    const std::size_t slot = pending_.size();
+    std::copy(buf_.data(), buf_.data() + buf_.size(), store_.data() + slot * buf_.size());
+    pending_.push_back(Pending{slot, r0, c0});
+  }
+  return true;
+}
+
+void ShipWaves::scatter_rows(cfloat* z, int row0, int rows) {
+  for (const Pending& q : pending_) scatter_patch(store_.data() + q.slot * buf_.size(), q.r0, q.c0, z, row0, rows);
+  pending_.clear();
 }
 
 }  // namespace huygens

@@ -45,7 +45,9 @@ MemoryEstimate huygens_slab_memory(const HuygensScene& s, int ranks) {
   if (s.display_per_step > 1) m.add("interpolation", 3 * f * vslab);
   if (!s.ships.empty()) {
     const std::uint64_t p2 = static_cast<std::uint64_t>(s.ship_patch) * s.ship_patch;
-    m.add("ship patches", c * p2 * (1 + 2 * s.ships.size()) + sizeof(double) * p2, "$.ships");
+    // huygens_memory: K patches per ship kept and K - 1 delay tables with the round trip every K steps
+    const std::uint64_t k = static_cast<std::uint64_t>(std::max(1, s.params.round_trip_every));
+    m.add("ship patches", c * p2 * (1 + (2 + k) * s.ships.size() + (k - 1)) + sizeof(double) * p2, "$.ships");
   }
   return m;
 }
@@ -63,6 +65,7 @@ HuygensSlabSolver::HuygensSlabSolver(const HuygensScene& scene, MPI_Comm comm, S
   g_.row_column = how == SlabTransforms::one_process_bits;
   sent_per_transform_ = static_cast<std::uint64_t>(g_.transposes() * slab_transpose_bytes(g_));
   spatial_ = p.absorber != Absorber::off || !scene_.ships.empty();
+  every_ = std::clamp(p.round_trip_every, 1, 64);
   second_ = scene_.stokes;
   v_ = p.n - 2 * p.margin;
   const std::ptrdiff_t lo = std::max<std::ptrdiff_t>(g_.row0, p.margin);
@@ -78,6 +81,7 @@ HuygensSlabSolver::HuygensSlabSolver(const HuygensScene& scene, MPI_Comm comm, S
   if (!scene_.ships.empty()) {
     ships_ = std::make_unique<ShipWaves>(p.water, p.n, p.length_m, scene_.ship_patch, scene_.ships, p.effort);
     ships_->check_step(p.dt_s);
+    if (every_ > 1) ships_->reserve_gather(every_);
   }
   if (scene_.has_wind)
     wind_ = std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt_s,
@@ -124,7 +128,8 @@ void HuygensSlabSolver::build_tables() {
   const HuygensParams& p = scene_.params;
   const int n = p.n, q = n / 2 + 1;
   const double inv_nn = 1.0 / (static_cast<double>(n) * n);
-  const double rot_scale = spatial_ ? inv_nn : 1.0;
+  // HuygensPropagator::build_tables: unscaled with the round trip every K > 1 steps
+  const double rot_scale = spatial_ && every_ == 1 ? inv_nn : 1.0;
   for (int r = 0; r < q; ++r)
     for (int c = 0; c < q; ++c) {
       const double k = std::hypot(fft_wavenumber(c, n, p.length_m), fft_wavenumber(r, n, p.length_m));
@@ -237,23 +242,26 @@ void HuygensSlabSolver::check(int stage, std::span<const cfloat> v) {
   if (!all_finite(v)) flags_[static_cast<std::size_t>(stage)] += 1.0;
 }
 
-void HuygensSlabSolver::rotate(const float* s, float* z) {
+void HuygensSlabSolver::rotate(const float* s, float* z, float scale) {
   // HuygensPropagator::propagate's rotation on the local kx rows (quadrant tables symmetric)
   const int n = g_.n, q = n / 2 + 1;
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (std::ptrdiff_t lr = 0; lr < g_.krows; ++lr) {
     const std::size_t qo = static_cast<std::size_t>(quad(static_cast<int>(g_.krow0 + lr), n)) * q;
     rotate_row(scene_.params.rotation, rot_a_.data() + qo, rot_b_.data() + qo, rot_c_.data() + qo,
-               s + 2 * static_cast<std::size_t>(lr) * n, z + 2 * static_cast<std::size_t>(lr) * n, n);
+               s + 2 * static_cast<std::size_t>(lr) * n, z + 2 * static_cast<std::size_t>(lr) * n, n, scale);
   }
 }
 
 void HuygensSlabSolver::propagate() {
   check_now_ = scene_.params.check_every > 0 && (steps_ + 1) % scene_.params.check_every == 0;
+  trip_now_ = spatial_ && (steps_ + 1) % every_ == 0;  // HuygensPropagator::propagate
   {
     StageTimer timer(stats_[st_propagate_]);
-    rotate(reinterpret_cast<const float*>(s_.data()), reinterpret_cast<float*>(spatial_ ? z_.data() : s_.data()));
-    if (spatial_) {
+    const float scale = trip_now_ && every_ > 1 ? 1.0f / (static_cast<float>(g_.n) * static_cast<float>(g_.n)) : 1.0f;
+    rotate(reinterpret_cast<const float*>(s_.data()), reinterpret_cast<float*>(trip_now_ ? z_.data() : s_.data()),
+           scale);
+    if (trip_now_) {
       const auto t0 = std::chrono::steady_clock::now();
       inv_prop_->execute();
       fft_ns_ += elapsed_ns(t0);
@@ -261,12 +269,12 @@ void HuygensSlabSolver::propagate() {
       stats_[st_propagate_].sent += sent_per_transform_;
     }
   }
-  const std::size_t m = static_cast<std::size_t>(spatial_ ? g_.rows : g_.krows) * g_.n;
-  if (check_now_) check(st_propagate_, std::span<const cfloat>((spatial_ ? z_ : s_).data(), m));
+  const std::size_t m = static_cast<std::size_t>(trip_now_ ? g_.rows : g_.krows) * g_.n;
+  if (check_now_) check(st_propagate_, std::span<const cfloat>((trip_now_ ? z_ : s_).data(), m));
 }
 
 void HuygensSlabSolver::cutoff() {
-  if (st_cutoff_ < 0) return;
+  if (st_cutoff_ < 0 || !trip_now_) return;
   {
     StageTimer timer(stats_[st_cutoff_]);
     apply_cutoff_rows(reinterpret_cast<float*>(z_.data()), cut_.data(), g_.n, scene_.params.margin, g_.row0, g_.rows);
@@ -277,12 +285,19 @@ void HuygensSlabSolver::cutoff() {
 void HuygensSlabSolver::add_ships(double t0) {
   // every rank makes every patch (P x P, small) and adds the rows it owns
   StageTimer timer(stats_[st_ships_]);
-  if (!ships_->add_rows(z_.data(), static_cast<int>(g_.row0), static_cast<int>(g_.rows), t0, scene_.params.dt_s))
-    flags_[static_cast<std::size_t>(st_ships_)] += 1.0;
+  const int r0 = static_cast<int>(g_.row0), rows = static_cast<int>(g_.rows);
+  bool ok = true;
+  if (every_ == 1) {
+    ok = ships_->add_rows(z_.data(), r0, rows, t0, scene_.params.dt_s);
+  } else {  // HuygensSolver::add_ships: gathered until the round trip
+    ok = ships_->gather(t0, scene_.params.dt_s, static_cast<int>((every_ - (steps_ + 1) % every_) % every_));
+    if (ok && trip_now_) ships_->scatter_rows(z_.data(), r0, rows);
+  }
+  if (!ok) flags_[static_cast<std::size_t>(st_ships_)] += 1.0;
 }
 
 void HuygensSlabSolver::spectrum() {
-  if (!spatial_) return;
+  if (!trip_now_) return;
   {
     StageTimer timer(stats_[st_spectrum_]);
     const auto t0 = std::chrono::steady_clock::now();
@@ -445,7 +460,7 @@ void HuygensSlabSolver::step() {
     const std::size_t m = static_cast<std::size_t>(g_.krows) * g_.n;
     const bool s_ok = all_finite(std::span<const cfloat>(s_.data(), m));
     const bool own = !second_ && !wind_;  // the Stokes/wind stage names itself (HuygensSolver::make_height)
-    flags_[static_cast<std::size_t>(s_ok || !own ? st_height_ : spatial_ ? st_spectrum_ : st_propagate_)] += 1.0;
+    flags_[static_cast<std::size_t>(s_ok || !own ? st_height_ : trip_now_ ? st_spectrum_ : st_propagate_)] += 1.0;
   }
   reduce_step(energy_due);
   ++steps_;
@@ -495,18 +510,22 @@ std::size_t HuygensSlabSolver::ship_poses(std::span<ShipState> out) const {
 
 int HuygensSlabSolver::transforms_per_step() const { return (spatial_ ? 2 : 0) + (second_ ? 4 : 2); }
 
+double HuygensSlabSolver::mean_transforms_per_step() const {
+  return (spatial_ ? 2.0 / every_ : 0.0) + (second_ ? 4 : 2);
+}
+
 double HuygensSlabSolver::bytes_sent_per_step() const {
-  return transforms_per_step() * g_.transposes() * slab_transpose_bytes(g_);
+  return mean_transforms_per_step() * g_.transposes() * slab_transpose_bytes(g_);
 }
 
 nlohmann::json HuygensSlabSolver::meta() const {
   // the one-process description of the global grid, plus how it was split
-  nlohmann::json j = huygens_meta(scene_, transforms_per_step(), still_energy_);
+  nlohmann::json j = huygens_meta(scene_, mean_transforms_per_step(), still_energy_);
   j["mpi"] = {{"ranks", g_.ranks},
               {"layout", g_.row_column   ? "row slabs; spectrum normal; row-column transforms (one-process bits)"
                          : g_.transposed ? "row slabs; spectrum transposed (FFTW_MPI_TRANSPOSED_OUT/IN)"
                                          : "row slabs; spectrum normal (FFTW's MPI plans)"},
-              {"transposes_per_step", transforms_per_step() * g_.transposes()},
+              {"transposes_per_step", mean_transforms_per_step() * g_.transposes()},
               {"height", "i IFFT[alpha Y] + i conj(IFFT[beta Y]): two transforms, no mirror exchange"}};
   return j;
 }

@@ -17,6 +17,7 @@
 #include "huygens/pipeline/render_request.hpp"
 #include "huygens/pipeline/solver_entry.hpp"
 #include "huygens/spectral/ambient_slopes.hpp"
+#include "huygens/spectral/cutoff.hpp"
 #include "huygens/spectral/slab_solver.hpp"
 
 namespace huygens {
@@ -25,10 +26,10 @@ namespace {
 
 constexpr double kBig = 1e6;
 
-// grid: n (power of two), length_m, margin, cutoff (bool), cutoff_time_s
+// grid: n (power of two), length_m, margin, cutoff (bool), cutoff_time_s, round_trip_every
 void parse_grid(const JsonIn& root, HuygensParams& p) {
   const JsonIn grid = root.object("grid");
-  grid.allow_only({"n", "length_m", "margin", "cutoff", "cutoff_time_s"});
+  grid.allow_only({"n", "length_m", "margin", "cutoff", "cutoff_time_s", "round_trip_every"});
   const long long n = grid.integer("n", 16, 32768);  // 32768: on MPI ranks (docs/scale.md)
   if ((n & (n - 1)) != 0) grid.fail("n", "must be a power of two (FFT grid), got " + std::to_string(n));
   p.n = static_cast<int>(n);
@@ -39,6 +40,9 @@ void parse_grid(const JsonIn& root, HuygensParams& p) {
   p.absorber = grid.boolean("cutoff", true) ? Absorber::paper_quadratic : Absorber::off;
   // 0 (default): paper 004's cutoff once per step; tau > 0: one paper cutoff per tau seconds
   p.cutoff_time_s = grid.number("cutoff_time_s", 0.0, 0.0, 1e6);
+  // K: the spatial round trip every K steps; 0 (default) = auto_round_trip_every (cutoff.hpp),
+  // resolved in parse_huygens_scene once dt and the water are known
+  p.round_trip_every = static_cast<int>(grid.integer("round_trip_every", 0, 0, 64));
   if (p.absorber == Absorber::paper_quadratic && m < 1) grid.fail("margin", "the cutoff needs margin >= 1");
 }
 
@@ -222,6 +226,7 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options) 
   // ships add to the spatial field: force the FFT round trip even without the cutoff
   p.spatial = !out.ships.empty();
   if (!out.ships.empty()) size_ship_patch(root, out);
+  if (p.round_trip_every == 0) p.round_trip_every = auto_round_trip_every(p);
   if (auto e = huygens_params_error(p); !e.empty()) root.fail_here(e);
     // before the ship probe, the first allocation; on ranks, what one rank allocates
 #ifdef HUYGENS_HAVE_MPI
@@ -251,7 +256,9 @@ MemoryEstimate huygens_memory(const HuygensScene& s) {
   if (s.display_per_step > 1) m.add("interpolation", 3 * f * v2);
   if (!s.ships.empty()) {  // the patch buffer, omega, and two cached kernels per ship (ship_waves.hpp)
     const std::uint64_t p2 = static_cast<std::uint64_t>(s.ship_patch) * s.ship_patch;
-    m.add("ship patches", c * p2 * (1 + 2 * s.ships.size()) + sizeof(double) * p2, "$.ships");
+    // with the round trip every K steps: K patches per ship kept, K - 1 delay tables
+    const std::uint64_t k = static_cast<std::uint64_t>(std::max(1, p.round_trip_every));
+    m.add("ship patches", c * p2 * (1 + (2 + k) * s.ships.size() + (k - 1)) + sizeof(double) * p2, "$.ships");
   }
   return m;
 }
@@ -262,6 +269,7 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
   if (!scene_.ships.empty()) {
     ships_ = std::make_unique<ShipWaves>(p.water, p.n, p.length_m, scene_.ship_patch, scene_.ships, p.effort);
     ships_->check_step(p.dt_s);
+    if (prop_.round_trip_every() > 1) ships_->reserve_gather(prop_.round_trip_every());
   }
   if (scene_.has_wind) wind_ = std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt_s);
   if (scene_.stokes || wind_) {
@@ -318,7 +326,7 @@ void HuygensSolver::make_height(std::int64_t step) {
   if (!ok) throw NonFiniteError(prop_.stats()[st_stokes_].name, step);
 }
 
-int HuygensSolver::transforms_per_step() const {
+double HuygensSolver::transforms_per_step() const {
   return prop_.transforms_per_step() + (stokes_ ? stokes_->transforms_per_call() : 0);
 }
 
@@ -364,7 +372,14 @@ void HuygensSolver::add_ships(double t0) {
   bool ok = false;
   {
     StageTimer timer(prop_.stats()[st_ships_]);
-    ok = ships_->add(prop_.field().data(), t0, scene_.params.dt_s);
+    if (prop_.round_trip_every() == 1) {
+      ok = ships_->add(prop_.field().data(), t0, scene_.params.dt_s);
+    } else {
+      // the round trip every K steps: each step's patch enters at the next round trip, turned
+      // by the steps still ahead (ShipWaves::gather)
+      ok = ships_->gather(t0, scene_.params.dt_s, prop_.steps_to_round_trip());
+      if (ok && prop_.round_trip_now()) ships_->scatter_rows(prop_.field().data(), 0, prop_.n());
+    }
   }
   if (!ok) throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
 }
@@ -463,7 +478,7 @@ std::vector<OutputField> HuygensSolver::outputs() {
 
 nlohmann::json HuygensSolver::meta() const { return huygens_meta(scene_, transforms_per_step(), still_energy_); }
 
-nlohmann::json huygens_meta(const HuygensScene& scene, int transforms_per_step, double still_energy_j) {
+nlohmann::json huygens_meta(const HuygensScene& scene, double transforms_per_step, double still_energy_j) {
   const auto& p = scene.params;
   const int m = p.margin, n = p.n;
   const double dx = p.length_m / n;
@@ -477,6 +492,7 @@ nlohmann::json huygens_meta(const HuygensScene& scene, int transforms_per_step, 
       {"display_per_step", scene.display_per_step},
       {"cutoff", p.absorber == Absorber::paper_quadratic},
       {"cutoff_time_s", p.cutoff_time_s},
+      {"round_trip_every", p.round_trip_every},
       {"rotation", p.rotation == Rotation::lifting ? "lifting" : "complex"},
       {"grid", {{"n", n}, {"length_m", p.length_m}, {"margin", m}, {"dx", dx}}},
       {"water",
@@ -507,8 +523,7 @@ nlohmann::json huygens_meta(const HuygensScene& scene, int transforms_per_step, 
                               : nlohmann::json(nullptr)},
       {"transforms_per_step", transforms_per_step},
       {"still_energy_j", still_energy_j},
-      {"transforms_per_displayed_frame",
-       static_cast<double>(transforms_per_step) / static_cast<double>(scene.display_per_step)},
+      {"transforms_per_displayed_frame", transforms_per_step / static_cast<double>(scene.display_per_step)},
   };
 }
 

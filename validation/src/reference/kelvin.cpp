@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "huygens/common/fft.hpp"
+#include "huygens/spectral/cutoff.hpp"
 #include "huygens/spectral/propagator.hpp"
 
 namespace huygens {
@@ -279,6 +280,7 @@ KelvinRunResult run_kelvin_case(const KelvinCase& kc, const WakeOptions& opt) {
   p.effort = PlanEffort::estimate;
   p.spatial = true;
   p.check_every = 0;
+  p.round_trip_every = kc.round_trip_every > 0 ? kc.round_trip_every : auto_round_trip_every(p);
   HuygensPropagator prop(p);
   const double m = kc.margin * dx, hl = kc.hull.length_m;
   const double x0 = m + 2.0 * hl, x1 = len - m - 2.0 * hl, yc = 0.5 * len;
@@ -302,11 +304,14 @@ KelvinRunResult run_kelvin_case(const KelvinCase& kc, const WakeOptions& opt) {
   patch = std::min(patch, kc.n);
   ShipWaves ships(kc.water, kc.n, len, patch, {ship}, PlanEffort::estimate);
   ships.check_step(p.dt_s);
+  ships.reserve_gather(prop.round_trip_every());
   res.steps = static_cast<int>(std::floor(t_end / p.dt_s));
   for (int i = 0; i < res.steps; ++i) {
     prop.propagate();
     prop.cutoff();
-    ships.add(prop.field().data(), i * p.dt_s, p.dt_s);
+    // as HuygensSolver::add_ships: each step's patch enters at the next round trip
+    ships.gather(i * p.dt_s, p.dt_s, prop.steps_to_round_trip());
+    if (prop.round_trip_now()) ships.scatter_rows(prop.field().data(), 0, prop.n());
     prop.spectrum();
     prop.height();
     prop.end_step();

@@ -1,7 +1,8 @@
 #pragma once
 // The Huygens propagator (paper 004 section 3, eq. 1; docs/design.md 3.2, docs/huygens.md).
 // State: the spectrum Z^ of the complex wave field Z (velocity potential, m^2/s) on an N x N
-// periodic grid of side L (m). One full step of dt (s), three N x N transforms:
+// periodic grid of side L (m). One full step of dt (s), three N x N transforms (the round trip of
+// propagate/spectrum only every K = round_trip_every steps, the steps in between rotate Z^ in place):
 //   propagate  Z = IFFT[Z^ exp(-i omega(k) dt)] / N^2    (eq. 1: exact in phase, stable for any dt)
 //   cutoff     Z(p, q) *= h(p) h(q),  h = 1 - (d/M - 1)^2 at d = min(p, N-1-p) < M cells, else 1
 //   spectrum   Z^ = FFT[Z]                                (spatial sources such as ships go before)
@@ -48,6 +49,12 @@ struct HuygensParams {
   /// Time constant tau of the cutoff (unit: s). 0: paper 004's h(p) h(q) once per step. tau > 0:
   /// (h(p) h(q))^(dt/tau) per step, i.e. one paper cutoff per tau seconds whatever dt.
   double cutoff_time_s = 0.0;
+  /// The spatial round trip (IFFT, cutoff, spatial sources, FFT) every K = this many steps (unit:
+  /// steps, 1 to 64); the steps in between are the spectral rotation alone. The cutoff is then
+  /// applied as (h(p) h(q))^(K dt / tau) (tau = dt with cutoff_time_s = 0): the same absorption per
+  /// unit time. Spatial sources added k steps before the round trip must carry the phase of the
+  /// k steps still ahead (ShipWaves::gather's delay, steps_to_round_trip()). 1 = every step.
+  int round_trip_every = 1;
   /// How exp(-i omega dt) is applied (lifting keeps |Z^| exactly bounded in float).
   Rotation rotation = Rotation::lifting;
   /// FFTW planning effort (estimate for tests, measure for runs).
@@ -158,11 +165,21 @@ class HuygensPropagator {
   double energy_bound() const;
   StageStats& stats() { return stats_; }
   const StageStats& stats() const { return stats_; }
-  /// True when the step goes through the spatial domain (cutoff on or `spatial` set).
+  /// True when the steps go through the spatial domain (cutoff on or `spatial` set), every
+  /// round_trip_every() steps.
   bool spatial_round_trip() const { return spatial_; }
-  /// N x N transforms per full step: 3 with the spatial round trip, 1 without (one less each
-  /// with external_height).
-  int transforms_per_step() const { return (spatial_ ? 3 : 1) - (p_.external_height ? 1 : 0); }
+  /// K: the round trip runs at the end of steps K, 2K, 3K, ... (1-based).
+  int round_trip_every() const { return every_; }
+  /// Between propagate() and spectrum(): true when this step takes the round trip (field() holds
+  /// Z and the cutoff and spectrum run).
+  bool round_trip_now() const { return trip_now_; }
+  /// Between propagate() and spectrum(): full steps after this one until the step that takes the
+  /// round trip (0: this one). A spatial source of this step reaches the field that many steps
+  /// late, so it must be propagated by that many dt first (ShipWaves::gather).
+  int steps_to_round_trip() const { return spatial_ ? static_cast<int>((every_ - (steps_ + 1) % every_) % every_) : 0; }
+  /// N x N transforms per full step, on average: 2/K for the round trip (0 without it) + 1 for
+  /// the height (0 with external_height).
+  double transforms_per_step() const { return (spatial_ ? 2.0 / every_ : 0.0) + (p_.external_height ? 0.0 : 1.0); }
 
   /// Wall time spent inside FFTW executions by the step's stages, summed (unit: ns).
   std::uint64_t fft_ns() const { return fft_ns_; }
@@ -208,6 +225,8 @@ class HuygensPropagator {
   int inject_stage_ = -1;          // test hook only
   std::int64_t inject_step_ = -1;  // test hook only
   bool spatial_ = true;
+  int every_ = 1;          // K: round trip every K steps
+  bool trip_now_ = false;  // the current step takes the round trip
   std::uint64_t fft_ns_ = 0;
 };
 

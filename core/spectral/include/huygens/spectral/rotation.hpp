@@ -25,6 +25,9 @@ RotationEntry rotation_entry(Rotation kind, double omega_dt, double scale);
 
 /// Rotates one row of N complex values (interleaved floats, sr -> zr, which may be the same
 /// array) by the quadrant table rows a, b, c: column j reads entry j for j <= N/2, else N - j.
-void rotate_row(Rotation kind, const float* a, const float* b, const float* c, const float* sr, float* zr, int n);
+/// `scale` multiplies the entries' scale s (c for the lifting, a and b for complex); a power of
+/// two (1/N^2) gives the same bits as a table made with that scale.
+void rotate_row(Rotation kind, const float* a, const float* b, const float* c, const float* sr, float* zr, int n,
+                float scale = 1.0f);
 
 }  // namespace huygens

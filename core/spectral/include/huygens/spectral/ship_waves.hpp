@@ -170,6 +170,25 @@ class ShipWaves {
   /// The same on a slab: z holds the global rows [row0, row0 + rows) of the n x n field, and
   /// only the patch rows that land there are added (every rank of a slab run calls it).
   bool add_rows(cfloat* z, int row0, int rows, double t, double dt);
+  // ---- the round trip every K steps (HuygensPropagator::round_trip_every) ----------------------
+  // Propagation is linear and diagonal in k (eq. 1), so a source dZ^ of the step ending at t + dt
+  // that enters the field d steps later must arrive as dZ^ e^{-i omega d dt}. The factor is
+  // applied on the patch's own wavenumbers before its inverse FFT: the same periodic-patch
+  // approximation eq. 2's kernels already make within a step (Phi1 holds e^{-i omega dt}), now
+  // over (d + 1) dt; exact while the waves of the step stay inside the patch for that time.
+  /// Room for the patches of k steps per ship (call between steps; allocates).
+  void reserve_gather(int k);
+  /// The waves every ship generates during [t, t + dt], observed at t + (delay + 1) dt: each ship's
+  /// patch spectrum turned by e^{-i omega delay dt}, inverse-transformed and kept until
+  /// scatter_rows(). Returns false (the patch not kept) when one is not finite. No allocation
+  /// within the reserved room; throws std::logic_error beyond it.
+  bool gather(double t, double dt, int delay);
+  /// Adds every patch gathered since the last call into the global rows [row0, row0 + rows) of
+  /// the field z (periodic wrap) and forgets them.
+  void scatter_rows(cfloat* z, int row0, int rows);
+  /// Patches kept by gather() and not yet scattered.
+  int gathered() const { return static_cast<int>(pending_.size()); }
+
   /// Test hook (tests only; no scene or command reaches it): the next add() writes one NaN
   /// into the first ship's patch before its check, as if the kernels had produced it.
   void poison_next_add_for_test() { poison_ = true; }
@@ -213,6 +232,13 @@ class ShipWaves {
   /// Velocity of ship i at time t: its last step's when that step ended at t, else its path's.
   void velocity_at(int i, double t, double& vx, double& vy) const;
   void rebuild(const Ship& s, Cache& c, double vx, double vy, double h0, double h1, double dt);
+  /// Ship i's patch of [t, t + dt] turned by e^{-i omega delay dt}, inverse-transformed into buf_
+  /// and checked; on success the motion is committed. False when not finite.
+  bool make_patch(int i, double t, double dt, int delay, int& row0, int& col0);
+  /// Adds a P x P spatial patch landing on big-grid cell (r0, c0) into rows [row0, row0 + rows).
+  void scatter_patch(const cfloat* src, int r0, int c0, cfloat* z, int row0, int rows);
+  /// Fills delay_ with e^{-i omega d dt}, d = 1 .. slots - 1, for this dt.
+  void build_delays(double dt);
 
   Water water_;
   int n_ = 0;
@@ -228,6 +254,16 @@ class ShipWaves {
   bool poison_ = false;       // test hook: see poison_next_add_for_test()
   AlignedBuffer<cfloat> ph_;  // 4 P phase vectors: e^{-i kx dx0}, e^{-i ky dy0}, and for t + dt
   std::vector<int> cols_;
+  struct Pending {
+    std::size_t slot;
+    int r0, c0;
+  };
+  std::vector<Pending> pending_;  // gathered patches awaiting scatter_rows()
+  AlignedBuffer<cfloat> store_;   // their samples: slots_ x P x P
+  int slots_ = 0;                 // patches store_ holds (K x ships)
+  int max_delay_ = 0;             // K - 1: the delays delay_ holds
+  AlignedBuffer<cfloat> delay_;   // e^{-i omega d dt} on the patch modes, d = 1 .. K - 1
+  double delay_dt_ = -1;          // the dt delay_ was made for
   Fft2D inverse_;
   std::uint64_t rebuilds_ = 0;
 };

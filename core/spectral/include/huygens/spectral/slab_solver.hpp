@@ -74,9 +74,12 @@ class HuygensSlabSolver : public Solver {
   const SlabGrid& grid() const { return g_; }
   /// Row of the global visible region where this rank's height rows start.
   std::size_t visible_row0() const { return static_cast<std::size_t>(vis_row0_); }
-  /// N x N transforms per full step (each one all-to-all transpose).
+  /// N x N transforms of a full step that takes the spatial round trip (each one all-to-all
+  /// transpose); steps between two round trips (every K = round_trip_every) take 2 fewer.
   int transforms_per_step() const;
-  /// Bytes this rank sends in the transposes of a full step (unit: bytes): transforms_per_step()
+  /// N x N transforms per full step on average: the round trip's 2 every K steps + the height.
+  double mean_transforms_per_step() const;
+  /// Bytes this rank sends in the transposes of a full step (unit: bytes, on average): mean_transforms_per_step()
   /// x transposes per transform x slab_transpose_bytes() = T t 8 N^2/P (P-1)/P for an even split
   /// (the step's one reduction adds 17 doubles).
   double bytes_sent_per_step() const;
@@ -96,7 +99,7 @@ class HuygensSlabSolver : public Solver {
   void add_gaussian(double x_m, double y_m, double sigma_m, double amplitude_m, double age_s);
   void add_plane_wave(double wavelength_m, double amplitude_m, double direction_deg);
   void propagate();
-  void rotate(const float* s, float* z);
+  void rotate(const float* s, float* z, float scale);
   void cutoff();
   void add_ships(double t0);
   void spectrum();
@@ -117,6 +120,8 @@ class HuygensSlabSolver : public Solver {
   std::ptrdiff_t vis_row0_ = 0, vis_rows_ = 0, vis_first_ = 0;
   std::int64_t steps_ = 0;
   bool spatial_ = true, second_ = false, wind_on_ = true;
+  int every_ = 1;          // K: the round trip every K steps (HuygensParams::round_trip_every)
+  bool trip_now_ = false;  // the current step takes it
   AlignedBuffer<cfloat> z_, s_, a_, b_, chi_, chid_;
   AlignedBuffer<float> rot_a_, rot_b_, rot_c_, kw_, kk_, sq_, cut_, src_, omega_;
   AlignedBuffer<cfloat> src_x_, src_y_;

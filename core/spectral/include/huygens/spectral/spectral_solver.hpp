@@ -84,7 +84,7 @@ HuygensScene parse_huygens_scene(const Scene& scene, const RunOptions& options =
 /// parse_huygens_scene() refuses a scene that needs more than available_memory().
 MemoryEstimate huygens_memory(const HuygensScene& scene);
 /// meta.json of a Huygens scene (the global grid; HuygensSolver::meta and the slab solver).
-nlohmann::json huygens_meta(const HuygensScene& scene, int transforms_per_step, double still_energy_j);
+nlohmann::json huygens_meta(const HuygensScene& scene, double transforms_per_step, double still_energy_j);
 /// The "huygens" solver of a scene (make_solver's factory for this solver); with MPI initialised
 /// and more than one rank in MPI_COMM_WORLD, the slab solver (slab_solver.hpp).
 std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions& options);
@@ -115,9 +115,9 @@ class HuygensSolver : public Solver {
   /// Frame j (1 <= j < D) of the last step: the cubic Hermite interpolant at s = j / D between
   /// the previous full step and the current one (needs steps() >= 1); j = 0 gives outputs().
   std::vector<OutputField> display_outputs(int j) override;
-  /// N x N transforms per full step for the scene's features: the propagation (2 with the
-  /// round trip, 0 without) + the height (1 first order, 3 second order).
-  int transforms_per_step() const;
+  /// N x N transforms per full step for the scene's features, on average: the propagation (2/K
+  /// with the round trip every K steps, 0 without) + the height (1 first order, 3 second order).
+  double transforms_per_step() const;
   /// Supports cmd::Drop (a Gaussian depression released now; the height is recomputed lazily:
   /// by the next step, or by the next height()/height_rate()/outputs() before it) and
   /// cmd::ShipTarget (ShipWaves::steer at time(): the ship leaves its path and heads for the

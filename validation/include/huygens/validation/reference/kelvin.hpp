@@ -126,6 +126,9 @@ struct KelvinCase {
   double ramp_s = 0.0;
   /// Radius around the hull outside which the far field is taken (unit: m).
   double far_radius_m = 0.03;
+  /// The spatial round trip (cutoff, ship patches) every this many steps (HuygensParams::
+  /// round_trip_every); 0 = auto_round_trip_every, what a scene of this grid and step gets.
+  int round_trip_every = 0;
 };
 
 /// The outcome of run_kelvin_case: the measurement, the final field and where it lies.
