@@ -13,7 +13,7 @@ packages=(
   libgl-dev libegl-dev libgl1-mesa-dri libegl-mesa0 mesa-utils
   xvfb xauth
   python3 python3-numpy python3-matplotlib
-  python3-vtk9  # VTK's own readers for the ParaView output test (tests/vtk_output_test.py)
+  python3-vtk9  # VTK's own readers for the ParaView output test (tests/programs/vtk_output_test.py)
   python3-dev pybind11-dev python3-pytest  # the Python package (HUYGENS_PYTHON, python/) and its tests
   python3-setuptools python3-wheel          # `pip install --no-build-isolation .` (python/README.md)
 )

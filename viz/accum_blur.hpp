@@ -7,7 +7,7 @@
 // 256 x 1 table giving (0, v >> 4, v & 15, 0) (green = high 4 bits, blue = low 4 bits).
 // A second pass reads c (green) and d (blue) and writes, through a 256 x 256 lookup,
 // the gray level c + floor((d + 7) / 16) into a GL_R8 target. Equal bit for bit to
-// accum_blur_reference() (tests/accum_blur_test.cpp).
+// accum_blur_reference() (tests/viz/accum_blur_test.cpp).
 // Float path: one pass into GL_R32F, nine texelFetch taps weighted [1 2 1; 2 4 2; 1 2 1] / 16;
 // for a GL_R32F source the same kernel as four bilinear taps at (+-1/2, +-1/2) texel (each
 // averages a 2 x 2 block; faster under llvmpipe, and exact there because float textures are

@@ -3,7 +3,7 @@
 // absorption by the margin. Ships, Stokes height, wind and time interpolation (paper 004 eq. 2,
 // eq. 3): Kelvin wake, Froude trend, capillary threshold, ship step consistency, Stokes profile,
 // interpolation order. `huygens validate` prints these rows and
-// tests/validation_huygens_test.cpp asserts them.
+// tests/validation/validation_huygens_test.cpp asserts them.
 #include "huygens/validation/huygens_cases.hpp"
 
 #include <algorithm>

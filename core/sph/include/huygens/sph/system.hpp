@@ -129,7 +129,7 @@ class SphSystem {
   const StageIds& stage_ids() const { return sid_; }
 
  private:
-  friend struct SphSystemProbe;  // tests/sph_dfsph_test.cpp: one DFSPH solve on its own
+  friend struct SphSystemProbe;  // tests/sph/sph_dfsph_test.cpp: one DFSPH solve on its own
   void place_fluid(std::vector<float>& px, std::vector<float>& py, std::vector<float>& pz, float& top) const;
   void sort_particles();
   /// fresh_moment: compute the gradient correction in this pass (else use the last force pass's).

@@ -29,7 +29,7 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "mpi"))
 from compare_npy import load_npy  # noqa: E402  (the stdlib .npy reader the MPI tests use)
 
 SCENES = [("ring", 1), ("dam_break", 1)]  # (shipped scene, --dump-every): 1 and 5 fields per dump
