@@ -1,4 +1,4 @@
-// Refraction texture coordinates of paper 004 section 4 (viz/refraction.hpp): Snell's law,
+// Refraction texture coordinates of paper 004 section 4 (viz/cpu/refraction.hpp): Snell's law,
 // the weighted-average mesh, and the linearised coordinates against the exact per-pixel
 // Snell path, for the default scene and for synthetic waves.
 #include "refraction.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // Adapter between the renderer and the caustics pass of paper 004 section 5
-// (viz/caustics.hpp, huygens::viz::CausticsRenderer) and its accumulation-buffer blur
-// (viz/accum_blur.hpp). The renderer samples texture() over the ground rectangle
+// (viz/gl/caustics.hpp, huygens::viz::CausticsRenderer) and its accumulation-buffer blur
+// (viz/gl/accum_blur.hpp). The renderer samples texture() over the ground rectangle
 // origin()/extent() and multiplies by scale(), so that 1 is the light of a still surface.
 #include <memory>
 #include <span>

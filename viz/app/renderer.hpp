@@ -213,7 +213,7 @@ struct RenderTimes {
   } cpu;
 };
 
-class CausticsStage;  // wraps the caustics pass (viz/caustics.hpp) when it is built
+class CausticsStage;  // wraps the caustics pass (viz/gl/caustics.hpp) when it is built
 
 class WaterRenderer {
  public:

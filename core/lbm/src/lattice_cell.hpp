@@ -114,5 +114,4 @@ template <bool Cap = false, bool Force = true>
           f6 + w * (e6 - f6) + g6, f7 + w * (e7 - f7) - g5, f8 + w * (e8 - f8) - g6};
 }
 
-
 }  // namespace huygens::lbm_cell
