@@ -1,7 +1,7 @@
 // huygens: run a scene without graphics, or validate the physics against analytic solutions.
 //   huygens run SCENE [--steps N] [--dump DIR] [--dump-every K] [--dump-format npy|vtk|both] [--overwrite]
 //                     [--stats-json FILE] [--fast-plans] [--no-fsync]
-//   huygens validate [CASE...] [--list]
+//   huygens validate [CASE...] [--list] [--jobs N]
 // Exit codes (program.hpp, README): 0 ok, 1 a validation case failed or a write failed, 2 bad
 // scene or usage, 3 a non-finite value (or a negative LBM depth), 4 not enough memory, 130/143 stopped
 // by SIGINT/SIGTERM.
@@ -21,7 +21,7 @@ const char* const kUsage =
     "                         [--overwrite] [--stats-json FILE] [--fast-plans] [--no-fsync]\n"
     "       huygens run SCENE --dry-run [--ranks P] [--rank-memory GIB]\n"
     "       mpirun -np P huygens run SCENE ...   (MPI build: P ranks, docs/scale.md)\n"
-    "       huygens validate [CASE...] [--list]\n"
+    "       huygens validate [CASE...] [--list] [--jobs N]\n"
     "       huygens --help\n"
     "\n"
     "run       runs SCENE without graphics for N full steps (default 100). SCENE is a JSON scene\n"
@@ -59,7 +59,8 @@ const char* const kUsage =
     "          meta.json, the .npy files are written by all ranks (MPI-IO).\n"
     "validate  runs the analytic validation cases (all, or the named ones) and prints\n"
     "          case, quantity, measured, expected, error, tolerance, pass/fail.\n"
-    "          --list prints the case names.\n"
+    "          --list prints the case names; --jobs N runs N cases at once (each with its\n"
+    "          share of the OpenMP threads; the table keeps its order).\n"
     "\n"
     "exit codes: 0 ok; 1 a case failed or a write failed; 2 bad scene or usage; 3 non-finite\n"
     "            value (or a negative LBM depth); 4 not enough memory; 130/143 stopped by\n"
