@@ -47,7 +47,9 @@ enum class FresnelModel : int { off = 0, paper = 1, schlick = 2 };
 /// 8-bit target (unit light = 32/255, saturates at 8x).
 enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, explicit_u8 = 3 };
 /// How the scene looks (SceneView::look, chosen from RenderInfo, docs/viz.md "Looks").
-enum class Look : int { pool = 0, ocean = 1, shallow = 2, sph = 3 };
+/// The kind of picture: the render description's LookRequest itself (the scene's "render.look", else
+/// the solver's RenderInfo::default_look), no second enum to map.
+using Look = LookRequest;
 enum class GroundPattern : int { tiles = 0, checker = 1, uniform = 2 };
 
 /// What the renderer draws and how (all colours are display values in [0, 1]).

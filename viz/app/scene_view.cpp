@@ -51,11 +51,7 @@ SceneView scene_view(const RenderInfo& info) {
   v.particle_spacing = info.particle_spacing_m;
   v.ambient_sea = info.ambient_sea;
   const RenderRequest& rq = info.request;
-  const LookRequest look = rq.look.value_or(info.default_look);  // the scene's, else the solver's
-  v.look = look == LookRequest::ocean     ? Look::ocean
-           : look == LookRequest::shallow ? Look::shallow
-           : look == LookRequest::sph     ? Look::sph
-                                          : Look::pool;
+  v.look = rq.look.value_or(info.default_look);  // the scene's, else the solver's
   const double W = v.grid.cols * v.grid.dx, H = v.grid.rows * v.grid.dx;
   // a particle solver's narrow tank (sph_wedge, 3:1) is a slab too: its dam break reads from the side
   v.slab = std::max(W, H) > (v.look == Look::sph && v.particle_box ? 2.5 : 8.0) * std::min(W, H);
