@@ -13,7 +13,6 @@
 
 #include "bench.hpp"
 #include "huygens/common/atomic_file.hpp"
-#include "huygens/common/fft.hpp"
 #include "huygens/common/isa.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/shipped_scenes.hpp"
@@ -157,10 +156,11 @@ int bench_main(int argc, char** argv) {
     const int hw = static_cast<int>(std::thread::hardware_concurrency());
     if (hw > 1) ctx.threads.push_back(hw);
   }
-  // the CPU with the vector extensions it offers, and the instruction set the code was built for
-  std::printf("machine: %s, %u cores, built for %s, g++ %s, %s, OpenMP threads %d, %s run\n",
-              huygens::cpu_isa().c_str(), std::thread::hardware_concurrency(), huygens::build_isa().c_str(),
-              __VERSION__, huygens::fft_version(), omp_get_max_threads(), ctx.quick ? "quick" : "full");
+  // where the figures ran: the CPU and its vector extensions, the build's instruction set, the
+  // threads and the load average now (again in the footer: the load during the run)
+  const std::string machine =
+      huygens::machine_line(omp_get_max_threads()) + ", " + (ctx.quick ? "quick" : "full") + " run";
+  std::printf("%s\n", machine.c_str());
   const auto start = std::chrono::steady_clock::now();
   huygens::Table took({"section", "wall s"});
   std::string stopped;  // what a SIGINT/SIGTERM abandoned; "" when every section ran
@@ -177,10 +177,12 @@ int bench_main(int argc, char** argv) {
   }
   took.add({stopped.empty() ? "total" : "total (stopped)", huygens::fmt("%.1f", seconds_since(start))});
   std::printf("\n== run time per section ==\n%s", took.text().c_str());
-  if (!csv.empty()) {  // the complete tables; a stopped run says so in its first line
+  std::printf("load average (1 min) at the end: %.2f\n", huygens::load_average());
+  if (!csv.empty()) {  // the complete tables; a stopped run says so in its first line, then the machine line
     std::string text = stopped.empty() ? ""
                                        : "# stopped by " + std::string(huygens::stop_request::signal_name()) + " " +
                                              stopped + ": the tables below are complete, later ones missing\n";
+    text += "# " + machine + "; load average at the end " + huygens::fmt("%.2f", huygens::load_average()) + "\n";
     for (const auto& [title, table] : ctx.tables) text += "# " + title + "\n" + table.csv() + "\n";
     huygens::write_file_atomic(csv, text);
   }

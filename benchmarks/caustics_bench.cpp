@@ -4,6 +4,8 @@
 // blurring caustics (GeForce 4 Ti 4200, 2003), and prints the renderer's run time against
 // error: relative L2 of the blurred, normalised caustics against a photon-histogram reference.
 // Kept out of huygens-bench so that its link line stays free of GL.
+#include <omp.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +20,7 @@
 #include "caustics.hpp"
 #include "gl/gl.hpp"
 #include "huygens/common/atomic_file.hpp"
+#include "huygens/common/isa.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
 #include "huygens/common/stats.hpp"  // median_seconds
@@ -250,6 +253,8 @@ int bench_main(int argc, char** argv) {
   stop_request::install();                      // SIGINT/SIGTERM: the table being measured is abandoned
   for (const std::string& target : {csv, png})  // checked before the run, not after it
     if (!target.empty()) check_output_file(target);
+  const std::string machine = machine_line(omp_get_max_threads());
+  std::printf("%s\n", machine.c_str());  // where the figures ran
   {
     gl::HeadlessContext ctx;
     const char* lp = std::getenv("LP_NUM_THREADS");
@@ -264,10 +269,12 @@ int bench_main(int argc, char** argv) {
     } catch (const StopRequested& e) {
       stopped = e.what();
     }
-    if (!csv.empty()) {  // the complete tables; a stopped run says so in its first line
+    std::printf("\nload average (1 min) at the end: %.2f\n", load_average());
+    if (!csv.empty()) {  // the complete tables; a stopped run says so in its first line, then the machine line
       std::string text = stopped.empty() ? ""
                                          : "# stopped by " + std::string(stop_request::signal_name()) + ": " + stopped +
                                                "; the tables below are complete\n";
+      text += "# " + machine + "; load average at the end " + fmt("%.2f", load_average()) + "\n";
       for (const auto& [title, table] : tables) text += "# " + title + "\n" + table.csv() + "\n";
       write_file_atomic(csv, text);
     }

@@ -37,19 +37,22 @@ SPECS = [
 ]
 
 def read_blocks(path):
-    """Returns [(title, header, rows)] from a huygens-bench CSV file."""
-    blocks, title, lines = [], None, []
+    """Returns [(title, header, rows)] from a huygens-bench CSV file; each title ends with the
+    run's machine line (its `# machine: ...` comment), so every plot says where it ran."""
+    blocks, title, lines, machine = [], None, [], ""
 
     def flush():
         if title is not None and lines:
             rows = list(csv.reader(io.StringIO("".join(lines))))
             rows = [r for r in rows if r]
             if rows:
-                blocks.append((title, rows[0], rows[1:]))
+                blocks.append((title + ("\n" + machine if machine else ""), rows[0], rows[1:]))
 
     with open(path, newline="") as f:
         for line in f:
-            if line.startswith("# "):
+            if line.startswith("# machine: "):
+                machine = line[2:].strip()
+            elif line.startswith("# "):
                 flush()
                 title, lines = line[2:].strip(), []
             elif line.strip():
@@ -81,7 +84,7 @@ def pareto(points):
 
 
 def slug(title):
-    s = re.sub(r"\(.*", "", title).strip().lower()
+    s = re.sub(r"\(.*", "", title.split("\n")[0]).strip().lower()
     return re.sub(r"[^a-z0-9]+", "_", s).strip("_")[:80] or "table"
 
 
@@ -131,7 +134,7 @@ def plot_block(plt, title, header, rows, out_dir):
     ax.set_yscale("log")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.set_title(textwrap.fill(title, 110), fontsize=7)
+    ax.set_title("\n".join(textwrap.fill(part, 110) for part in title.split("\n")), fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()

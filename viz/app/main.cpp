@@ -4,6 +4,8 @@
 //   huygens-viz [SCENE] --benchmark                       per-pass render times (headless)
 // The scene is read by the core (load_scene; no SCENE: the built-in default.json) and the
 // viewer sees only its solver's RenderInfo and frames; shaders are compiled into the program.
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -21,6 +23,7 @@
 #include "foam.hpp"
 #include "gl.hpp"
 #include "huygens/common/atomic_file.hpp"
+#include "huygens/common/isa.hpp"
 #include "huygens/common/memory.hpp"
 #include "huygens/common/program.hpp"
 #include "huygens/common/report.hpp"
@@ -252,6 +255,7 @@ std::pair<double, double> flow_step_times(Solver& solver, const ViewerSolver& vs
 // Per-pass render times (median of repeated frames, glFinish around each pass) and the
 // simulation's share of a frame: one full step per display_per_step frames.
 int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample, int samples) {
+  std::printf("%s\n", machine_line(omp_get_max_threads()).c_str());  // where the figures ran
   const ViewSetup setup = view_setup(vs, 1280.0 / 720.0);
   using clock = std::chrono::steady_clock;
   gl::HeadlessContext ctx;
@@ -316,7 +320,9 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
         dye_ms, foam_ms, settings.dye ? "on" : "off", settings.foam ? "on" : "off");
   std::printf(
       "times in ms per displayed frame (median of 10 after 2 warm-up frames, glFinish after each pass);\n"
-      "sim share = simulation time per displayed frame / (simulation + render) when both run on one core.\n");
+      "sim share = simulation time per displayed frame / (simulation + render) when both run on one core.\n"
+      "load average (1 min) at the end: %.2f\n",
+      load_average());
   return 0;
 }
 

@@ -1,7 +1,12 @@
 // Build and CPU instruction sets: see huygens/common/isa.hpp.
 #include "huygens/common/isa.hpp"
 
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <thread>
+
+#include "huygens/common/fft.hpp"
 
 #ifndef HUYGENS_ISA_NAME
 #define HUYGENS_ISA_NAME "unknown"
@@ -54,6 +59,25 @@ std::string cpu_isa() {
   if (s.empty() && __builtin_cpu_supports("sse4.2")) s += " SSE4.2";
 #endif
   return cpu_model() + (s.empty() ? std::string() : " (" + s.substr(1) + ")");
+}
+
+double load_average() {
+  double load[1];
+  return getloadavg(load, 1) == 1 ? load[0] : -1.0;
+}
+
+std::string machine_line(int threads) {
+#if defined(__clang__)
+  const std::string compiler = std::string("clang ") + __clang_version__;
+#else
+  const std::string compiler = std::string("g++ ") + __VERSION__;
+#endif
+  const double load = load_average();
+  char load_text[32] = "unknown";
+  if (load >= 0) std::snprintf(load_text, sizeof load_text, "%.2f", load);
+  return "machine: " + cpu_isa() + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores, built for " +
+         build_isa() + ", " + compiler + ", " + fft_version() + ", OpenMP threads " + std::to_string(threads) +
+         ", load average " + load_text;
 }
 
 }  // namespace huygens
