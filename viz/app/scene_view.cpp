@@ -11,6 +11,7 @@
 
 #include "huygens/common/shipped_scenes.hpp"
 #include "huygens/solvers/registry.hpp"
+#include "looks.hpp"
 #include "plot.hpp"
 
 namespace huygens {
@@ -53,8 +54,7 @@ SceneView scene_view(const RenderInfo& info) {
   const RenderRequest& rq = info.request;
   v.look = rq.look.value_or(info.default_look);  // the scene's, else the solver's
   const double W = v.grid.cols * v.grid.dx, H = v.grid.rows * v.grid.dx;
-  // a particle solver's narrow tank (sph_wedge, 3:1) is a slab too: its dam break reads from the side
-  v.slab = std::max(W, H) > (v.look == Look::sph && v.particle_box ? 2.5 : 8.0) * std::min(W, H);
+  v.slab = std::max(W, H) > (v.particle_box ? look_unit(v.look).tank_slab_ratio : 8.0) * std::min(W, H);
   v.plan_view = rq.plan_view.value_or(false);
   v.plan_depth = info.rest_level_m != 0.0;
   v.follow_ship = !v.hulls.empty() && rq.camera.follow_ship.value_or(true);
@@ -67,7 +67,7 @@ void place_scene(WaterRenderer& renderer, const SceneView& view) {
   renderer.set_bed(view.bed);
   renderer.set_obstacles(view.obstacles);
   if (view.slab && view.particle_box) renderer.set_tank(*view.particle_box);
-  if (view.look == Look::ocean && view.ambient_sea) renderer.set_ambient_sea(*view.ambient_sea);
+  if (look_unit(view.look).open_sea && view.ambient_sea) renderer.set_ambient_sea(*view.ambient_sea);
 }
 
 namespace {
@@ -109,7 +109,7 @@ OrbitCamera start_camera(const SceneView& view, double aspect, const ShipPose* s
     // the ship and its wake from the side: a Kelvin wake (half-angle 19.5 deg) over about
     // 8 hull lengths behind the ship; at sea from low, 15 deg up, the sea out to the horizon in
     // the picture's top fifth and the sun's glitter running towards the viewer
-    const bool sea = view.look == Look::ocean;
+    const bool sea = look_unit(view.look).open_sea;
     c.pitch = (sea ? 15.0 : 55.0) * kDeg;
     c.distance = std::min(c.distance, (sea ? 7.0 : 11.0) * ship->length);
     follow_ship(view, *ship, c);
@@ -148,49 +148,7 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
   // seen through that wave (paper 004 sec. 5 draws them along the sun, D tan(theta_t) away)
   const glm::dvec3 to_eye = -camera.forward();
   s.sun_dir = glm::vec3(static_cast<float>(to_eye.x), static_cast<float>(to_eye.y), static_cast<float>(to_eye.z));
-  switch (view.look) {
-    case Look::ocean: {
-      // open ocean (paper 003): no floor, the deep water's colour, the sky and the sun's glint;
-      // the sun ahead of the viewer, 35 degrees up, so its glitter path lies in the view
-      s.deep_water = true;
-      s.pool_deck = true;  // the sea around the region, to the horizon (background.frag beyond it)
-      s.caustics = false;
-      s.water_colour = glm::vec3(0.03f, 0.16f, 0.25f);
-      // the glint: the sun on the sea's facets, the waves shorter than the grid included (Cox &
-      // Munk's slope variance less what the grid resolves: WaterRenderer::unresolved_slope_var);
-      // its irradiance over the sky's radiance a display choice, a fifth to a tenth of a clear
-      // day's 10-20 sr, so the tone map keeps the glitter path's structure
-      s.sun_irradiance = 2.0f;
-      const double az = camera.yaw + std::numbers::pi, el = 35.0 * kDeg;
-      s.sun_dir = glm::vec3(static_cast<float>(std::cos(el) * std::cos(az)),
-                            static_cast<float>(std::cos(el) * std::sin(az)), static_cast<float>(std::sin(el)));
-      break;
-    }
-    case Look::pool:
-    case Look::shallow:
-    case Look::sph:
-      s.pool_deck = !view.slab;             // a slab is seen from the side: its profile, not a pool
-      s.hide_dry = view.look == Look::sph;  // where the particles left, the floor is dry
-      if (view.look == Look::sph && view.height_offset > 0.0) {
-        // a lab tank's water dyed as a lab does: centimetres of clear water barely tint the floor,
-        // so the absorption is scaled to show the water at rest in the colour of the pool look's
-        // 3 m: a_rgb kDeepGround / rest level (at least a_rgb)
-        s.absorb_rgb *= static_cast<float>(std::max(1.0, SceneView::kDeepGround / view.height_offset));
-      }
-      if (view.slab) {
-        // seen from the side: a plain floor (tiles 8 across the slab's thin side are stripes)
-        // and no caustics (the floor under a slab is seen edge-on)
-        s.ground = GroundPattern::uniform;
-        s.caustics = false;
-      }
-      if (!view.bed.empty()) {
-        // water over terrain: shaded by its depth (absorption), dry land shows; no dye tint
-        // (--view dye shows it) and no caustics (their mesh assumes a flat floor)
-        s.dye = false;
-        s.caustics = false;
-      }
-      break;
-  }
+  look_unit(view.look).settings(view, camera, s);
   apply_render_request(request, s);
   return s;
 }

@@ -57,6 +57,17 @@ SurfaceMeshLayout make_mesh_layout(std::size_t rows, std::size_t cols, std::size
   return {axis_layout(cols, factor), axis_layout(rows, factor)};
 }
 
+std::vector<std::uint32_t> mesh_triangles(const SurfaceMeshLayout& layout) {
+  std::vector<std::uint32_t> idx;
+  const auto vc = static_cast<std::uint32_t>(layout.vertex_cols());
+  for (std::uint32_t l = 0; l + 1 < layout.vertex_rows(); ++l)
+    for (std::uint32_t k = 0; k + 1 < vc; ++k) {
+      const std::uint32_t v00 = l * vc + k, v10 = v00 + 1, v01 = v00 + vc, v11 = v01 + 1;
+      idx.insert(idx.end(), {v00, v10, v11, v00, v11, v01});
+    }
+  return idx;
+}
+
 void subsample_heights(std::span<const float> eta, std::size_t rows, std::size_t cols, std::size_t factor,
                        const SurfaceMeshLayout& layout, std::span<float> out) {
   const long f = static_cast<long>(std::max<std::size_t>(factor, 1));

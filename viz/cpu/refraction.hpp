@@ -24,6 +24,7 @@
 // Coordinates are returned in metres on the ground plane; the renderer divides by the
 // ground texture's extent.
 #include <cstddef>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
 #include <vector>
@@ -86,6 +87,9 @@ struct SurfaceMeshLayout {
 };
 /// Layout for a subsampling factor f >= 1 (paper: 4, i.e. 96 x 96 vertices for 384 x 384).
 SurfaceMeshLayout make_mesh_layout(std::size_t rows, std::size_t cols, std::size_t factor);
+/// The mesh's triangles as vertex indices (row-major vertices), each quad split into (00, 10, 11)
+/// and (00, 11, 01), the split linear_ground_point interpolates over.
+std::vector<std::uint32_t> mesh_triangles(const SurfaceMeshLayout& layout);
 
 /// Vertex heights by weighted average (paper 004, section 4): a tent window of half-width
 /// f around the vertex, weights (f - |di|)(f - |dj|), renormalised at the border.

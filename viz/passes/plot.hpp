@@ -11,9 +11,15 @@
 #include <vector>
 
 #include "huygens/pipeline/render_info.hpp"
-#include "renderer.hpp"
+#include "render_target.hpp"
 
 namespace huygens {
+
+/// A plot's rectangle in pixels (from the image's top-left corner; a plan view's grid row 0 at the
+/// bottom) and its colour bar's range (unit: the plot's unit).
+struct PlanPlot {
+  double x0 = 0, y0 = 0, width = 0, height = 0, lo = 0, hi = 1;
+};
 
 /// The plot's colour map at t in [0, 1] (diverging: blue-white-red, else viridis).
 glm::vec3 plan_colour(double t, bool diverging);
@@ -44,7 +50,7 @@ glm::vec3 plan_colour(double t, const PlotSpec& spec);
 
 /// Where a plot goes in a W x H image (pixels from the top-left corner): the rectangle keeping
 /// the aspect of width_m x height_m, leaving `reserve_right` pixels free on the right.
-WaterRenderer::PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right);
+PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right);
 
 /// The colour bar right of a plot (pixels from the top-left corner): its rectangle, as tall as
 /// the plot, or, beside a plot too short for its tick labels (a 32:1 slab: 35 px at 1280x720),
@@ -56,7 +62,7 @@ struct ColourBar {
 /// Vertical distance between two tick labels of the colour bar, in text scales: a glyph is 7
 /// units high, so labels nearer than that overlap.
 inline constexpr double kTickPitch = 12.0;
-ColourBar colour_bar_layout(const WaterRenderer::PlanPlot& rect, const PlotSpec& spec, int H);
+ColourBar colour_bar_layout(const PlanPlot& rect, const PlotSpec& spec, int H);
 
 /// The colour bar's range of values in [lo, hi] rounded out to nice ticks (symmetric about 0
 /// when `diverging`); sets spec.lo, hi and step.
@@ -64,8 +70,8 @@ void plot_range(double lo, double hi, bool diverging, PlotSpec& spec);
 
 /// Draws the plot into `target`: white background, the RGBA image (iw x ih, row 0 at the bottom)
 /// stretched over `rect`, the frame, axes with ticks in metres, the colour bar and the title.
-void draw_plot(const WaterRenderer::PlanPlot& rect, const PlotSpec& spec, const std::vector<std::uint8_t>& rgba, int iw,
-               int ih, const RenderTarget& target);
+void draw_plot(const PlanPlot& rect, const PlotSpec& spec, const std::vector<std::uint8_t>& rgba, int iw, int ih,
+               const RenderTarget& target);
 
 /// A caption in the top-left corner of `target`'s image: white text on a dark band, the text
 /// scale as the plots' (glyphs ~7 px high up to 450 px of image height). Returns its width (px).
@@ -79,8 +85,8 @@ double caption_width(const std::string& text, int height);
 /// triangles, lit, and the outline of its projection drawn over the particles in front of it),
 /// inside the container box (0, 0, 0)-(box_m) drawn as the plot's frame. Returns the plot's
 /// rectangle.
-WaterRenderer::PlanPlot render_particles(std::span<const float> particles, const std::array<double, 3>& box_m,
-                                         double radius_m, std::span<const RenderObstacle> obstacles,
-                                         const std::string& title, double reserve_right, const RenderTarget& target);
+PlanPlot render_particles(std::span<const float> particles, const std::array<double, 3>& box_m, double radius_m,
+                          std::span<const RenderObstacle> obstacles, const std::string& title, double reserve_right,
+                          const RenderTarget& target);
 
 }  // namespace huygens

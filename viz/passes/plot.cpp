@@ -99,21 +99,21 @@ double draw_caption(const std::string& text, const RenderTarget& target) {
   return w;
 }
 
-WaterRenderer::PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right) {
+PlanPlot plot_layout(int W, int H, const PlotSpec& spec, double reserve_right) {
   // pixels, y down: title on top, the plot keeping the aspect, the colour bar on the right,
   // axis labels left and below
   const double s = std::max(1.0, std::round(H / 300.0));  // text scale (glyphs ~7 px high at 1)
   const double left = 40 * s, right = 84 * s + reserve_right, top = 30 * s, bottom = 26 * s;
   const double avail_w = std::max(1.0, W - left - right), avail_h = std::max(1.0, H - top - bottom);
   const double ppm = std::min(avail_w / spec.width_m, avail_h / spec.height_m);  // pixels per metre
-  WaterRenderer::PlanPlot r;
+  PlanPlot r;
   r.width = spec.width_m * ppm, r.height = spec.height_m * ppm;
   r.x0 = left + 0.5 * (avail_w - r.width), r.y0 = top + 0.5 * (avail_h - r.height);
   r.lo = spec.lo, r.hi = spec.hi;
   return r;
 }
 
-ColourBar colour_bar_layout(const WaterRenderer::PlanPlot& r, const PlotSpec& spec, int H) {
+ColourBar colour_bar_layout(const PlanPlot& r, const PlotSpec& spec, int H) {
   const double s = std::max(1.0, std::round(H / 300.0));  // text scale, as plot_layout
   const double top = 30 * s, bottom = 26 * s;             // plot_layout's margins
   ColourBar b;
@@ -137,7 +137,7 @@ void plot_range(double lo, double hi, bool diverging, PlotSpec& spec) {
 namespace {
 
 // Frame, ticks and labels of both axes (the image's corner at spec.x0_m, spec.y0_m).
-void draw_axes(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpec& spec, double s) {
+void draw_axes(const Painter& p, const PlanPlot& r, const PlotSpec& spec, double s) {
   const glm::vec3 ink(0.0f);
   const double lw = std::max(1.0, s * 0.5), ppm = r.width / spec.width_m;
   p.rect(r.x0 - lw, r.y0 - lw, r.width + 2 * lw, lw, ink);
@@ -164,7 +164,7 @@ void draw_axes(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpe
 // The colour bar right of the plot (colour_bar_layout): one row per pixel through the map,
 // ticks at spec.step. The ticks point into the bar from its right edge: a tick outside it, just
 // left of its label, read as a minus sign (+5 as "-5", -1 as "--1").
-void draw_colour_bar(const Painter& p, const WaterRenderer::PlanPlot& r, const PlotSpec& spec, double s, int H) {
+void draw_colour_bar(const Painter& p, const PlanPlot& r, const PlotSpec& spec, double s, int H) {
   const ColourBar b = colour_bar_layout(r, spec, H);
   const double lw = std::max(1.0, s * 0.5);
   for (int row = 0; row < static_cast<int>(b.height); ++row)
@@ -179,8 +179,8 @@ void draw_colour_bar(const Painter& p, const WaterRenderer::PlanPlot& r, const P
 
 }  // namespace
 
-void draw_plot(const WaterRenderer::PlanPlot& r, const PlotSpec& spec, const std::vector<std::uint8_t>& rgba, int iw,
-               int ih, const RenderTarget& target) {
+void draw_plot(const PlanPlot& r, const PlotSpec& spec, const std::vector<std::uint8_t>& rgba, int iw, int ih,
+               const RenderTarget& target) {
   gl::Texture tex(iw, ih, GL_RGBA8);
   tex.upload(rgba.data(), GL_RGBA, GL_UNSIGNED_BYTE);
   const gl::Framebuffer src(tex);
@@ -289,9 +289,9 @@ struct SideImage {
 
 }  // namespace
 
-WaterRenderer::PlanPlot render_particles(std::span<const float> particles, const std::array<double, 3>& box_m,
-                                         double radius_m, std::span<const RenderObstacle> obstacles,
-                                         const std::string& title, double reserve_right, const RenderTarget& target) {
+PlanPlot render_particles(std::span<const float> particles, const std::array<double, 3>& box_m, double radius_m,
+                          std::span<const RenderObstacle> obstacles, const std::string& title, double reserve_right,
+                          const RenderTarget& target) {
   const std::size_t n = particles.size() / 4;
   double vmax = 0.0;
   for (std::size_t i = 0; i < n; ++i) vmax = std::max(vmax, static_cast<double>(particles[4 * i + 3]));
@@ -302,7 +302,7 @@ WaterRenderer::PlanPlot render_particles(std::span<const float> particles, const
   spec.quantity = "speed", spec.unit = scale == 100.0 ? "cm/s" : "m/s";
   spec.title = title;
   plot_range(0.0, scale * vmax, false, spec);
-  WaterRenderer::PlanPlot rect = plot_layout(target.width(), target.height(), spec, reserve_right);
+  PlanPlot rect = plot_layout(target.width(), target.height(), spec, reserve_right);
   const int w = std::max(1, int(std::lround(rect.width))), h = std::max(1, int(std::lround(rect.height)));
   SideImage img(w, h, w / box_m[0]);
   for (const RenderObstacle& o : obstacles) {

@@ -6,7 +6,8 @@
 
 #include "accum_blur.hpp"
 #include "caustics.hpp"
-#include "renderer.hpp"
+#include "render_settings.hpp"
+#include "solid_geometry.hpp"
 
 namespace huygens {
 namespace {

@@ -1,0 +1,25 @@
+#include "solids_pass.hpp"
+
+namespace huygens {
+
+void SolidsPass::set_obstacles(std::span<const RenderObstacle> obstacles, const SolidsFrame& frame) {
+  solids_.clear();
+  append_mesh_solids(obstacles, frame, solids_);
+  append_prism_solids(obstacles, frame, solids_);
+}
+
+void SolidsPass::draw(const FrameContext& f, const FlatDrawer& flat, std::span<const ShipPose> ships,
+                      std::span<const float> eta, const SolidsFrame& frame) const {
+  if (f.s.draw_ship && !ships.empty()) {
+    std::vector<float> tri;
+    for (ShipPose sp : ships) {
+      float_ship(frame.grid, eta, sp);
+      append_hull(sp, tri);
+    }
+    flat.draw(tri, FlatKind::hull, f);
+  }
+  if (!solids_.empty() && f.s.draw_solids) flat.draw(solids_, FlatKind::obstacle, f);
+  if (tank_[0] > 0.0) flat.draw(tank_walls(tank_, frame, f.camera.eye()), FlatKind::tank_wall, f);
+}
+
+}  // namespace huygens
