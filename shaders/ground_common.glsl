@@ -1,5 +1,6 @@
-// Shared by ground.frag and surface.frag (prepended by the renderer): the lit ground
-// colour at a ground point G (world metres). The ground texture covers the visible region
+// Shared by ground.frag, surface.frag and background.frag (prepended by the renderer): the lit
+// ground colour at a ground point G (world metres). Everything here is linear radiance (the
+// colour uniforms and the ground texture arrive decoded from sRGB; the tone map encodes). The ground texture covers the visible region
 // (origin u_ground_origin, size u_ground_extent) and repeats outside it; the caustics
 // texture (u_caustics_scale * value = light relative to still water) covers the ground
 // rectangle u_caustics_origin/extent, light 1 outside it.
@@ -36,6 +37,12 @@ uniform int u_far;              // 1: the sea beyond the region has the ambient 
 uniform sampler2D u_far_slopes; // RGBA32F: d eta/dx, d eta/dy, their squares' sum, 0: the ambient sea
 uniform vec2 u_far_origin;      // world position of texture coordinate (0, 0) (m)
 uniform float u_far_length;     // the ambient sea's period (m)
+
+// sRGB value -> linear radiance (IEC 61966-2-1; viz/passes/srgb.hpp): the colours the shaders hold
+// as constants are sRGB values, decoded here (uniforms and textures arrive decoded).
+vec3 srgb_to_linear(vec3 c) {
+  return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
+}
 
 // The sky in direction r: u_sky at the horizon to u_sky_zenith overhead, or uniform.
 vec3 sky(vec3 r) {
@@ -131,7 +138,7 @@ vec3 lit_ground(vec2 G) {
 // sun without caustics.
 vec3 deck_colour(vec2 G) {
   if (u_deep != 0) return flat_sea(vec3(G, 0.0));
-  vec3 albedo = mix(texture(u_ground, (G - u_ground_origin) / u_ground_extent).rgb, vec3(0.85, 0.84, 0.80), 0.6);
+  vec3 albedo = mix(texture(u_ground, (G - u_ground_origin) / u_ground_extent).rgb, srgb_to_linear(vec3(0.85, 0.84, 0.80)), 0.6);
   return albedo * (u_ambient + u_sun_light);
 }
 

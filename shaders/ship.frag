@@ -14,5 +14,7 @@ void main() {
   vec3 hull = abs(n.z) > 0.8 ? vec3(0.78, 0.78, 0.76) : v_pos.z > 0.0 ? vec3(0.93, 0.93, 0.91) : vec3(0.55, 0.12, 0.10);
   vec3 base = u_solid == 3 ? vec3(0.86, 0.88, 0.90) : u_solid == 2 ? vec3(0.10, 0.38, 0.48) : u_solid != 0 ? vec3(0.62, 0.60, 0.57) : hull;
   float ambient = u_solid == 3 ? 0.7 : 0.35;  // a tank's walls: pale, a backdrop
+  // the colours above are sRGB values: decoded to linear radiance (IEC 61966-2-1)
+  base = mix(base / 12.92, pow((base + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), base));
   o_color = vec4(base * (ambient + (1.0 - ambient) * lambert), 1.0);
 }

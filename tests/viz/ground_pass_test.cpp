@@ -155,8 +155,9 @@ TEST_F(VizRender, PoolWallsSeenThroughTheWaterAreLitBySunSkyAndFloor) {
         for (int dx = -1; dx <= 1; ++dx) same = same && what[static_cast<std::size_t>(y + dy) * W + x + dx] == w;
       if (!same) continue;
       for (int c = 0; c < 3; ++c) {
-        const double a = s.ground_uniform[c];
-        const double expected = a * (light[static_cast<std::size_t>(y) * W + x] + (w == 0 ? 0.0 : 0.5 * a * (A + S)));
+        const double a = lin(s.ground_uniform[c]);  // the albedo in linear light
+        const double expected =
+            display(a * (light[static_cast<std::size_t>(y) * W + x] + (w == 0 ? 0.0 : 0.5 * a * (A + S))));
         EXPECT_NEAR(channel(img, x, y, c), expected, 2.0 / 255.0)
             << "pixel (" << x << ", " << y << ") channel " << c << (w == 0 ? ", floor" : ", wall");
       }

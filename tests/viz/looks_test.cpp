@@ -1,10 +1,11 @@
 // Tests of the looks and the start-up camera (viz/app/looks.hpp, scene_view.hpp).
+#include "looks.hpp"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include "huygens/pipeline/render_request.hpp"
-#include "looks.hpp"
 #include "render_test_helpers.hpp"
 
 using namespace huygens;

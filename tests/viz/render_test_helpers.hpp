@@ -3,6 +3,7 @@
 // settings for optical checks, a test grid and cameras, pixel readers, the scene renderer as
 // huygens-viz runs it, and the glint's closed form.
 #include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -19,6 +20,7 @@
 #include <random>
 #include <string>
 #include <vector>
+
 #include "camera.hpp"
 #include "caustics_stage.hpp"
 #include "dye.hpp"
@@ -32,9 +34,9 @@
 #include "renderer.hpp"
 #include "scene_view.hpp"
 #include "scenes_dir.hpp"
+#include "srgb.hpp"
 
 namespace huygens::test {
-
 
 inline gl::HeadlessContext& context() {
   static gl::HeadlessContext ctx;  // one context for the whole suite
@@ -87,6 +89,11 @@ inline OrbitCamera top_down(double x, double y, double height_m) {
   return cam;
 }
 
+// The renderer shades in linear radiance and encodes sRGB once (srgb.hpp): a pixel's value for a
+// linear radiance (clamped, no tone map), and an sRGB colour's linear radiance.
+inline double display(double linear) { return linear_to_srgb(std::clamp(linear, 0.0, 1.0)); }
+inline double lin(double srgb) { return srgb_to_linear(srgb); }
+
 inline double channel(const gl::Image8& img, int x, int y, int c) {
   return img.pixels[4 * (static_cast<std::size_t>(y) * img.width + x) + c] / 255.0;
 }
@@ -114,7 +121,6 @@ inline void write_debug(const std::string& name, const gl::Image8& img) {
   gl::write_png(::testing::TempDir() + "/" + name, img);
 }
 
-
 class VizRender : public ::testing::Test {
  protected:
   void SetUp() override { context().make_current(); }
@@ -130,7 +136,7 @@ inline ViewerSolver viewer_solver(const std::string& scene) {
 // A shipped scene rendered headless at time t and w x h with its look, then again with `change`
 // applied to the options: the two images.
 inline std::pair<gl::Image8, gl::Image8> render_twice(const std::string& scene, double t, int w, int h,
-                                               const std::function<void(HeadlessOptions&)>& change) {
+                                                      const std::function<void(HeadlessOptions&)>& change) {
   const std::string file = (std::filesystem::path(huygens::test::scenes_dir()) / scene).string();
   HeadlessOptions o;
   o.time = t;
@@ -148,7 +154,7 @@ inline std::pair<gl::Image8, gl::Image8> render_twice(const std::string& scene, 
 // rational form), seen along d (towards the water), with Schlick's F of index `index` at the
 // angle between the facet and the eye.
 inline double glint_closed_form(const glm::dvec3& d, const glm::dvec3& sun, double E, double m2, double index,
-                         const glm::dvec3& n = {0.0, 0.0, 1.0}, bool masking = true) {
+                                const glm::dvec3& n = {0.0, 0.0, 1.0}, bool masking = true) {
   const glm::dvec3 v = -d, h = glm::normalize(sun + v);
   const double nv = glm::dot(n, v), ns = glm::dot(n, sun), nh = glm::dot(n, h);
   if (nv <= 0 || ns <= 0) return 0.0;

@@ -92,11 +92,13 @@ TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
       if (std::fabs(d.z) < 0.01) continue;  // the pixel the horizon cuts
       const double F = f0 + (1 - f0) * std::pow(1.0 - std::max(-d.z, 0.0), 5);
       for (int c = 0; c < 3; ++c) {
-        const auto S = [&](double rz) {  // the sky in a direction of height rz
-          return graded ? s.sky_colour[c] + (s.sky_zenith[c] - s.sky_colour[c]) * std::sqrt(rz) : s.sky_colour[c];
+        const auto S = [&](double rz) {                                     // the sky in a direction of height rz
+          const double h = lin(s.sky_colour[c]), z = lin(s.sky_zenith[c]);  // in linear light
+          return graded ? h + (z - h) * std::sqrt(rz) : h;
         };
-        const double sky = S(std::max(d.z, 0.0)), sea = (1 - F) * 0.7 * s.water_colour[c] + F * S(std::max(-d.z, 0.0));
-        EXPECT_NEAR(channel(img, W / 2, y, c), d.z > 0 ? sky : sea, 1.5 / 255.0)
+        const double sky = S(std::max(d.z, 0.0)),
+                     sea = (1 - F) * 0.7 * lin(s.water_colour[c]) + F * S(std::max(-d.z, 0.0));
+        EXPECT_NEAR(channel(img, W / 2, y, c), display(d.z > 0 ? sky : sea), 1.5 / 255.0)
             << (graded ? "graded" : "uniform") << " sky, row " << y << " channel " << c << ", d_z " << d.z;
       }
       sea_rows += d.z < 0;
@@ -120,7 +122,8 @@ TEST_F(VizRender, OpenSeaReachesTheHorizonUnderAGradedSky) {
     // is a pixel high at this view)
     if (std::fabs(d.z) < 0.01 || (d.z < 0 && py >= g.y0 - 0.2 && py <= g.y0 + kWidth + 0.2)) continue;
     for (int c = 0; c < 3; ++c) {
-      const double deck = s.ground_uniform[c] + 0.6 * (glm::vec3(0.85f, 0.84f, 0.80f)[c] - s.ground_uniform[c]);
+      const double a = lin(s.ground_uniform[c]), stone = lin(glm::vec3(0.85f, 0.84f, 0.80f)[c]);
+      const double deck = display(a + 0.6 * (stone - a));
       EXPECT_NEAR(channel(img, W / 2, y, c), d.z > 0 ? s.sky_colour[c] : deck, 1.5 / 255.0)
           << "deck, row " << y << " channel " << c << ", d_z " << d.z;
     }
@@ -167,7 +170,8 @@ TEST_F(VizRender, FarSeaGlitterHasCoxAndMunksSlopeVariance) {
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x)
       for (int c = 0; c < 3; ++c) {
-        const double expect = (1 - f0) * 0.7 * s.water_colour[c] + f0 * s.sky_colour[c] + glint * s.sun_colour[c];
+        const double expect =
+            display((1 - f0) * 0.7 * lin(s.water_colour[c]) + f0 * lin(s.sky_colour[c]) + glint * lin(s.sun_colour[c]));
         EXPECT_NEAR(channel(img, x, y, c), expect, 1.5 / 255.0) << "pixel " << x << ", " << y << " channel " << c;
       }
   std::printf("glint %.4f (unresolved only %.4f), pixel (8, 8): %.4f\n", glint, unresolved_only, lum(img, 8, 8));
@@ -183,7 +187,8 @@ TEST_F(VizRender, FarSeaGlitterHasCoxAndMunksSlopeVariance) {
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x)
       for (int c = 0; c < 3; ++c) {
-        const double expect = (1 - f0) * 0.7 * s.water_colour[c] + f0 * s.sky_colour[c] + in_region * s.sun_colour[c];
+        const double expect = display((1 - f0) * 0.7 * lin(s.water_colour[c]) + f0 * lin(s.sky_colour[c]) +
+                                      in_region * lin(s.sun_colour[c]));
         EXPECT_NEAR(channel(region, x, y, c), expect, 1.5 / 255.0) << "region pixel " << x << ", " << y;
       }
   std::printf("region: unresolved %.4f (beyond %.4f), glint %.4f\n", region_var, r.unresolved_slope_var(), in_region);

@@ -226,7 +226,8 @@ TEST(VizSolids, TankWallsLeaveOutTheWallsBetweenTheEyeAndTheWater) {
   ASSERT_EQ(from_south.size(), 3u * 18u) << "from the south the south wall is left out";
   for (std::size_t v = 0; v < from_south.size(); v += 3) {
     EXPECT_TRUE(from_south[v + 2] == -0.3f || std::abs(from_south[v + 2] - 0.2f) < 1e-6f) << "floor to the lid";
-    EXPECT_FALSE(from_south[v + 1] == 0.0f && from_south[v] > 0.0f && from_south[v] < 2.0f) << "no vertex on y = 0 but corners";
+    EXPECT_FALSE(from_south[v + 1] == 0.0f && from_south[v] > 0.0f && from_south[v] < 2.0f)
+        << "no vertex on y = 0 but corners";
   }
   EXPECT_TRUE(tank_walls({0.0, 0.0, 0.0}, f, glm::dvec3(0.0)).empty()) << "no tank";
 }

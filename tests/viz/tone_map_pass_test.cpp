@@ -1,11 +1,12 @@
 // Tests of the tone map pass (viz/passes/tone_map_pass.hpp): the half-float scene into the 8-bit
 // image through the closed form of the tone curve, and a clamp when the tone map is off.
+#include "tone_map_pass.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "render_test_helpers.hpp"
-#include "tone_map_pass.hpp"
 
 using namespace huygens;
 using namespace huygens::test;
@@ -34,9 +35,10 @@ gl::Image8 tone_map_columns(const std::vector<float>& x, const RenderSettings& s
 
 }  // namespace
 
-// Below the knee the image is the value itself; above it k + (1 - k)(1 - exp(-(x - k)/(1 - k))),
-// which has slope 1 at the knee and stays below 1; off, values clamp at 1. Every channel within
-// 1/255 of the closed form (the half-float scene holds the values to 5e-4).
+// The scene's linear radiance x goes through the tone curve (x below the knee k, above it
+// k + (1 - k)(1 - exp(-(x - k)/(1 - k))), slope 1 at the knee, below 1), or a clamp at 1 when off,
+// then the sRGB encoding. Every channel within 1/255 of the closed form (the half-float scene
+// holds the values to 5e-4).
 TEST_F(VizRender, ToneMapIsTheClosedFormCurveOfEachChannel) {
   const std::vector<float> x{0.0f, 0.1f, 0.25f, 0.5f, 0.79f, 0.8f, 0.85f, 0.9f, 1.0f, 1.2f, 1.5f, 2.0f, 3.0f, 10.0f};
   RenderSettings s;
@@ -47,7 +49,7 @@ TEST_F(VizRender, ToneMapIsTheClosedFormCurveOfEachChannel) {
     for (std::size_t j = 0; j < x.size(); ++j)
       for (int c = 0; c < 2; ++c) {
         const double v = (c == 0 ? 1.0 : 0.5) * x[j];
-        const double want = on ? tone_curve(v, s.tone_knee) : std::min(v, 1.0);
+        const double want = display(on ? tone_curve(v, s.tone_knee) : v);  // then encoded to sRGB
         EXPECT_NEAR(channel(img, static_cast<int>(j), 1, c), want, 1.0 / 255.0)
             << (on ? "tone map" : "clamp") << " of " << v << ", channel " << c;
       }

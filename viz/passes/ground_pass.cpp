@@ -140,7 +140,7 @@ void GroundPass::update_pattern(const RenderSettings& s) {
       for (int k = 0; k < 3; ++k) p[k] = static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0f, 1.0f) * 255.0f));
       p[3] = 255;
     }
-  pattern_tex_ = gl::Texture(n, n, GL_RGBA8, 10);
+  pattern_tex_ = gl::Texture(n, n, GL_SRGB8_ALPHA8, 10);  // sRGB texels, sampled as linear
   pattern_tex_.upload(px.data(), GL_RGBA, GL_UNSIGNED_BYTE, 0);
   glBindTexture(GL_TEXTURE_2D, pattern_tex_.id());
   glGenerateMipmap(GL_TEXTURE_2D);

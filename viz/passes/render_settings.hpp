@@ -3,8 +3,9 @@
 // every pass reads. A look (viz/app/looks.hpp) fills it; the scene's "render" block and the
 // window's panel change it.
 //
-// Colours are display values (no sRGB conversion), so the render tests can compare pixels
-// with closed forms: the water pixel is
+// Colours are given as sRGB values and decoded to linear radiance on input (srgb.hpp); the passes
+// shade in linear radiance and the tone map pass encodes sRGB once at the end, so the render tests
+// compare pixels with closed forms in linear light put through the same encoding. The water pixel is
 //   C = (1 - F) [ G T + W (1 - T) ] + F S(r) + g L,   T = exp(-a_rgb d),
 // G the lit ground colour at the refracted ground point (W alone for deep water with no
 // floor), d the path length in the water, W the water colour, S(r) the sky in the reflected
@@ -35,7 +36,7 @@ enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, ex
 using Look = LookRequest;
 enum class GroundPattern : int { tiles = 0, checker = 1, uniform = 2 };
 
-/// What the renderer draws and how (all colours are display values in [0, 1]).
+/// What the renderer draws and how (all colours are sRGB values in [0, 1], decoded on input).
 struct RenderSettings {
   /// Refractive index of the water (unit: 1).
   float index = 1.333f;

@@ -4,12 +4,14 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <string>
 
+#include "srgb.hpp"
+
 namespace huygens {
 
 gl::Program load_lit_program(const char* vs, const char* fs) {
   const std::string vsrc(gl::shader_source(vs));
-  const std::string fsrc =
-      "#version 330 core\n" + std::string(gl::shader_source("ground_common.glsl")) + "\n" + std::string(gl::shader_source(fs));
+  const std::string fsrc = "#version 330 core\n" + std::string(gl::shader_source("ground_common.glsl")) + "\n" +
+                           std::string(gl::shader_source(fs));
   return gl::program_from_strings(vsrc, fsrc, std::string(vs) + " + " + fs);
 }
 
@@ -24,10 +26,10 @@ void set_view_and_light(const gl::Program& p, const FrameContext& f) {
   glUniform3f(p.loc("u_view_dir"), static_cast<float>(v.dir.x), static_cast<float>(v.dir.y),
               static_cast<float>(v.dir.z));
   glUniform1f(p.loc("u_index"), s.index);
-  glUniform3fv(p.loc("u_water_colour"), 1, glm::value_ptr(s.water_colour));
-  glUniform3fv(p.loc("u_sky"), 1, glm::value_ptr(s.sky_colour));
+  set_colour(p, "u_water_colour", s.water_colour);
+  set_colour(p, "u_sky", s.sky_colour);
   glUniform1i(p.loc("u_sky_gradient"), s.sky_gradient ? 1 : 0);
-  glUniform3fv(p.loc("u_sky_zenith"), 1, glm::value_ptr(s.sky_zenith));
+  set_colour(p, "u_sky_zenith", s.sky_zenith);
   glUniform3fv(p.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
   glUniform1i(p.loc("u_deep"), s.deep_water ? 1 : 0);
   glUniform1f(p.loc("u_ambient"), s.ambient);
@@ -37,7 +39,7 @@ void set_view_and_light(const gl::Program& p, const FrameContext& f) {
   glUniform1i(p.loc("u_glint"), !s.sun_glint ? 0 : s.paper_glint ? 1 : 2);
   glUniform1f(p.loc("u_sun_radius"), s.sun_radius_rad);
   glUniform1f(p.loc("u_sun_irradiance"), s.sun_irradiance);
-  glUniform3fv(p.loc("u_sun_colour"), 1, glm::value_ptr(s.sun_colour));
+  set_colour(p, "u_sun_colour", s.sun_colour);
 }
 
 // The ground's pattern, the floor under the region and the caustics' light on it.
@@ -82,6 +84,11 @@ void set_far_sea(const gl::Program& p, const FrameContext& f, const ShadingScene
 }
 
 }  // namespace
+
+void set_colour(const gl::Program& p, const char* name, const glm::vec3& srgb) {
+  const glm::vec3 linear = srgb_to_linear(srgb);
+  glUniform3fv(p.loc(name), 1, glm::value_ptr(linear));
+}
 
 void set_shading_uniforms(const gl::Program& p, const FrameContext& f, const ShadingScene& scene) {
   p.use();

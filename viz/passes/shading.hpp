@@ -50,6 +50,10 @@ struct ShadingScene {
 /// Makes `p` current and sets the uniforms ground_common.glsl reads.
 void set_shading_uniforms(const gl::Program& p, const FrameContext& f, const ShadingScene& scene);
 
+/// Sets the colour uniform `name` of the current program `p` to the sRGB colour `srgb` decoded to
+/// linear radiance (srgb.hpp).
+void set_colour(const gl::Program& p, const char* name, const glm::vec3& srgb);
+
 /// A lit program: the fragment shader `fs` with shaders/ground_common.glsl in front of it.
 gl::Program load_lit_program(const char* vs, const char* fs);
 

@@ -67,7 +67,6 @@ void mark_hulls(const GridPlacement& g, std::span<const ShipPose> ships, std::ve
   }
 }
 
-
 void float_ship(const GridPlacement& g, std::span<const float> eta, ShipPose& s) {
   // eta at (x, y), bilinear; false outside the grid's points
   const auto at = [&](double x, double y, double& v) {
@@ -100,7 +99,6 @@ void float_ship(const GridPlacement& g, std::span<const float> eta, ShipPose& s)
   s.slope_across = std::clamp(abc.z, -0.3, 0.3);
   s.heave = abc.x;
 }
-
 
 void append_mesh_solids(std::span<const RenderObstacle> obstacles, const SolidsFrame& f, std::vector<float>& out) {
   const float off = static_cast<float>(f.offset);

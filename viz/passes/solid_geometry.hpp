@@ -14,7 +14,6 @@
 
 namespace huygens {
 
-
 /// A ship drawn as a Wigley hull y = B/2 (1 - (2x/L)^2)(1 - (z/T)^2) below the waterline.
 struct ShipPose {
   /// Centre position (unit: m) and heading from +x toward +y (unit: rad).

@@ -18,8 +18,8 @@ class SolidsPass {
   void set_tank(const std::array<double, 3>& box_m) { tank_ = box_m; }
   /// The hulls at their poses afloat on `eta` (the visible heights after the offset), the
   /// obstacles and the tank walls the eye is inside of.
-  void draw(const FrameContext& f, const FlatDrawer& flat, std::span<const ShipPose> ships,
-            std::span<const float> eta, const SolidsFrame& frame) const;
+  void draw(const FrameContext& f, const FlatDrawer& flat, std::span<const ShipPose> ships, std::span<const float> eta,
+            const SolidsFrame& frame) const;
 
  private:
   std::vector<float> solids_;     // obstacle triangles (x, y, z)

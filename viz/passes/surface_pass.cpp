@@ -106,12 +106,12 @@ void SurfacePass::draw(const FrameContext& f, const ShadingScene& scene, const g
   const bool dye = s.dye && has_dye_;
   glUniform1i(prog_.loc("u_use_dye"), dye ? 1 : 0);
   glUniform1i(prog_.loc("u_dye"), 4);
-  glUniform3fv(prog_.loc("u_dye_colour"), 1, glm::value_ptr(s.dye_colour));
+  set_colour(prog_, "u_dye_colour", s.dye_colour);
   if (dye) dye_tex_.bind(4);
   const bool foam = s.foam && has_foam_;
   glUniform1i(prog_.loc("u_use_foam"), foam ? 1 : 0);
   glUniform1i(prog_.loc("u_foam"), 6);
-  glUniform3fv(prog_.loc("u_foam_colour"), 1, glm::value_ptr(s.foam_colour));
+  set_colour(prog_, "u_foam_colour", s.foam_colour);
   if (foam) foam_tex_.bind(6);
   coef_tex_.bind(3);
   glUniform1i(prog_.loc("u_use_bed"), bed ? 1 : 0);
