@@ -112,7 +112,7 @@ Timing time_solver(const HuygensScene& sc, MPI_Comm comm, int steps, SlabTransfo
   double dt = (MPI_Wtime() - t0) / steps;
   const double bytes = (g_sent - sent0) / steps;
   MPI_Allreduce(MPI_IN_PLACE, &dt, 1, MPI_DOUBLE, MPI_MAX, comm);
-  return Timing{dt, bytes, s.bytes_sent_per_step(), s.transforms_per_step() * s.grid().transposes()};
+  return Timing{dt, bytes, s.bytes_sent_per_step(), s.round_trip_step_transforms() * s.grid().transposes()};
 }
 
 // mean wall time of one fftwf_mpi transpose of the N x N complex slab (the slowest rank)

@@ -113,7 +113,7 @@ int run(int argc, char** argv) {
       if (rank == 0) still_differs += slab.still() != one->still(), still_steps += one->still();
     }
     if (rank == 0 && same_bits) {
-      const auto a = one_rank->spectrum_view(), b = one->propagator().spectrum_view();
+      const auto a = one_rank->propagator().spectrum_view(), b = one->propagator().spectrum_view();
       for (std::size_t i = 0; i < a.size(); ++i) spectra_differ += std::memcmp(&a[i], &b[i], sizeof(cfloat)) != 0;
     }
     if (s % 50 != 0 && s != steps && s != 1) continue;

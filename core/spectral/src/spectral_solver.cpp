@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 #include <variant>
 
 #include "huygens/common/comm.hpp"
@@ -263,25 +264,41 @@ MemoryEstimate huygens_memory(const HuygensScene& s) {
   return m;
 }
 
-HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(scene_.params) {
+HuygensSolver::HuygensSolver(const HuygensScene& scene)
+    : HuygensSolver(scene, whole_grid_layout(scene.params.n, scene.params.effort)) {}
+
+HuygensSolver::HuygensSolver(const HuygensScene& scene, GridLayout layout)
+    : scene_(scene), prop_(scene_.params, std::move(layout)) {
   const auto& p = scene_.params;
-  const std::size_t vv = static_cast<std::size_t>(prop_.visible_size()) * prop_.visible_size();
+  const GridLayout& g = prop_.layout();
+  vis_ = g.visible(p.margin);
+  const std::size_t vv = static_cast<std::size_t>(vis_.count) * prop_.visible_size();
   if (!scene_.ships.empty()) {
     ships_ = std::make_unique<ShipWaves>(p.water, p.n, p.length_m, scene_.ship_patch, scene_.ships, p.effort);
     ships_->check_step(p.dt_s);
     if (prop_.round_trip_every() > 1) ships_->reserve_gather(prop_.round_trip_every());
   }
-  if (scene_.has_wind) wind_ = std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt_s);
-  if (scene_.stokes || wind_) {
-    stokes_ = std::make_unique<StokesHeight>(p.water, p.n, p.length_m, scene_.stokes, p.effort, p.margin);
+  if (scene_.has_wind)
+    wind_ = g.whole ? std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt_s)
+                    : std::make_unique<WindSea>(scene_.wind, p.water, p.n, p.length_m, p.dt_s,
+                                                WindRows{g.spectrum_row(0), static_cast<int>(g.krows), g.transposed});
+  // a slab makes every height in this stage (the packed height reads Z^(-k), on another rank)
+  if (scene_.stokes || wind_ || !g.whole) {
+    stokes_ = std::make_unique<StokesHeight>(p.water, p.length_m, scene_.stokes, g, p.margin);
     eta_ = AlignedBuffer<float>(vv);
     etadot_ = AlignedBuffer<float>(vv);
   }
+  height_standin_ = !g.whole && !scene_.stokes && !wind_;
   if (scene_.display_per_step > 1) {
     eta0_ = AlignedBuffer<float>(vv);
     etadot0_ = AlignedBuffer<float>(vv);
     frame_ = AlignedBuffer<float>(vv);
   }
+  initial_state();
+}
+
+void HuygensSolver::initial_state() {
+  const auto& p = scene_.params;
   for (const auto& w : scene_.initial_plane_waves) prop_.add_plane_wave(w.wavelength_m, w.amplitude_m, w.direction_deg);
   for (const auto& g : scene_.initial_gaussians) prop_.add_gaussian(g.x_m, g.y_m, g.sigma_m, g.amplitude_m);
   // drops at t <= 0 are part of the initial state
@@ -294,7 +311,11 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
   st_drops_ = prop_.stats().add("drops", prop_.source_bytes());
   if (ships_) st_ships_ = prop_.stats().add("ships", ships_->bytes());
   if (wind_) st_wind_ = prop_.stats().add("wind", wind_->bytes());
-  if (stokes_) st_stokes_ = prop_.stats().add(scene_.stokes ? "height_stokes" : "height_wind", stokes_->bytes());
+  if (stokes_)
+    st_stokes_ = prop_.stats().add(scene_.stokes ? "height_stokes"
+                                   : wind_       ? "height_wind"
+                                                 : "height",
+                                   stokes_->bytes());
   if (scene_.still_skip && !ships_ && !wind_ && scene_.still_check_every > 0) {
     // ships and wind keep the sea alive: no still state with them
     const double k1 = 2.0 * std::numbers::pi / p.length_m, a = scene_.still_amplitude_m;
@@ -302,8 +323,16 @@ HuygensSolver::HuygensSolver(const HuygensScene& scene) : scene_(scene), prop_(s
                     a * p.length_m * p.length_m;
     st_still_ = prop_.stats().add("still", 0);
   }
+  // the stages in step order: the first that failed is named
+  const StageStats& st = prop_.stats();
+  step_order_ = {st.find("propagate"), st.find("cutoff"), st_ships_, st.find("spectrum"), st_drops_, st_wind_,
+                 st.find("height"),    st_stokes_};
+  prop_.checks().clear();
   make_height(0);
-  if (!all_finite(eta_view())) throw NonFiniteError("initial", 0);
+  // every rank agrees (a slab's height failure is recorded, not thrown, and shows here)
+  double bad = all_finite(eta_view()) ? 0.0 : 1.0;
+  prop_.layout().sum_over_ranks({&bad, 1});
+  if (bad > 0) throw NonFiniteError("initial", 0);
   prop_.stats().reset_counts();
 }
 
@@ -322,8 +351,12 @@ void HuygensSolver::make_height(std::int64_t step) {
              ? stokes_->compute(prop_.spectrum_view().data(), scale, *wind_, eta_.data(), etadot_.data())
              : stokes_->compute(prop_.spectrum_view().data(), scale, nullptr, eta_.data(), etadot_.data());
     prop_.stats()[st_stokes_].transforms += static_cast<std::uint64_t>(stokes_->transforms_per_call());
+    prop_.stats()[st_stokes_].sent += stokes_->sent_bytes_per_call();
   }
-  if (!ok) throw NonFiniteError(prop_.stats()[st_stokes_].name, step);
+  if (ok) return;
+  // a slab's first-order height is named as HuygensPropagator::height names its own
+  const int blame = height_standin_ ? prop_.height_blame() : -1;
+  prop_.checks().fail(prop_.stats(), blame < 0 ? st_stokes_ : blame, step);
 }
 
 double HuygensSolver::transforms_per_step() const {
@@ -336,9 +369,11 @@ bool HuygensSolver::drop_due() const {
   return scene_.drops[next_drop_].t_s <= t1 + 1e-9 * scene_.params.dt_s;
 }
 
-void HuygensSolver::check_still() {
-  if (st_still_ < 0 || prop_.steps() % scene_.still_check_every != 0) return;
-  if (!(prop_.energy_bound() < still_energy_)) return;
+void HuygensSolver::settle_step(bool energy_due) {
+  StageChecks& checks = prop_.checks();
+  checks.energy() = energy_due ? prop_.spectrum_norm2() : 0.0;
+  checks.settle(prop_.layout().sum_over_ranks, prop_.stats(), step_order_, prop_.steps() + 1);
+  if (!energy_due || !(prop_.energy_bound_of(checks.energy()) < still_energy_)) return;
   // below the threshold: a flat sea at rest (the residual is dropped, so that waking up later
   // starts from exactly zero instead of a frozen, unrotated residual)
   prop_.clear();
@@ -372,16 +407,19 @@ void HuygensSolver::add_ships(double t0) {
   bool ok = false;
   {
     StageTimer timer(prop_.stats()[st_ships_]);
+    // every process makes every patch (P x P, small) and adds the rows it holds
+    const GridLayout& g = prop_.layout();
+    const int r0 = static_cast<int>(g.row0), rows = static_cast<int>(g.rows);
     if (prop_.round_trip_every() == 1) {
-      ok = ships_->add(prop_.field().data(), t0, scene_.params.dt_s);
+      ok = ships_->add_rows(prop_.field().data(), r0, rows, t0, scene_.params.dt_s);
     } else {
       // the round trip every K steps: each step's patch enters at the next round trip, turned
       // by the steps still ahead (ShipWaves::gather)
       ok = ships_->gather(t0, scene_.params.dt_s, prop_.steps_to_round_trip());
-      if (ok && prop_.round_trip_now()) ships_->scatter_rows(prop_.field().data(), 0, prop_.n());
+      if (ok && prop_.round_trip_now()) ships_->scatter_rows(prop_.field().data(), r0, rows);
     }
   }
-  if (!ok) throw NonFiniteError(prop_.stats()[st_ships_].name, prop_.steps() + 1);
+  if (!ok) prop_.checks().fail(prop_.stats(), st_ships_, prop_.steps() + 1);
 }
 
 void HuygensSolver::release_drops() {
@@ -395,7 +433,7 @@ void HuygensSolver::release_drops() {
   }
   if (prop_.inject_due_for_test(st_drops_)) prop_.spectrum_data()[1] = NAN;
   // drops are rare: check their output in full
-  if (!all_finite(prop_.spectrum_view())) throw NonFiniteError("drops", prop_.steps() + 1);
+  if (!all_finite(prop_.spectrum_view())) prop_.checks().fail(prop_.stats(), st_drops_, prop_.steps() + 1);
 }
 
 void HuygensSolver::step() {
@@ -409,6 +447,7 @@ void HuygensSolver::step() {
     still_ = false;  // a timed drop wakes it: the normal step below releases it
   }
   keep_previous_step();
+  prop_.checks().clear();
   const double t0 = prop_.time();
   prop_.propagate();
   prop_.cutoff();
@@ -420,8 +459,10 @@ void HuygensSolver::step() {
     wind_->advance();
   }
   make_height(prop_.steps() + 1);
+  // the still check every still_check_every steps: one pass over Z^, summed with the records
+  const bool energy_due = st_still_ >= 0 && (prop_.steps() + 1) % scene_.still_check_every == 0;
+  settle_step(energy_due);
   prop_.end_step();
-  check_still();
 }
 
 std::vector<OutputField> HuygensSolver::display_outputs(int j) {
@@ -432,8 +473,9 @@ std::vector<OutputField> HuygensSolver::display_outputs(int j) {
   const auto e1 = eta_view(), d1 = etadot_view();
   hermite_interpolate(eta0_.data(), etadot0_.data(), e1.data(), d1.data(), e1.size(), hermite_weights(j, d),
                       scene_.params.dt_s, frame_.data());
-  const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
-  return {OutputField{"eta", {v, v}, frame_.span()}};
+  auto out = outputs();
+  out[0].data = frame_.span();
+  return out;
 }
 
 std::size_t HuygensSolver::ship_poses(std::span<ShipState> out) const {
@@ -447,6 +489,7 @@ std::size_t HuygensSolver::ship_poses(std::span<ShipState> out) const {
 }
 
 bool HuygensSolver::apply(const Command& c) {
+  if (!prop_.layout().whole) return false;  // commands reach one process only (docs/scale.md)
   if (const auto* t = std::get_if<cmd::Toggle>(&c)) return toggle(*t);
   if (const auto* s = std::get_if<cmd::ShipTarget>(&c)) {
     // between steps: the ship leaves its path now (no transform, no allocation)
@@ -473,7 +516,12 @@ bool HuygensSolver::apply(const Command& c) {
 std::vector<OutputField> HuygensSolver::outputs() {
   refresh_height();
   const std::size_t v = static_cast<std::size_t>(prop_.visible_size());
-  return {OutputField{"eta", {v, v}, eta_view()}};
+  OutputField f{"eta", {static_cast<std::size_t>(vis_.count), v}, eta_view()};
+  if (!prop_.layout().whole) {  // a slab: its rows of the global visible region
+    f.global_shape = {v, v};
+    f.row0 = static_cast<std::size_t>(vis_.row0);
+  }
+  return {f};
 }
 
 nlohmann::json HuygensSolver::meta() const { return huygens_meta(scene_, transforms_per_step(), still_energy_); }
@@ -528,6 +576,7 @@ nlohmann::json huygens_meta(const HuygensScene& scene, double transforms_per_ste
 }
 
 bool HuygensSolver::toggle(const cmd::Toggle& t) {
+  if (!prop_.layout().whole) return false;
   if (t.feature == "wind") {
     if (!wind_) return false;  // no sea in the scene: nothing is allocated to switch on
     wind_on_ = t.on;

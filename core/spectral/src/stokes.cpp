@@ -22,18 +22,29 @@ constexpr int kScratchRows = 11;
 }  // namespace
 
 StokesHeight::StokesHeight(const Water& water, int n, double length_m, bool second_order, PlanEffort effort, int margin)
-    : n_(n),
+    : StokesHeight(water, length_m, second_order, whole_grid_layout(n, effort), margin) {}
+
+StokesHeight::StokesHeight(const Water& water, double length_m, bool second_order, const GridLayout& layout, int margin)
+    : n_(layout.n),
       m_(margin),
       second_(second_order),
-      threads_(std::max(1, omp_get_max_threads())),
-      k_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
-      kw_(static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1)),
-      sq_(second_order ? static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1) : 0),
-      scratch_(static_cast<std::size_t>(threads_) * kScratchRows * n),
-      x_(static_cast<std::size_t>(n) * n),
-      chi_(second_order ? static_cast<std::size_t>(n) * n : 0),
-      chid_(second_order ? static_cast<std::size_t>(n) * n : 0),
-      inverse_(n, n, x_.data(), x_.data(), Fft2D::backward, effort) {
+      split_(!layout.whole),
+      g_(layout),
+      vis_(layout.visible(margin)),
+      threads_(std::max(1, omp_get_max_threads())) {
+  const int n = n_;
+  const std::size_t qq = static_cast<std::size_t>(n / 2 + 1) * (n / 2 + 1), slab = static_cast<std::size_t>(g_.alloc);
+  k_ = AlignedBuffer<float>(qq);
+  kw_ = AlignedBuffer<float>(qq);
+  if (second_) sq_ = AlignedBuffer<float>(qq);
+  if (!split_) scratch_ = AlignedBuffer<float>(static_cast<std::size_t>(threads_) * kScratchRows * n);
+  x_ = AlignedBuffer<cfloat>(slab);
+  if (split_) b_ = AlignedBuffer<cfloat>(slab);
+  if (second_) {
+    chi_ = AlignedBuffer<cfloat>(slab);
+    chid_ = AlignedBuffer<cfloat>(slab);
+  }
+  inverse_ = g_.make_transform(x_.data(), x_.data(), Fft2D::backward);
   // quadrant tables: FFT indices (r, c) in [0, N/2]^2 stand for the modes (+-r, +-c) (the sign
   // of an integer times dk is exact, and hypot ignores signs: the values are those of every mode)
   const int q = n / 2 + 1;
@@ -51,14 +62,15 @@ StokesHeight::StokesHeight(const Water& water, int n, double length_m, bool seco
 
 std::size_t StokesHeight::bytes() const {
   return (k_.size() + kw_.size() + sq_.size() + scratch_.size()) * sizeof(float) +
-         (x_.size() + chi_.size() + chid_.size()) * sizeof(cfloat);
+         (x_.size() + b_.size() + chi_.size() + chid_.size()) * sizeof(cfloat);
 }
 
 void StokesHeight::raw_transforms() {
-  inverse_.execute();
+  inverse_->execute();
+  if (split_) inverse_->execute(b_.data(), b_.data());
   if (!second_) return;
-  inverse_.execute(chi_.data(), chi_.data());
-  inverse_.execute(chid_.data(), chid_.data());
+  inverse_->execute(chi_.data(), chi_.data());
+  inverse_->execute(chid_.data(), chid_.data());
 }
 
 bool StokesHeight::compute(const cfloat* zhat, float zscale, const cfloat* extra, float* eta, float* etadot) {
@@ -179,15 +191,17 @@ inline void output_row(const float* y, const float* w, const RowScratch& t, floa
 
 bool StokesHeight::run(const cfloat* zhat, float zscale, const cfloat* extra, const cfloat* extra_phase, float* eta,
                        float* etadot) {
-  fill_inputs(reinterpret_cast<const float*>(zhat), zscale, reinterpret_cast<const float*>(extra),
-              reinterpret_cast<const float*>(extra_phase));
+  const float* z = reinterpret_cast<const float*>(zhat);
+  const float* ex = reinterpret_cast<const float*>(extra);
+  const float* ph = reinterpret_cast<const float*>(extra_phase);
+  if (split_)
+    fill_split(z, zscale, ex, ph);
+  else
+    fill_inputs(z, zscale, ex, ph);
   const auto t0 = std::chrono::steady_clock::now();
-  inverse_.execute();
-  if (second_) {
-    inverse_.execute(chi_.data(), chi_.data());
-    inverse_.execute(chid_.data(), chid_.data());
-  }
+  raw_transforms();
   fft_ns_ += elapsed_ns(t0);
+  if (split_) return extract_split(eta, etadot);
   return second_ ? extract_second_order(eta, etadot) : extract_first_order(eta, etadot);
 }
 

@@ -3,7 +3,7 @@
 //   h(p) h(q),  h(i) = 1 - (d/M - 1)^2  for d = min(i, N-1-i) < M cells, else 1,
 // so waves reaching the M-cell margin fade instead of wrapping round the periodic grid. With a
 // time constant tau > 0 the factor is (h(p) h(q))^(dt/tau): one paper cutoff per tau seconds
-// whatever dt. Shared by the one-process propagator and the MPI slab solver (rows row0 ...).
+// whatever dt. Applied by HuygensPropagator to the rows its layout holds (rows row0 ...).
 #include <cstddef>
 
 namespace huygens {

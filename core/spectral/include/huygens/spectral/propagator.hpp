@@ -12,6 +12,8 @@
 // Without cutoff and spatial sources a step is the rotation and the height: one transform.
 // exp(-i omega dt) is an exact-determinant lifting rotation of three shears, so |Z^| cannot
 // drift in float (docs/huygens.md). Per-mode tables depend on |k| only: one quadrant each.
+// Every stage runs on a GridLayout (grid_layout.hpp): the whole grid on one process, a row slab
+// on an MPI rank (slab_solver.hpp); the packed height reads Z^(-k) and needs the whole grid.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -20,7 +22,9 @@
 #include "huygens/common/dispersion.hpp"
 #include "huygens/common/fft.hpp"
 #include "huygens/common/stats.hpp"
+#include "huygens/spectral/grid_layout.hpp"
 #include "huygens/spectral/rotation.hpp"
+#include "huygens/spectral/stage_checks.hpp"
 
 namespace huygens {
 
@@ -85,21 +89,23 @@ void gaussian_axis_factors(cfloat* f, int n, double length_m, double x0_m, doubl
 
 /// One spectrum row of a Gaussian source: E^ = row x col[c] (the separable factors), Z^ += -i (omega/k)
 /// E^, turned by exp(-i omega age) when it was released age_s ago (age_s != 0). w_over_k and om:
-/// the row's omega/k and omega (N values; unit: m/s, rad/s). Shared by the one-process and the slab
-/// solver so both add the same bits.
+/// the row's omega/k and omega (N values; unit: m/s, rad/s).
 void add_gaussian_row(cfloat row, const cfloat* col, const float* w_over_k, const float* om, double age_s, cfloat* s,
                       int n);
 
 class HuygensPropagator {
  public:
-  /// Allocates every buffer and table and makes the three FFTW plans. Throws
+  /// Allocates every buffer and table and makes the three FFTW plans, on the whole grid. Throws
   /// std::invalid_argument with huygens_params_error() for bad parameters.
   explicit HuygensPropagator(const HuygensParams& p);
+  /// The same on a layout (a slab needs external_height; its plans are collective).
+  HuygensPropagator(const HuygensParams& p, GridLayout layout);
   ~HuygensPropagator();
   HuygensPropagator(const HuygensPropagator&) = delete;
   HuygensPropagator& operator=(const HuygensPropagator&) = delete;
 
   const HuygensParams& params() const { return p_; }
+  const GridLayout& layout() const { return g_; }
   int n() const { return p_.n; }
   double dx() const { return p_.length_m / p_.n; }
   /// Wavenumber components of FFT index i along one axis (unit: rad/m), FFTW order.
@@ -114,8 +120,8 @@ class HuygensPropagator {
   void add_gaussian(double x_m, double y_m, double sigma_m, double amplitude_m, double age_s = 0.0);
   /// Adds a progressive plane wave whose elevation is amplitude cos(k.x) at this time,
   /// travelling along direction_deg (0 = +x, 90 = +y): Z = -i omega(k)/k amplitude e^{i k.x}.
-  /// Exactly one Fourier mode when the wave vector is on the grid. Uses one transform: not
-  /// for use inside a step.
+  /// Exactly one Fourier mode when the wave vector is on the grid. Uses one transform (and on a
+  /// slab a scratch buffer): not for use inside a step.
   void add_plane_wave(double wavelength_m, double amplitude_m, double direction_deg);
   /// Allocates and fills the source tables (-omega/k and omega, 2 N^2 floats) if not yet done;
   /// returns their size (unit: bytes). Runs between steps, never inside one.
@@ -124,7 +130,8 @@ class HuygensPropagator {
   std::uint64_t source_bytes() const { return (src_.size() + omega_.size()) * sizeof(float); }
   /// Sets a flat sea at rest: Z^ = Z = 0 and the heights 0 (time and steps unchanged).
   void clear();
-  /// Replaces the state by the spatial field z (N*N values, rows = y) and recomputes the height.
+  /// Replaces the state by the spatial field z (N*N values, rows = y) and recomputes the height
+  /// (whole grid only).
   void set_field(std::span<const cfloat> z);
 
   // ---- the step ------------------------------------------------------------------------------
@@ -142,11 +149,12 @@ class HuygensPropagator {
   /// Simulated time (unit: s) and full steps taken.
   double time() const { return t_; }
   std::int64_t steps() const { return steps_; }
-  /// The spectrum Z^ (FFTW order, unnormalised) at time(); N*N values.
-  std::span<const cfloat> spectrum_view() const { return s_.span(); }
-  std::span<cfloat> spectrum_data() { return s_.span(); }
-  /// The spatial field Z; valid between cutoff() and spectrum() (spatial sources add here).
-  std::span<cfloat> field() { return z_.span(); }
+  /// The spectrum Z^ (FFTW order, unnormalised) at time(): the layout's spectrum rows, N values each.
+  std::span<const cfloat> spectrum_view() const { return {s_.data(), g_.spectrum_size()}; }
+  std::span<cfloat> spectrum_data() { return {s_.data(), g_.spectrum_size()}; }
+  /// The spatial field Z (the layout's rows); valid between cutoff() and spectrum() (spatial
+  /// sources add here).
+  std::span<cfloat> field() { return {z_.data(), g_.field_size()}; }
   /// First-order elevation and its rate on the visible region, (N-2M)^2 row-major (unit: m, m/s).
   std::span<const float> eta() const { return eta_.span(); }
   std::span<const float> etadot() const { return etadot_.span(); }
@@ -155,14 +163,24 @@ class HuygensPropagator {
   int visible_size() const { return p_.n - 2 * p_.margin; }
   /// Linear wave energy of the real field in double (unit: J):
   ///   E = rho/2 L^2/N^4 sum_k (g + sigma k^2 / rho) (|H_k|^2 + |D_k|^2 / omega_k^2)
-  /// with H, D the spectra of eta and etadot (Hermitian parts of i k/omega Z^ and k Z^).
+  /// with H, D the spectra of eta and etadot (Hermitian parts of i k/omega Z^ and k Z^). Whole grid only.
   double energy() const;
   /// Cheap upper bound of energy() (one vectorised pass, no per-mode tables; unit: J). With
   /// energy() = rho/2 L^2/N^4 sum_k (k / tanh(k h)) |Z^_k|^2 (the dispersion relation folded
   /// in: (g + sigma k^2/rho) k^2/omega^2 = k/tanh(kh)) and x/tanh(x) <= 1 + x:
   ///   energy() <= rho/2 L^2/N^4 (k_max + 1/h) sum_k |Z^_k|^2,  k_max = sqrt(2) pi N / L
   /// (1/h = 0 in deep water). The k = 0 mode, which carries no energy, is included.
-  double energy_bound() const;
+  double energy_bound() const { return energy_bound_of(spectrum_norm2()); }
+  /// sum_k |Z^_k|^2 over this layout's spectrum rows (double; a slab sums it over the ranks).
+  double spectrum_norm2() const;
+  /// The bound above for a sum_k |Z^_k|^2 over the whole grid (unit: J).
+  double energy_bound_of(double norm2) const;
+  /// A non-finite height: the stage to blame, from the buffers that still hold each stage's
+  /// output (Z after propagate/cutoff on a round trip, Z^ after spectrum or propagate); -1: the
+  /// height itself.
+  int height_blame() const;
+  /// Non-finite checks of the step (deferred on a slab).
+  StageChecks& checks() { return checks_; }
   StageStats& stats() { return stats_; }
   const StageStats& stats() const { return stats_; }
   /// True when the steps go through the spatial domain (cutoff on or `spatial` set), every
@@ -200,12 +218,19 @@ class HuygensPropagator {
 
  private:
   void build_tables();
-  void check_stage(int stage, std::span<const cfloat> v) const;
-  void diagnose_nonfinite() const;
-  /// Cell (N/2, N/2): inside the visible region (test hook).
-  std::size_t mid_index() const { return static_cast<std::size_t>(p_.n / 2) * p_.n + p_.n / 2; }
+  void allocate();
+  void make_plans();
+  void register_stages();
+  void check_stage(int stage, std::span<const cfloat> v);
+  /// Runs a transform of the step for `stage`: times it and counts it and its bytes sent.
+  void run_transform(const GridTransform& t, int stage);
+  /// Cell (N/2, N/2) of the whole grid (the middle of the layout's rows): inside the visible
+  /// region (test hook).
+  std::size_t mid_index() const { return static_cast<std::size_t>(g_.rows / 2) * p_.n + p_.n / 2; }
 
   HuygensParams p_;
+  GridLayout g_;
+  StageChecks checks_;
   double t_ = 0.0;
   std::int64_t steps_ = 0;
   AlignedBuffer<cfloat> z_, s_, h_;  // spatial field, spectrum, packed height
@@ -216,9 +241,9 @@ class HuygensPropagator {
   AlignedBuffer<float> cut_;                    // h(p), N values, each twice (re, im)
   AlignedBuffer<cfloat> src_x_, src_y_;         // per-source separable factors, N values each
   AlignedBuffer<float> eta_, etadot_;           // visible outputs
-  std::unique_ptr<Fft2D> inv_prop_;             // Z -> Z in place, backward
-  std::unique_ptr<Fft2D> fwd_;                  // Z -> S, forward
-  std::unique_ptr<Fft2D> inv_height_;           // H -> H in place, backward
+  std::unique_ptr<GridTransform> inv_prop_;     // Z -> Z in place, backward
+  std::unique_ptr<GridTransform> fwd_;          // Z -> S, forward
+  std::unique_ptr<GridTransform> inv_height_;   // H -> H in place, backward
   StageStats stats_;
   int st_propagate_ = -1, st_cutoff_ = -1, st_spectrum_ = -1, st_height_ = -1;
   bool check_now_ = false;

@@ -1,6 +1,6 @@
 #pragma once
 // The per-mode phase factor exp(i phi), phi = -omega(k) dt, of the Huygens step (paper 004
-// section 3, eq. 1; docs/huygens.md), shared by HuygensPropagator and HuygensSlabSolver: its
+// section 3, eq. 1; docs/huygens.md), used by HuygensPropagator on every layout: its
 // table entries (one quadrant of |k|) and the rotation of one spectrum row by them. With phi
 // reduced to [-pi, pi] and s the 1/N^2 of the FFT round trip (or 1):
 //   complex  a = s cos phi, b = s sin phi:  (x, y) <- (a x - b y, a y + b x)

@@ -7,6 +7,9 @@
 // Displayed frames j = 1 .. D-1 of D per step are cubic Hermite interpolants of eta and etadot
 // between the last two full steps (time_interp.hpp; no transform). A still sea (no ships or
 // wind, energy below a threshold) is zeroed and skipped until a drop (HuygensScene::still_skip).
+// Every stage is written once against a GridLayout (grid_layout.hpp): the whole grid here, a row
+// slab of an MPI rank in HuygensSlabSolver (slab_solver.hpp), which adds only the slab's layout.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -92,6 +95,8 @@ std::unique_ptr<Solver> make_huygens_solver(const Scene& scene, const RunOptions
 class HuygensSolver : public Solver {
  public:
   explicit HuygensSolver(const HuygensScene& scene);
+  /// The same solver on a layout (a slab: collective; no commands, set_field or energy there).
+  HuygensSolver(const HuygensScene& scene, GridLayout layout);
   void step() override;
   double time() const override { return prop_.time(); }
   std::int64_t steps() const override { return prop_.steps(); }
@@ -104,7 +109,7 @@ class HuygensSolver : public Solver {
     refresh_height();
     return eta_view();
   }
-  std::size_t height_rows() const override { return static_cast<std::size_t>(prop_.visible_size()); }
+  std::size_t height_rows() const override { return static_cast<std::size_t>(vis_.count); }
   std::size_t height_cols() const override { return static_cast<std::size_t>(prop_.visible_size()); }
   std::span<const float> height_rate() override {
     refresh_height();
@@ -118,6 +123,8 @@ class HuygensSolver : public Solver {
   /// N x N transforms per full step for the scene's features, on average: the propagation (2/K
   /// with the round trip every K steps, 0 without) + the height (1 first order, 3 second order).
   double transforms_per_step() const;
+  /// Wall time inside the N x N transforms of the step (propagation and height; unit: ns), summed.
+  std::uint64_t fft_ns() const { return prop_.fft_ns() + (stokes_ ? stokes_->fft_ns() : 0); }
   /// Supports cmd::Drop (a Gaussian depression released now; the height is recomputed lazily:
   /// by the next step, or by the next height()/height_rate()/outputs() before it) and
   /// cmd::ShipTarget (ShipWaves::steer at time(): the ship leaves its path and heads for the
@@ -130,7 +137,7 @@ class HuygensSolver : public Solver {
   /// where it would be), refused when the scene has none (nothing is allocated for it).
   bool toggle(const cmd::Toggle& t);
   /// The visible region, depth, hulls, display rate, toggles ("stokes"; "wind" with a wind sea)
-  /// and the scene's render block.
+  /// and the scene's render block (whole grid).
   RenderInfo render_info() override;
   /// The ships' poses at time() (ShipWaves::pose), at most out.size().
   std::size_t ship_poses(std::span<ShipState> out) const override;
@@ -147,6 +154,7 @@ class HuygensSolver : public Solver {
   }
 
   HuygensPropagator& propagator() { return prop_; }
+  const HuygensPropagator& propagator() const { return prop_; }
   const HuygensScene& scene() const { return scene_; }
 
  private:
@@ -165,26 +173,32 @@ class HuygensSolver : public Solver {
   }
   /// A timed drop falls into the coming step (t, t + dt].
   bool drop_due() const;
-  /// Every still_check_every steps: enters the still state when the energy bound is below the threshold.
-  void check_still();
   /// Before a step with D > 1: the current height becomes the previous full step (eta0_, etadot0_).
   void keep_previous_step();
   /// The ship stage: every ship's waves of [t0, t0 + dt] into the spatial field, checked.
   void add_ships(double t0);
   /// The drops stage: timed drops due in the coming step enter the spectrum with their phase.
   void release_drops();
+  /// Construction: the sources of t <= 0, the stages, the still threshold, the first height.
+  void initial_state();
+  /// The end of a step's stages: one reduction of the non-finite records and the still-sea energy
+  /// over the ranks (a slab), the first failing stage thrown, the still state entered when due.
+  void settle_step(bool energy_due);
 
   HuygensScene scene_;
   HuygensPropagator prop_;
   std::unique_ptr<ShipWaves> ships_;             // only with ships
   std::unique_ptr<WindSea> wind_;                // only with wind
-  std::unique_ptr<StokesHeight> stokes_;         // only with stokes or wind (else the propagator's packed height)
+  VisibleRows vis_;                              // the visible rows this layout holds
+  std::unique_ptr<StokesHeight> stokes_;         // with stokes, wind or on a slab (else the propagator's packed height)
   std::unique_ptr<StokesHeight> stokes_spare_;   // the other order, once "stokes" was toggled
   bool wind_on_ = true;                          // "wind" toggle: the sea is superposed
   AlignedBuffer<float> eta_, etadot_;            // StokesHeight outputs (only with stokes_)
   AlignedBuffer<float> eta0_, etadot0_, frame_;  // previous full step + one displayed frame (only D > 1)
   std::size_t next_drop_ = 0;
   int st_drops_ = -1, st_ships_ = -1, st_wind_ = -1, st_stokes_ = -1, st_still_ = -1;
+  bool height_standin_ = false;      // a slab's first-order height stage stands in for the propagator's
+  std::array<int, 8> step_order_{};  // stage indices in step order (StageChecks::settle)
   double still_energy_ = 0.0;
   bool still_ = false, height_dirty_ = false;
 };
