@@ -20,5 +20,7 @@ void main() {
     vec3 s = normalize(u_sun_dir);
     c *= clamp(max(dot(n, s), 0.0) / max(s.z, 0.05), 0.35, 1.4);
   }
+  // seen from an eye under the water: the floor through the water between them
+  if (u_eye_under != 0) c = through_water(c, length(v_p - u_eye));
   o_color = vec4(c, 1.0);
 }

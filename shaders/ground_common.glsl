@@ -33,6 +33,7 @@ uniform float u_sun_radius;      // the sun's angular radius (rad)
 uniform float u_sun_irradiance;  // the sun's irradiance on a plane facing it over the sky's radiance (sr)
 uniform float u_slope_var;       // mean square slope of the waves shorter than the heightfield's grid
 uniform float u_region_var;      // more of it in the region, whose central differences resolve less
+uniform int u_eye_under;        // 1: the eye is under the water (below the rest level over the region)
 uniform int u_far;              // 1: the sea beyond the region has the ambient sea's slopes
 uniform sampler2D u_far_slopes; // RGBA32F: d eta/dx, d eta/dy, their squares' sum, 0: the ambient sea
 uniform vec2 u_far_origin;      // world position of texture coordinate (0, 0) (m)
@@ -179,4 +180,38 @@ vec3 seen_under_water(vec3 P, vec2 G, float floor_z, out vec3 hit) {
   float lambert = max(dot(vec3(nw, 0.0), -s_w), 0.0) / max(-s_w.z, 0.1);
   vec3 wall = albedo * (0.5 * u_ambient + u_sun_light * lambert + 0.5 * foot * (u_ambient + u_sun_light));
   return mix(floor_part, wall, w);
+}
+
+// Light along a path of `len` metres under water towards the eye, arriving with radiance c:
+// absorbed as exp(-a_rgb len) and replaced by the water's own colour W scattered in (paper 003:
+// c T + W (1 - T)); nothing without absorption.
+uniform int u_absorption;
+uniform vec3 u_absorb;
+vec3 through_water(vec3 c, float len) {
+  if (u_absorption == 0) return c;
+  vec3 T = exp(-u_absorb * len);
+  return c * T + u_water_colour * (1.0 - T);
+}
+
+// The surface seen from under the water at P (normal n, pointing up) along the view ray d (going
+// up). Into the air the ray bends by Snell's law with the ratio index (water to air),
+// t = refract(d, -n, index); beyond the critical angle asin(1 / index) (48.6 deg for 1.333) there
+// is no t and the surface is a mirror (total internal reflection): Snell's window. Inside it
+// (1 - F) S(t) + F R, F the reflectance at the air side's cosine t.n; R what the reflected ray
+// r = reflect(d, -n) meets under the water: the floor or a pool's wall (seen_under_water),
+// absorbed along its path, or deep water's colour W. The eye's own path to P: the caller.
+vec3 underside(vec3 P, vec3 n, vec3 d, float floor_z) {
+  vec3 t = refract(d, -n, u_index);
+  vec3 r = reflect(d, -n);
+  vec3 below = u_deep != 0 ? u_water_colour : vec3(0.0);
+  if (u_deep == 0) {
+    r.z = min(r.z, -1e-6);
+    vec2 G = P.xy + r.xy * ((floor_z - P.z) / r.z);
+    vec3 hit;
+    below = seen_under_water(P, G, floor_z, hit);
+    below = through_water(below, length(hit - P));
+  }
+  if (dot(t, t) == 0.0) return below;  // total internal reflection
+  float F = fresnel(max(dot(t, n), 0.0));
+  return mix(sky(t), below, F);
 }

@@ -30,8 +30,7 @@ uniform vec2 u_grid_size;   // cols, rows
 uniform float u_dx;
 uniform float u_ground_z;
 uniform int u_exact;
-uniform int u_absorption;
-uniform vec3 u_absorb;
+// (u_absorption, u_absorb, through_water, underside: ground_common.glsl)
 // (u_fresnel, u_glint, u_sun_*, u_slope_var, u_region_var: ground_common.glsl)
 
 // Value noise in [0, 1] at p (grid points): an integer hash per lattice corner, smooth blend.
@@ -61,6 +60,12 @@ void main() {
   } else if (u_hide_dry != 0 && v_pos.z - floor_z < u_dry_depth) {
     discard;
   }
+  // seen from under the water (the eye below this point of the surface): Snell's window, total
+  // internal reflection, and the water along the eye's path
+  if (u_ortho == 0 && dot(n, dir) > 0.0) {
+    o_color = vec4(through_water(underside(v_pos, n, dir, floor_z), length(v_pos - u_eye)), 1.0);
+    return;
+  }
   vec2 G;
   if (u_exact != 0 || u_use_bed != 0) {
     vec3 nn = dot(n, dir) > 0.0 ? -n : n;
@@ -74,11 +79,7 @@ void main() {
 
   vec3 hit;  // where the refracted ray ends: the floor, or a pool's wall
   vec3 refr = u_deep != 0 ? deep_water_colour(n) : seen_under_water(v_pos, G, floor_z, hit);
-  if (u_absorption != 0 && u_deep == 0) {
-    float path = length(hit - v_pos);
-    vec3 T = exp(-u_absorb * path);
-    refr = refr * T + u_water_colour * (1.0 - T);
-  }
+  if (u_deep == 0) refr = through_water(refr, length(hit - v_pos));
   // dye carried by the flow (paper 002; viz/app/dye.hpp), in the water at this point
   if (u_use_dye != 0) refr = mix(refr, u_dye_colour, 0.7 * texture(u_dye, tc).r);
 

@@ -420,3 +420,54 @@ TEST_F(VizRender, GlintWidensByTheSlopeSpreadOverThePixel) {
   std::printf("brightest glint %.3f; the pixel's spread moves it by %.1f/255\n", most, 255.0 * moved);
   if (::testing::Test::HasFailure()) write_debug("glint_pixel_spread.png", img);
 }
+
+// From under the water: the eye 0.5 m below still water looking straight up (a 120 degree field of
+// view, 201 x 201 pixels). A view ray at theta from the vertical leaves into the air while
+// index sin(theta) < 1; beyond the critical angle asin(1 / 1.333) = 48.6 degrees the surface
+// reflects it totally. Along the middle row, both ways from the centre, the sky's edge (Snell's
+// window) lies within 1 px of its closed form, ndc tan(theta_c) / tan(60 deg); outside it the
+// floor (uniform, seen by the reflection), inside it the sky (Fresnel off, no absorption: the
+// pixels are the colours themselves). With Schlick's Fresnel and absorption the centre pixel is
+//   [(1 - F0) S + F0 (G T2 + W (1 - T2))] T1 + W (1 - T1),  T1 = exp(-a 0.5), T2 = exp(-a 2),
+// the reflected ray's 2 m down to the floor and the eye's 0.5 m up, all in linear light.
+TEST_F(VizRender, SnellsWindowFromUnderTheWater) {
+  const GridPlacement g = test_grid();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam;
+  cam.target = glm::dvec3(g.x0 + 0.5 * kWidth, g.y0 + 0.5 * kWidth, 0.0);
+  cam.distance = 0.5;
+  cam.pitch = -0.5 * std::numbers::pi;  // below the target, looking up
+  cam.fov_y = 120.0 * std::numbers::pi / 180.0;
+  RenderSettings s = plain_settings();
+  s.ground = GroundPattern::uniform;
+  s.ground_uniform = glm::vec3(0.2f, 0.6f, 0.3f);
+  const int W = 201;
+  const gl::Image8 img = render(r, cam, s, W, W);
+  const double theta_c = std::asin(1.0 / s.index), ndc = std::tan(theta_c) / std::tan(0.5 * cam.fov_y);
+  const double edge_right = (ndc + 1.0) * 0.5 * W - 0.5, edge_left = (1.0 - ndc) * 0.5 * W - 0.5;
+  const auto L = [](const glm::vec3& c) { return (c.r + c.g + c.b) / 3.0; };
+  const double level = 0.5 * (L(s.sky_colour) + L(s.ground_uniform));
+  const double right = crossing(img, W / 2, W / 2, +1, level), left = crossing(img, W / 2, W / 2, -1, level);
+  std::printf("Snell's window: edges at %.2f and %.2f px, closed form %.2f and %.2f\n", left, right, edge_left,
+              edge_right);
+  EXPECT_NEAR(right, edge_right, 1.0);
+  EXPECT_NEAR(left, edge_left, 1.0);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(channel(img, W / 2, W / 2, c), s.sky_colour[c], 1.5 / 255.0) << "the sky overhead";
+    EXPECT_NEAR(channel(img, static_cast<int>(edge_right) + 3, W / 2, c), s.ground_uniform[c], 1.5 / 255.0)
+        << "the floor by total internal reflection";
+    EXPECT_NEAR(channel(img, static_cast<int>(edge_left) - 3, W / 2, c), s.ground_uniform[c], 1.5 / 255.0);
+  }
+  s.fresnel = FresnelModel::schlick;
+  s.absorption = true;
+  const gl::Image8 lit = render(r, cam, s, W, W);
+  const double f0 = std::pow((s.index - 1) / (s.index + 1), 2);
+  for (int c = 0; c < 3; ++c) {
+    const double a = s.absorb_rgb[c], Wc = lin(s.water_colour[c]), T1 = std::exp(-a * 0.5), T2 = std::exp(-a * kDepth);
+    const double below = lin(s.ground_uniform[c]) * T2 + Wc * (1 - T2);
+    const double expected = ((1 - f0) * lin(s.sky_colour[c]) + f0 * below) * T1 + Wc * (1 - T1);
+    EXPECT_NEAR(channel(lit, W / 2, W / 2, c), display(expected), 1.5 / 255.0) << "channel " << c;
+  }
+  if (::testing::Test::HasFailure()) write_debug("snells_window.png", img);
+}

@@ -73,7 +73,8 @@ void usage(std::FILE* f) {
                "  closes; a headless run abandons its frame and writes no image; a second signal ends\n"
                "  the program at once).\n"
                "Keys (window): space pause, R reset, F1 hide panel, S screenshot, E exact/linearised,\n"
-               "  F Fresnel model, P plan view (again: speed, dye, foam or particles), Esc quit.\n"
+               "  F Fresnel model, P plan view (again: speed, dye, foam or particles), U dive under the\n"
+               "  surface (again: back up), Esc quit.\n"
                "Mouse: left click drops a stone, left drag on a ship moves it, right drag orbits, middle\n"
                "  drag (or shift+right) pans, wheel zooms.\n",
                shipped_scene_names());

@@ -146,7 +146,9 @@ RenderSettings look_settings(const SceneView& view, const RenderRequest& request
   // the sun where the camera is (azimuth and elevation): the refracted view ray and the sun's
   // refracted ray then coincide at the centre of the view, so the caustics a wave makes are
   // seen through that wave (paper 004 sec. 5 draws them along the sun, D tan(theta_t) away)
-  const glm::dvec3 to_eye = -camera.forward();
+  // (an eye under the water: the sun mirrored above the surface, the light still comes from above)
+  glm::dvec3 to_eye = -camera.forward();
+  to_eye.z = std::abs(to_eye.z);
   s.sun_dir = glm::vec3(static_cast<float>(to_eye.x), static_cast<float>(to_eye.y), static_cast<float>(to_eye.z));
   look_unit(view.look).settings(view, camera, s);
   apply_render_request(request, s);

@@ -203,6 +203,9 @@ void on_key(App& a, int key) {
         a.plan = false;
       }
       break;
+    case GLFW_KEY_U:  // dive: the eye mirrored below the target's level (under the water), or back up
+      a.camera.pitch = -a.camera.pitch;
+      break;
     case GLFW_KEY_ESCAPE:
       a.quit = true;
       break;
@@ -291,7 +294,9 @@ void cursor_callback(GLFWwindow* w, double x, double y) {
   if (a.orbiting || a.panning) a.follow = false;
   if (a.orbiting) {
     a.camera.yaw -= 0.005 * dx;
-    a.camera.pitch = std::clamp(a.camera.pitch + 0.005 * dy, 0.05, 1.5706);
+    // above the water (0.05 to 90 deg), or under it after a dive (U: -90 to -0.05 deg)
+    a.camera.pitch = a.camera.pitch > 0.0 ? std::clamp(a.camera.pitch + 0.005 * dy, 0.05, 1.5706)
+                                          : std::clamp(a.camera.pitch + 0.005 * dy, -1.5706, -0.05);
   } else if (a.panning) {
     const double scale = a.camera.distance * 0.0015;
     const double c = std::cos(a.camera.yaw), s = std::sin(a.camera.yaw);

@@ -15,6 +15,12 @@ gl::Program load_lit_program(const char* vs, const char* fs) {
   return gl::program_from_strings(vsrc, fsrc, std::string(vs) + " + " + fs);
 }
 
+bool eye_under_water(const OrbitCamera& camera, const GridPlacement& g) {
+  const glm::dvec3 e = camera.eye();
+  return !camera.ortho && e.z < 0.0 && e.x >= g.x(0) && e.x <= g.x(g.cols - 1) && e.y >= g.y(0) &&
+         e.y <= g.y(g.rows - 1);
+}
+
 namespace {
 
 // The eye, the sky, the sun, the water's colour and the Fresnel and glint models.
@@ -32,6 +38,8 @@ void set_view_and_light(const gl::Program& p, const FrameContext& f) {
   set_colour(p, "u_sky_zenith", s.sky_zenith);
   glUniform3fv(p.loc("u_sun_dir"), 1, glm::value_ptr(s.sun_dir));
   glUniform1i(p.loc("u_deep"), s.deep_water ? 1 : 0);
+  glUniform1i(p.loc("u_absorption"), s.absorption ? 1 : 0);
+  glUniform3fv(p.loc("u_absorb"), 1, glm::value_ptr(s.absorb_rgb));
   glUniform1f(p.loc("u_ambient"), s.ambient);
   glUniform1f(p.loc("u_sun_light"), s.sun_light);
   glUniform1i(p.loc("u_deck"), s.pool_deck ? 1 : 0);
@@ -65,6 +73,7 @@ void set_ground(const gl::Program& p, const FrameContext& f, const ShadingScene&
   // the floor under the visible region (walls beyond it when there is a deck)
   glUniform4f(p.loc("u_floor_rect"), static_cast<float>(g.x(0)), static_cast<float>(g.y(0)),
               static_cast<float>(g.x(g.cols - 1)), static_cast<float>(g.y(g.rows - 1)));
+  glUniform1i(p.loc("u_eye_under"), eye_under_water(f.camera, g) ? 1 : 0);
 }
 
 // The wind's short waves (beyond the region those its texture does not resolve, in it u_region_var

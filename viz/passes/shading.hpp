@@ -47,6 +47,11 @@ struct ShadingScene {
   std::optional<FarSea> far_sea;
 };
 
+/// The eye is under the water: a perspective eye below the rest level over the visible region (the
+/// ground it sees directly is then seen through the water; the surface from below is drawn by
+/// surface.frag wherever the eye is below it).
+bool eye_under_water(const OrbitCamera& camera, const GridPlacement& g);
+
 /// Makes `p` current and sets the uniforms ground_common.glsl reads.
 void set_shading_uniforms(const gl::Program& p, const FrameContext& f, const ShadingScene& scene);
 

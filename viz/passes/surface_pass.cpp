@@ -125,8 +125,6 @@ void SurfacePass::draw(const FrameContext& f, const ShadingScene& scene, const g
   glUniform2f(prog_.loc("u_grid_size"), static_cast<float>(grid_.cols), static_cast<float>(grid_.rows));
   glUniform1f(prog_.loc("u_dx"), static_cast<float>(grid_.dx));
   glUniform1i(prog_.loc("u_exact"), s.exact_refraction ? 1 : 0);
-  glUniform1i(prog_.loc("u_absorption"), s.absorption ? 1 : 0);
-  glUniform3fv(prog_.loc("u_absorb"), 1, glm::value_ptr(s.absorb_rgb));
   glBindVertexArray(vao_);
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
 }

@@ -35,7 +35,7 @@ RenderRequest parse_render_request(const JsonIn& root) {
     if (cam->has("target_m")) r.camera.target_m = cam->vec<3>("target_m", -1e6, 1e6);
     r.camera.distance_m = cam->optional_number("distance_m", 1e-3, 1e6);
     r.camera.yaw_deg = cam->optional_number("yaw_deg", -360.0, 360.0);
-    r.camera.pitch_deg = cam->optional_number("pitch_deg", 1.0, 90.0);
+    r.camera.pitch_deg = cam->optional_number("pitch_deg", -90.0, 90.0);  // below 0: the eye below the target
     if (cam->has("follow_ship")) r.camera.follow_ship = cam->boolean("follow_ship", true);
   }
   if (const std::optional<JsonIn> sun = block->optional_object("sun")) {

@@ -74,7 +74,7 @@ struct CameraRequest {
   std::optional<double> distance_m;
   /// "yaw_deg": heading of the eye around the target from +x toward +y (unit: deg).
   std::optional<double> yaw_deg;
-  /// "pitch_deg": elevation of the eye above the horizontal (unit: deg).
+  /// "pitch_deg": elevation of the eye above the horizontal, negative below it (unit: deg).
   std::optional<double> pitch_deg;
   /// "follow_ship": keep the first ship in view (default: true when the scene has ships).
   std::optional<bool> follow_ship;
