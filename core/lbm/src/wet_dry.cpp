@@ -127,44 +127,11 @@ struct LinkState {
   return l * r <= 0.0f ? 0.0f : std::abs(l) < std::abs(r) ? l : r;
 }
 
-// The face value of cell s on its +e_a side (side = +1) or -e_a side (-1), second order in space
-// and time (MUSCL-Hancock, van Leer 1979; Toro 2001 sec. 14.4): minmod slopes of surface and
-// velocity from the neighbours behind (prev, at -e_a) and ahead (next), then half a step of the
-// link's own 1D equations, d(kappa h)/dt = -dm/ds, d(kappa e_a.J)/dt = -dpi/ds. The depth follows
-// the surface (still water stays still); a dry or missing neighbour gives first order.
-LinkState reconstruct(int a, const LinkState& s, const LinkState* prev, const LinkState* next, float side, float g,
-                      float hmin) {
-  if (prev == nullptr || next == nullptr || prev->h < hmin || next->h < hmin) return s;
-  const float de = 0.5f * minmod(s.eta - prev->eta, next->eta - s.eta);
-  const float dx = 0.5f * minmod(s.ux - prev->ux, next->ux - s.ux);
-  const float dy = 0.5f * minmod(s.uy - prev->uy, next->uy - s.uy);
-  LinkState p{std::max(0.0f, s.h + de), s.eta + de, s.ux + dx, s.uy + dy};
-  LinkState q{std::max(0.0f, s.h - de), s.eta - de, s.ux - dx, s.uy - dy};
-  float mp, pp, mq, pq;
-  link_flux(a, p, g, mp, pp);
-  link_flux(a, q, g, mq, pq);
-  const bool diag = a >= 5;
-  const float ik = diag ? 3.0f : 1.5f, ie2 = diag ? 0.5f : 1.0f;  // 1 / kappa_a, 1 / |e_a|^2
-  LinkState o = side > 0.0f ? p : q;
-  const float ex = static_cast<float>(kEx[a]), ey = static_cast<float>(kEy[a]);
-  const float q0 = o.h * (ex * o.ux + ey * o.uy);
-  const float h1 = o.h - 0.5f * ik * (mp - mq), q1 = q0 - 0.5f * ik * (pp - pq);
-  if (!(h1 > hmin)) return o;
-  const float du = (q1 / h1 - q0 / std::max(o.h, hmin)) * ie2;  // change of e_a.u, along e_a
-  return {h1, o.eta + (h1 - o.h), o.ux + du * ex, o.uy + du * ey};
-}
-
-// Second-order (MUSCL-Hancock) HLL flux of link a between L and R, with LL behind L and RR
-// ahead of R (nullptr: none); first order on a face with a dry side. Not inlined (see hll_link).
-[[gnu::noinline]] void muscl_link(int a, const LinkState* LL, LinkState L, LinkState R, const LinkState* RR, float g,
-                                  float hmin, float& m, float& pi) {
-  if (L.h >= hmin && R.h >= hmin) {
-    const LinkState l = reconstruct(a, L, LL, &R, 1.0f, g, hmin), r = reconstruct(a, R, &L, RR, -1.0f, g, hmin);
-    L = l;
-    R = r;
-  }
-  hll_link(a, L, R, g, hmin, m, pi);
-}
+// A wet cell's state and its minmod slopes [along x, along y][surface, u_x, u_y].
+struct CellSlopes {
+  LinkState s;
+  float sl[2][3];
+};
 
 // The limiter plane packs a cell's theta (0..1) and its flag (Froude above kFvFroude) as theta + 2.
 [[gnu::always_inline]] inline bool fv_flag(float packed) { return packed >= 2.0f; }
@@ -197,6 +164,7 @@ struct LbmShallow::WetDryView {
   float g, hmin;
   int nx, ny;
   bool px, py;
+  bool slip[4];                          // left, right, bottom, top are free-slip (specular) sides
   std::ptrdiff_t first_row, image_slot;  // global row of lattice row 0; lattice row of the image row
 
   // The real cell behind n: n if fluid, the periodic image of a ghost, else -1 (walls, obstacles,
@@ -211,12 +179,30 @@ struct LbmShallow::WetDryView {
     const std::ptrdiff_t m = at(row, col);
     return solid[m] ? -1 : m;
   }
-  // The real cell k links along e_a from the fluid cell at (r0, c0) (periodic sides wrap), else -1.
-  std::ptrdiff_t along(std::ptrdiff_t r0, std::ptrdiff_t c0, int a, int k) const {
+  // The real cell k links along e_a from the fluid cell at (r0, c0), else -1: periodic sides wrap,
+  // beyond one free-slip side it is the mirror image (flip: 1 the image's x velocity is reversed, 2
+  // its y velocity; what the specular ghost rule streams); beyond two sides (a corner ghost bounces
+  // back), a wall or an open side, or outside this rank's lattice rows there is none.
+  std::ptrdiff_t along(std::ptrdiff_t r0, std::ptrdiff_t c0, int a, int k, int& flip) const {
     std::ptrdiff_t row = r0 + k * kEy[a], col = c0 + k * kEx[a];
     if (px) col = (col % nx + nx) % nx;
     if (py) row = (row % ny + ny) % ny;
+    flip = 0;
+    const bool xo = col < 0 || col >= nx, yo = row < 0 || row >= ny;
+    if (xo && yo) return -1;
+    // reflected until inside (twice in a channel one cell wide: the image of the image)
+    for (int i = 0; i < 2 && (col < 0 || col >= nx); ++i) {
+      if (!slip[col < 0 ? 0 : 1]) return -1;
+      col = col < 0 ? -1 - col : 2 * std::ptrdiff_t(nx) - 1 - col;
+      flip ^= 1;
+    }
+    for (int i = 0; i < 2 && (row < 0 || row >= ny); ++i) {
+      if (!slip[row < 0 ? 2 : 3]) return -1;
+      row = row < 0 ? -1 - row : 2 * std::ptrdiff_t(ny) - 1 - row;
+      flip ^= 2;
+    }
     if (row < 0 || row >= ny || col < 0 || col >= nx) return -1;
+    if ((xo || yo) && (row - first_row < 0 || row - first_row >= image_slot)) return -1;
     const std::ptrdiff_t m = at(row, col);
     return solid[m] ? -1 : m;
   }
@@ -228,10 +214,39 @@ struct LbmShallow::WetDryView {
     if (lr < 0 || lr >= image_slot) lr = image_slot;
     return lr * S + pad + col;
   }
-  LinkState state(std::ptrdiff_t x) const {
+  LinkState state(std::ptrdiff_t x, int flip = 0) const {
     float ux, uy;
     cell_velocity(src, P, x, h[x], hmin, ux, uy);
-    return {h[x], h[x] + z[x], ux, uy};
+    return {h[x], h[x] + z[x], flip == 1 ? -ux : ux, flip == 2 ? -uy : uy};
+  }
+  using Slopes = CellSlopes;
+  Slopes slopes(std::ptrdiff_t x) const;
+  // The slopes of the cells one cell's faces need, each computed once.
+  struct SlopeCache {
+    const WetDryView* v;
+    std::ptrdiff_t id[12];
+    Slopes k[12];
+    int n = 0;
+    const Slopes& get(std::ptrdiff_t x) {
+      for (int i = 0; i < n; ++i)
+        if (id[i] == x) return k[i];
+      const int i = n < 12 ? n++ : 11;
+      id[i] = x;
+      k[i] = v->slopes(x);
+      return k[i];
+    }
+  };
+  void muscl(int a, std::ptrdiff_t l, int fl, std::ptrdiff_t r, int fr, SlopeCache& cache, float& m, float& pi) const;
+  void slip_face(int a, std::ptrdiff_t row, std::ptrdiff_t col, std::ptrdiff_t u, int flip, SlopeCache& cache,
+                 WdFace& f) const;
+  // The HLL flux through a free-slip side into the fluid cell at (row, col) on link a, whose
+  // neighbour x - e_a is a specular ghost: the link's 1D problem between the mirror image of the
+  // cell the ghost copies and the cell. Both cells a reflected link pair joins call it for the
+  // same (row, col, a), so they get the same floats.
+  void slip_link(std::ptrdiff_t row, std::ptrdiff_t col, int a, SlopeCache& cache, float& m, float& pi) const {
+    int fl;
+    const std::ptrdiff_t l = along(row, col, a, -1, fl);
+    muscl(a, l, fl, at(row, col), 0, cache, m, pi);
   }
   float mirror(int a, std::ptrdiff_t w) const {  // only used when w is wet and its neighbour dry
     float ux, uy;
@@ -240,56 +255,46 @@ struct LbmShallow::WetDryView {
   }
   // The faces of cell c (row, col known), a = 1..8: HLL on an open face with a dry side or a
   // flagged cell (canonical orientation: links 1, 2, 5, 6 from the neighbour, so both cells call
-  // muscl_link with the same arguments), no exchange between dry cells, else the LBM rules. Each
-  // neighbour's state is computed once.
+  // muscl with the same arguments; through a free-slip side see slip_face), no exchange between
+  // dry cells, else the LBM rules.
   void faces(std::ptrdiff_t c, std::ptrdiff_t row, std::ptrdiff_t col, WdFace* out) const {
-    std::ptrdiff_t img[9];
-    for (int a = 1; a < 9; ++a) img[a] = image(c - off[a]);
-    StateCache st{this, c, img, {}, {}};
-    for (int a = 1; a < 9; ++a) out[a] = face(c, a, row, col, img, st);
-  }
-  // States of cell c (slot 0) and of its neighbours' real cells, computed when a face needs them.
-  struct StateCache {
-    const WetDryView* v;
-    std::ptrdiff_t c;
-    const std::ptrdiff_t* img;
-    LinkState s[9];
-    bool have[9] = {};
-    const LinkState& get(int a) {
-      if (!have[a]) s[a] = v->state(a == 0 ? c : img[a]), have[a] = true;
-      return s[a];
+    std::ptrdiff_t img[9], mir[9] = {};
+    int flip[9] = {};
+    for (int a = 1; a < 9; ++a) {
+      img[a] = image(c - off[a]);
+      mir[a] = img[a] < 0 ? along(row, col, a, -1, flip[a]) : -1;  // a free-slip side's ghost
+      if (flip[a] != 1 && flip[a] != 2) mir[a] = -1;
     }
-  };
-  WdFace face(std::ptrdiff_t c, int a, std::ptrdiff_t row, std::ptrdiff_t col, const std::ptrdiff_t* img,
-              StateCache& st) const {
+    SlopeCache cache{this, {}, {}};
+    for (int a = 1; a < 9; ++a) out[a] = face(c, a, row, col, img[a], mir[a], flip[a], cache);
+  }
+  WdFace face(std::ptrdiff_t c, int a, std::ptrdiff_t row, std::ptrdiff_t col, std::ptrdiff_t img, std::ptrdiff_t mir,
+              int flip, SlopeCache& cache) const {
     const std::ptrdiff_t n = c - off[a];
     const int b = kOpp[a];
-    WdFace f{0.0f, src[b * P + c], 0.0f, 0.0f, 0.0, img[a], false};
+    WdFace f{0.0f, src[b * P + c], 0.0f, 0.0f, 0.0, img, false};
     const float hc = h[c], zc = z[c], hn = h[n], zn = z[n];
     const bool wc = hc >= hmin, wn = hn >= hmin;
-    if (f.img >= 0 && !wc && !wn) {  // dry land: no exchange (a film below h_min stays put)
+    const std::ptrdiff_t u = img >= 0 ? img : mir;  // the real cell behind the face
+    if (u >= 0 && !wc && !wn) {                     // dry land: no exchange (a film below h_min stays put)
+      f.img = u;
       f.fv = true;
       return f;
     }
-    if (f.img >= 0) {
-      const float zi = z[f.img];
-      const bool closed = (wc != wn) && (wc ? hc + zc <= zi + hmin : hn + zi <= zc + hmin);
-      if (!closed && (wc != wn || fv_flag(flags[c]) || fv_flag(flags[f.img]))) {
-        const std::ptrdiff_t behind = wc && wn ? along(row, col, a, -2) : -1;
-        const LinkState sc = st.get(0), sn = st.get(a);
-        const LinkState sb = behind >= 0 ? state(behind) : sc;
-        const LinkState sa = img[b] >= 0 ? st.get(b) : sc;  // the cell ahead, c + e_a
-        const LinkState* pa = img[b] >= 0 ? &sa : nullptr;
-        const LinkState* pb = behind >= 0 ? &sb : nullptr;
-        float m;
-        if (a == 1 || a == 2 || a == 5 || a == 6) {
-          muscl_link(a, pb, sn, sc, pa, g, hmin, m, f.pi);
-          f.flux = m;
+    if (u >= 0) {
+      const float zu = z[u];
+      const bool closed = (wc != wn) && (wc ? hc + zc <= zu + hmin : hn + zu <= zc + hmin);
+      if (!closed && (wc != wn || fv_flag(flags[c]) || fv_flag(flags[u]))) {
+        if (img < 0) {
+          slip_face(a, row, col, u, flip, cache, f);
+        } else if (a == 1 || a == 2 || a == 5 || a == 6) {
+          muscl(a, u, 0, c, 0, cache, f.flux, f.pi);
         } else {
-          muscl_link(b, pa, sc, sn, pb, g, hmin, m, f.pi);
+          float m;
+          muscl(b, c, 0, u, 0, cache, m, f.pi);
           f.flux = -m;
         }
-        if (wc && wn) f.pi += -kb[a] * (hc + hn) * (zc - zi);
+        if (wc && wn) f.pi += -kb[a] * (hc + hn) * (zc - zu);
         f.fv = true;
         return f;
       }
@@ -301,27 +306,113 @@ struct LbmShallow::WetDryView {
   }
 };
 
+// A wet cell's minmod slopes of surface and velocity along x and along y from its four axis
+// neighbours (a dry or missing pair: none along that axis; through a free-slip side the mirror
+// image). Not inlined: every face of the cell uses the same floats.
+[[gnu::noinline]] LbmShallow::WetDryView::Slopes LbmShallow::WetDryView::slopes(std::ptrdiff_t x) const {
+  Slopes k{state(x), {}};
+  const std::ptrdiff_t row = row_of(x), col = x % S - pad;
+  for (int d = 0; d < 2; ++d) {
+    int fm, fp;
+    const std::ptrdiff_t m = along(row, col, d + 1, -1, fm), p = along(row, col, d + 1, 1, fp);
+    if (m < 0 || p < 0 || h[m] < hmin || h[p] < hmin) continue;
+    const LinkState l = state(m, fm), r = state(p, fp);
+    k.sl[d][0] = minmod(k.s.eta - l.eta, r.eta - k.s.eta);
+    k.sl[d][1] = minmod(k.s.ux - l.ux, r.ux - k.s.ux);
+    k.sl[d][2] = minmod(k.s.uy - l.uy, r.uy - k.s.uy);
+  }
+  return k;
+}
+
+namespace {
+
+// The face value of a cell with slopes k towards (dx, dy), the components of +-e_a (flip: of its
+// mirror image, as along()), second order in space and time (MUSCL-Hancock, van Leer 1979; Toro
+// 2001 sec. 14.4 and 16.5): the slopes extrapolated to the face centre (a diagonal link's: the
+// corner), then half a step of the 2D shallow-water equations in primitive form from both
+// slopes, h_t = -(u.grad h + h div u), u_t = -(u.grad u + g grad eta). The depth follows the
+// surface (still water stays still). The predictor sees both directions: one along the link only
+// (each link's own 1D equations) misses the transverse terms, and its link pressure h (g h - u_perp^2)/2
+// is negative across a supercritical flow: a thin sheet grew transverse waves (docs/lbm.md).
+// Not inlined: both cells of a face call it with the same arguments and get the same floats.
+[[gnu::noinline]] LinkState extrapolate(const CellSlopes& k, int flip, int dx, int dy, float g, float hmin) {
+  if (flip == 1) dx = -dx;
+  if (flip == 2) dy = -dy;
+  const LinkState& s = k.s;
+  const float(&sl)[2][3] = k.sl;
+  const float fx = 0.5f * static_cast<float>(dx), fy = 0.5f * static_cast<float>(dy);
+  const float de = fx * sl[0][0] + fy * sl[1][0];
+  LinkState o{std::max(0.0f, s.h + de), s.eta + de, s.ux + fx * sl[0][1] + fy * sl[1][1],
+              s.uy + fx * sl[0][2] + fy * sl[1][2]};
+  const float ht = -(s.ux * sl[0][0] + s.uy * sl[1][0] + s.h * (sl[0][1] + sl[1][2]));
+  const float uxt = -(s.ux * sl[0][1] + s.uy * sl[1][1] + g * sl[0][0]);
+  const float uyt = -(s.ux * sl[0][2] + s.uy * sl[1][2] + g * sl[1][0]);
+  const float h1 = o.h + 0.5f * ht;
+  if (h1 > hmin) o = {h1, o.eta + 0.5f * ht, o.ux + 0.5f * uxt, o.uy + 0.5f * uyt};
+  if (flip == 1) o.ux = -o.ux;
+  if (flip == 2) o.uy = -o.uy;
+  return o;
+}
+
+}  // namespace
+
+// Second-order HLL flux of link a from cell l (flip fl) to cell r (flip fr): face values when both
+// are wet, first order on a face with a dry side. Not inlined (see extrapolate).
+[[gnu::noinline]] void LbmShallow::WetDryView::muscl(int a, std::ptrdiff_t l, int fl, std::ptrdiff_t r, int fr,
+                                                     SlopeCache& cache, float& m, float& pi) const {
+  LinkState L = state(l, fl), R = state(r, fr);
+  if (L.h >= hmin && R.h >= hmin) {
+    L = extrapolate(cache.get(l), fl, kEx[a], kEy[a], g, hmin);
+    R = extrapolate(cache.get(r), fr, -kEx[a], -kEy[a], g, hmin);
+  }
+  hll_link(a, L, R, g, hmin, m, pi);
+}
+
+// An HLL face of cell c (row, col) on link a through a free-slip side, u the cell the ghost
+// copies (flip: the side's axis, 1 x, 2 y). The side reflects link a of u into link a of c: the
+// pair exchanges water between c and u (u the cell behind the face for the limiter). It is
+// computed once in a canonical orientation, the link whose component along the side is positive
+// (the receiving cell's flux m; the partner books -m and the same momentum flux, by the mirror
+// symmetry); a link normal to the side reflects into itself and passes no water.
+void LbmShallow::WetDryView::slip_face(int a, std::ptrdiff_t row, std::ptrdiff_t col, std::ptrdiff_t u, int flip,
+                                       SlopeCache& cache, WdFace& f) const {
+  const int partner = flip == 2 ? kMirrorX[a] : kMirrorY[a];
+  const int along_side = flip == 2 ? kEx[a] : kEy[a];
+  float m;
+  if (along_side >= 0) {
+    slip_link(row, col, a, cache, m, f.pi);
+    f.flux = partner == a ? 0.0f : m;
+  } else {
+    slip_link(row_of(u), u % S - pad, partner, cache, m, f.pi);
+    f.flux = -m;
+  }
+  f.img = u;
+  f.fv = true;
+}
+
 LbmShallow::WetDryView LbmShallow::wet_dry_view(const float* flags) const {
   const std::ptrdiff_t S = static_cast<std::ptrdiff_t>(stride_);
-  WetDryView w{fa_.data(),
-               ha_.data(),
-               z_.data(),
-               flags,
-               solid_.data(),
-               shift_f_.data(),
-               static_cast<std::ptrdiff_t>(plane_),
-               S,
-               static_cast<std::ptrdiff_t>(kPad),
-               {0, 1, S, -1, -S, S + 1, S - 1, -S - 1, -S + 1},
-               {},
-               g_,
-               hmin_,
-               p_.cols,
-               p_.rows,
-               p_.left == LbmSide::periodic,
-               p_.bottom == LbmSide::periodic,
-               row0_ - halo_,
-               rows_ + 2 * halo_};
+  WetDryView w{
+      fa_.data(),
+      ha_.data(),
+      z_.data(),
+      flags,
+      solid_.data(),
+      shift_f_.data(),
+      static_cast<std::ptrdiff_t>(plane_),
+      S,
+      static_cast<std::ptrdiff_t>(kPad),
+      {0, 1, S, -1, -S, S + 1, S - 1, -S - 1, -S + 1},
+      {},
+      g_,
+      hmin_,
+      p_.cols,
+      p_.rows,
+      p_.left == LbmSide::periodic,
+      p_.bottom == LbmSide::periodic,
+      {p_.left == LbmSide::slip, p_.right == LbmSide::slip, p_.bottom == LbmSide::slip, p_.top == LbmSide::slip},
+      row0_ - halo_,
+      rows_ + 2 * halo_};
   for (int a = 1; a < 9; ++a) w.kb[a] = a < 5 ? g_ / 6 : g_ / 24;
   return w;
 }
