@@ -216,6 +216,19 @@ std::size_t SphSystem::dfsph_contact(float dt) {
 // iterations until the mean error is at most the tolerance (at least 2 density / 1 divergence iterations, BK15 Alg.
 // 2-3), accelerated by Chebyshev's semi-iteration (Wang 2015, dfsph.hpp).
 int SphSystem::dfsph_solve(float dt, bool density) {
+  // timed as the solve's stage, less the wall contact's time (the boundary stage)
+  StageStat &st = stats_[density ? sid_.density_solve : sid_.divergence_solve], &bst = stats_[sid_.boundary];
+  const std::uint64_t contact_ns = bst.ns;
+  int it = 0;
+  {
+    StageTimer t(st);
+    it = dfsph_iterate(dt, density);
+  }
+  st.ns -= std::min(st.ns, bst.ns - contact_ns);
+  return it;
+}
+
+int SphSystem::dfsph_iterate(float dt, bool density) {
   float* kap = density ? kappa_.data() : kappav_.data();
   const float wf = p_.dfsph_warm_start;
   bool warm = false;
@@ -238,7 +251,10 @@ int SphSystem::dfsph_solve(float dt, bool density) {
     if (r2 > 0.f && it >= 2) wc = it == 2 ? 2.f / (2.f - r2) : 4.f / (4.f - r2 * wc);
     err = dfsph_update(dt, density, wc);
     dfsph_kick(dt);
-    if (density) contacts_ = dfsph_contact(dt);
+    if (density) {
+      StageTimer t(stats_[sid_.boundary]);
+      contacts_ = dfsph_contact(dt);
+    }
     ++it;
   } while ((err > eta || it < min_iter) && it < p_.dfsph_max_iterations);
   if (density) total_contacts_ += static_cast<std::int64_t>(contacts_);
@@ -287,10 +303,10 @@ double SphSystem::step_dfsph() {
     dfsph_factors();
   }
   if (!all_finite(density())) throw NonFiniteError("density", steps_);
+  div_iter_ = dt_prev_ > 0 ? dfsph_solve(static_cast<float>(dt_prev_), false) : 0;
   double dt;
   {
     StageTimer t(stats_[sid_.forces]);
-    div_iter_ = dt_prev_ > 0 ? dfsph_solve(static_cast<float>(dt_prev_), false) : 0;
     dfsph_advection_forces();
     // dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max) (BK15 section 4.3)
     dt = sph_choose_dt(p_, h_, 0.f, nu_, 0.f, amax_, dts_.limiter);
@@ -304,8 +320,8 @@ double SphSystem::step_dfsph() {
       vy_[i] += fdt * ay_[i];
       vz_[i] += fdt * az_[i];
     }
-    dens_iter_ = dfsph_solve(fdt, true);
   }
+  dens_iter_ = dfsph_solve(static_cast<float>(dt), true);
   if (!all_finite(vx()) || !all_finite(vy()) || !all_finite(vz())) throw NonFiniteError("pressure solve", steps_);
   {
     StageTimer t(stats_[sid_.integration]);
