@@ -46,9 +46,10 @@ const char* method_name(SphMethod m) { return m == SphMethod::dfsph ? "dfsph" : 
 std::string peers_scene(int na, SphMethod method) {
   const double a = kA, dx = a / na;
   std::string s = "{\n  \"solver\": \"sph\",\n";
-  s += fmt("  \"description\": \"3D dam break of huygens-bench sph:peers (issue 37): column a x a x 2a, a = %g m, "
-           "%d particles across a, box 8a x a x 4a; run to t = %g s (T = t sqrt(2g/a) = %.3g)\",\n",
-           a, na, kTEnd, kTEnd * kTs);
+  s +=
+      fmt("  \"description\": \"3D dam break of huygens-bench sph:peers (issue 37): column a x a x 2a, a = %g m, "
+          "%d particles across a, box 8a x a x 4a; run to t = %g s (T = t sqrt(2g/a) = %.3g)\",\n",
+          a, na, kTEnd, kTEnd * kTs);
   s += "  \"sph\": {\n";
   s += fmt("    \"method\": \"%s\",\n    \"spacing_m\": %.9g,\n", method_name(method), dx);
   s += fmt("    \"container_m\": [%.9g, %.9g, %.9g],\n", 8 * a, a, 4 * a);
@@ -170,15 +171,15 @@ void add_peer_rows(Table& t) {
   for (const PeerFigures& p : kPeer)
     t.add({"SPlisHSPlasH DFSPH (quoted: measured in issue 37 on the same machine class, not by this run)", "31250",
            std::to_string(p.threads), num(kTEnd / kPeerDt, 3), num(1e3 * kPeerDt, 3), std::to_string(kPeerIterations),
-           num(p.wall_lo, 3) + "-" + num(p.wall_hi, 3), "-", num(p.wall_lo / kTEnd, 3) + "-" + num(p.wall_hi / kTEnd, 3),
-           "-", "-", "-", "-", "1-2"});
+           num(p.wall_lo, 3) + "-" + num(p.wall_hi, 3), "-",
+           num(p.wall_lo / kTEnd, 3) + "-" + num(p.wall_hi / kTEnd, 3), "-", "-", "-", "-", "1-2"});
 }
 
 // The time of each pass (stage) of the step, in seconds and as a share of the run's wall time ("other": the
 // bench's front tracking and the step's finiteness checks).
 void report_passes(Context& ctx, const std::vector<PeerRun>& runs, int na) {
-  const std::vector<std::string> names = {"neighbour search", "density",       "divergence solve", "forces",
-                                          "density solve",    "boundary",      "integration"};
+  const std::vector<std::string> names = {"neighbour search", "density",  "divergence solve", "forces",
+                                          "density solve",    "boundary", "integration"};
   std::vector<std::string> head = {"method", "particles", "threads"};
   for (const std::string& n : names) head.push_back(n + " s (%)");
   head.insert(head.end(), {"other s (%)", "ms per divergence iteration", "ms per density iteration"});
@@ -252,8 +253,11 @@ void sph_peers(Context& ctx, const std::vector<int>& nas) {
       for (int th : ctx.threads) {
         runs.push_back(run_peers(na, m, th, ctx.output_dir));
         const std::vector<std::string> row = run_row(runs.back());
-        std::printf("  sph:peers %d across, %s, %d thread(s): wall %s s, front error %% %s / %s, load %s\n", na,
-                    row[0].c_str(), th, row[6].c_str(), row[11].c_str(), row[12].c_str(), row[13].c_str());
+        std::printf(
+            "  sph:peers %d across, %s, %d thread(s): %s steps, iterations/step %s, wall %s s, CPU %s s, front "
+            "error %% %s / %s, load %s\n",
+            na, row[0].c_str(), th, row[3].c_str(), row[5].c_str(), row[6].c_str(), row[7].c_str(), row[11].c_str(),
+            row[12].c_str(), row[13].c_str());
         std::fflush(stdout);
       }
     omp_set_num_threads(ctx.threads.back());
