@@ -20,6 +20,10 @@ struct Context {
   bool part(const std::string& name) const {
     return parts.empty() || std::find(parts.begin(), parts.end(), name) != parts.end();
   }
+  /// True when the command line named this part (an opt-in part runs only then, not in `all`).
+  bool named(const std::string& name) const { return std::find(parts.begin(), parts.end(), name) != parts.end(); }
+  /// Folder of the files a part writes besides the tables (the --csv file's folder, else the working directory).
+  std::string output_dir = ".";
   /// Thread counts to sweep (1 and the machine's count).
   std::vector<int> threads;
   /// Accuracy checks that failed (a --quick run exits non-zero when any did).
@@ -65,5 +69,7 @@ void bench_solvers(Context&);
 void stress_huygens(Context&);
 void stress_sph(Context&);
 void stress_lbm(Context&);
+// the parts "peers" and "peers46" of "sph" (bench_sph_peers.cpp): the 3D dam break at `nas` particles across
+void sph_peers(Context&, const std::vector<int>& nas);
 
 }  // namespace huygens::bench

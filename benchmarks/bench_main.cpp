@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <stdexcept>
@@ -64,8 +65,8 @@ const char* kUsage =
 // The parts a section offers (SECTION:PART); other sections have none. "solvers" offers one per
 // registered solver.
 std::map<std::string, std::vector<std::string>> section_parts() {
-  std::map<std::string, std::vector<std::string>> parts = {{"stress", {"huygens", "sph", "lbm"}},
-                                                           {"sph", {"throughput", "grid", "front", "methods"}}};
+  std::map<std::string, std::vector<std::string>> parts = {
+      {"stress", {"huygens", "sph", "lbm"}}, {"sph", {"throughput", "grid", "front", "methods", "peers", "peers46"}}};
   for (const huygens::SolverEntry& e : huygens::registered_solvers()) parts["solvers"].push_back(e.name);
   return parts;
 }
@@ -81,7 +82,8 @@ std::string part_list() {
 void print_help(const std::map<std::string, huygens::bench::Section>& sections) {
   std::printf("%s", kUsage);
   for (const auto& [name, fn] : sections) std::printf(", %s", name.c_str());
-  std::printf("\n  SECTION:PART runs one part of a section (%s)\n", part_list().c_str());
+  std::printf("\n  SECTION:PART runs one part of a section (%s);\n", part_list().c_str());
+  std::printf("    sph:peers also runs in a full run of sph (not with --quick), sph:peers46 only when named\n");
   std::printf(
       "  --quick    CI-sized sweeps (under 3 minutes in all)\n"
       "  --csv FILE also write every table's rows as CSV (checked before the run, written atomically)\n"
@@ -151,6 +153,7 @@ int bench_main(int argc, char** argv) {
   if (!parse_bench_args(argc, argv, sections, ctx, csv, chosen)) return 0;
   huygens::stop_request::install();                   // SIGINT/SIGTERM: stop after the current table
   if (!csv.empty()) huygens::check_output_file(csv);  // before the run, not after it
+  if (const auto dir = std::filesystem::path(csv).parent_path(); !dir.empty()) ctx.output_dir = dir.string();
   if (ctx.threads.empty()) {
     ctx.threads.push_back(1);
     const int hw = static_cast<int>(std::thread::hardware_concurrency());

@@ -1,9 +1,10 @@
 // Section "sph": particle-steps per second of the SPH step (paper 000 / MCG03) for 3 000,
 // 30 000 and 300 000 particles and each thread count, split into neighbour search, density,
-// forces and integration; the same physics with an O(n^2) all-pairs neighbour search measured in
+// boundary pressure, forces and integration; the same physics with an O(n^2) all-pairs neighbour search measured in
 // the same run (speed-up and agreement); run time against error (density error and dam-break
 // front error against particle spacing and time step); WCSPH against DFSPH (wall time per simulated
-// second, mean dt and front error at 16 and 24 particles across the dam-break column).
+// second, mean dt and front error at 16 and 24 particles across the dam-break column); the 3D dam break against
+// SPlisHSPlasH (parts peers and peers46, bench_sph_peers.cpp).
 #include <omp.h>
 
 #include <algorithm>
@@ -87,7 +88,7 @@ void sph_throughput(Context& ctx) {
   // wall-clock rates, and the rate per CPU-second of the process (on a shared, loaded machine the wall
   // rate understates what the cores deliver; both are printed)
   Table t({"particles", "threads", "steps", "steps/s", "Mparticle-steps/s", "per core", "per CPU-s", "neighbour %",
-           "density %", "forces %", "integration %"});
+           "density %", "boundary %", "forces %", "integration %"});
   const std::vector<std::size_t> sizes = {3000, 30000, 300000};
   for (std::size_t n : sizes) {
     for (int th : ctx.threads) {
@@ -110,8 +111,8 @@ void sph_throughput(Context& ctx) {
       const double rate = double(s.count()) * steps / sec;
       t.add({std::to_string(s.count()), std::to_string(th), std::to_string(steps), num(steps / sec, 4),
              num(rate * 1e-6, 4), num(rate * 1e-6 / th, 4), num(double(s.count()) * steps / cpu * 1e-6, 4),
-             pct(s.stage_ids().neighbours), pct(s.stage_ids().density), pct(s.stage_ids().forces),
-             pct(s.stage_ids().integration)});
+             pct(s.stage_ids().neighbours), pct(s.stage_ids().density), pct(s.stage_ids().boundary),
+             pct(s.stage_ids().forces), pct(s.stage_ids().integration)});
     }
   }
   omp_set_num_threads(ctx.threads.back());
@@ -211,6 +212,12 @@ void bench_sph(Context& ctx) {
   if (ctx.part("grid")) sph_grid_vs_all_pairs(ctx);
   if (ctx.part("front")) sph_front_error(ctx);
   if (ctx.part("methods")) sph_methods(ctx);
+  // the 3D dam break against SPlisHSPlasH (bench_sph_peers.cpp): 25 across when named or in a full run, 46 across
+  // (about 6 times the particles) only when named
+  std::vector<int> peers;
+  if (ctx.named("peers") || (ctx.parts.empty() && !ctx.quick)) peers.push_back(25);
+  if (ctx.named("peers46")) peers.push_back(46);
+  if (!peers.empty()) sph_peers(ctx, peers);
 }
 
 }  // namespace huygens::bench

@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -155,35 +156,60 @@ void SphSystem::dfsph_kick(float dt) {
   }
 }
 
+namespace {
+
+// m ? a : b (m all ones or zero) bit for bit, without a branch (whole vectors under -ftrapping-math)
+inline float sph_select(std::uint32_t m, float a, float b) {
+  return std::bit_cast<float>((std::bit_cast<std::uint32_t>(a) & m) | (std::bit_cast<std::uint32_t>(b) & ~m));
+}
+inline std::uint32_t sph_mask(bool c) { return 0u - static_cast<std::uint32_t>(c); }
+// std::max(a, b) by value (a std::max of locals under omp simd kept them in per-lane arrays: no vectors)
+inline float sph_max(float a, float b) { return a < b ? b : a; }
+
+}  // namespace
+
 // Drho_i/Dt = -m 48/(pi h^5) (sum_j f(q) v_ij . x_ij + v_i . gb_i)  (BK15 eq. 6, boundary at rest);
 // density: kappa_i += (rho_i + dt Drho_i/Dt - rho0) alpha_i / dt^2 (eq. 12-13), error max(0, rho* - rho0) / rho0;
 // divergence: kappa^v_i += Drho_i/Dt alpha_i / dt (eq. 17), error max(0, dt Drho_i/Dt) / rho0, Drho_i/Dt taken as 0
 // for a particle with too few neighbours (dvok_ = 0); both kept >= 0;
 // with the Chebyshev weight wc: kappa_i = max(0, wc (kappa_Jacobi - kappa_prev) + kappa_prev) (Wang 2015).
+// Two passes: the sums over the neighbour list (into err_), then the update of each particle in whole vectors.
 double SphSystem::dfsph_update(float dt, bool density, float wc) {
   const std::size_t n = n_;
   const SphDfsphList l{nbeg_.data(), nend_.data(), nj_.data(), ngx_.data(), ngy_.data(), ngz_.data()};
   const float *VX = vx_.data(), *VY = vy_.data(), *VZ = vz_.data();
-  const float mg = mass_ * k_.cubic_g, rho0 = p_.rest_density_kgpm3;
-  float* kap = density ? kappa_.data() : kappav_.data();
-  const float w = p_.dfsph_relaxation / (dt * dt);
-  const bool oneside = p_.dfsph_compression_only;
-  float* prev = tkappa_.data();
+  float* S = err_.data();
 #pragma omp parallel for schedule(static) if (n > kSphParallelMin)
   for (std::size_t i = 0; i < n; ++i) {
     float s = VX[i] * gbx_[i] + VY[i] * gby_[i] + VZ[i] * gbz_[i];
     if (alpha_[i] != 0.f) s += sph_dfsph_list_divergence(l, i, VX, VY, VZ);
-    const float drho = -mg * s;  // Drho_i/Dt (kg/m^3/s)
+    S[i] = s;
+  }
+  const float mg = mass_ * k_.cubic_g, rho0 = p_.rest_density_kgpm3;
+  float* kap = density ? kappa_.data() : kappav_.data();
+  const float w = p_.dfsph_relaxation / (dt * dt);
+  const bool oneside = p_.dfsph_compression_only;
+  const float lo = oneside ? 0.f : -std::numeric_limits<float>::infinity();
+  // the solve's kind, the Chebyshev weight's use and the two-sided error as masks (no bool read in the loop)
+  const std::uint32_t md = sph_mask(density), mc = sph_mask(wc != 1.f), mt = sph_mask(!oneside);
+  const float *R = rho_.data(), *A = alpha_.data(), *IR = irho_.data(), *D = dvok_.data();
+  float *prev = tkappa_.data(), *K = kick_.data(), *E = err_.data();
+  // branch-free (both sides computed, one selected bit for bit), so the loop runs in whole vectors
+#pragma omp parallel for simd schedule(static) if (n > kSphParallelMin)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float drho = -mg * S[i];  // Drho_i/Dt (kg/m^3/s)
+    // dt Drho_i/Dt rounded on its own, not fused into rho_i + dt Drho_i/Dt (as the branchy scalar loop had it)
+    const float dd = __builtin_assoc_barrier(dt * drho);
     // the divergence-free solve leaves out the particles with too few neighbours (dvok_ = 0)
-    const float res = density ? rho_[i] + dt * drho - rho0 : dt * drho * dvok_[i];
-    const float inc = (oneside ? std::max(res, 0.f) : res) * alpha_[i] * w;
-    const float kj = std::max(kap[i] + inc, 0.f);
-    const float k = wc == 1.f ? kj : std::max(wc * (kj - prev[i]) + prev[i], 0.f);
+    const float res = sph_select(md, R[i] + dd - rho0, dd * D[i]);
+    const float inc = sph_max(res, lo) * A[i] * w;
+    const float kj = sph_max(kap[i] + inc, 0.f);
+    const float k = sph_select(mc, sph_max(wc * (kj - prev[i]) + prev[i], 0.f), kj);
     prev[i] = kap[i];
-    kick_[i] = (k - kap[i]) * irho_[i];
+    K[i] = (k - kap[i]) * IR[i];
     kap[i] = k;
     // the residual of the complementarity p >= 0, rho* <= rho0, p (rho* - rho0) = 0: |res| where pushed
-    err_[i] = (k > 0.f && !oneside ? std::fabs(res) : std::max(res, 0.f)) / rho0;
+    E[i] = sph_select(sph_mask(k > 0.f) & mt, std::fabs(res), sph_max(res, 0.f)) / rho0;
   }
   double sum = 0;  // serial: the same iteration count for any thread count
   for (std::size_t i = 0; i < n; ++i) sum += err_[i];
@@ -216,6 +242,19 @@ std::size_t SphSystem::dfsph_contact(float dt) {
 // iterations until the mean error is at most the tolerance (at least 2 density / 1 divergence iterations, BK15 Alg.
 // 2-3), accelerated by Chebyshev's semi-iteration (Wang 2015, dfsph.hpp).
 int SphSystem::dfsph_solve(float dt, bool density) {
+  // timed as the solve's stage, less the wall contact's time (the boundary stage)
+  StageStat &st = stats_[density ? sid_.density_solve : sid_.divergence_solve], &bst = stats_[sid_.boundary];
+  const std::uint64_t contact_ns = bst.ns;
+  int it = 0;
+  {
+    StageTimer t(st);
+    it = dfsph_iterate(dt, density);
+  }
+  st.ns -= std::min(st.ns, bst.ns - contact_ns);
+  return it;
+}
+
+int SphSystem::dfsph_iterate(float dt, bool density) {
   float* kap = density ? kappa_.data() : kappav_.data();
   const float wf = p_.dfsph_warm_start;
   bool warm = false;
@@ -238,7 +277,10 @@ int SphSystem::dfsph_solve(float dt, bool density) {
     if (r2 > 0.f && it >= 2) wc = it == 2 ? 2.f / (2.f - r2) : 4.f / (4.f - r2 * wc);
     err = dfsph_update(dt, density, wc);
     dfsph_kick(dt);
-    if (density) contacts_ = dfsph_contact(dt);
+    if (density) {
+      StageTimer t(stats_[sid_.boundary]);
+      contacts_ = dfsph_contact(dt);
+    }
     ++it;
   } while ((err > eta || it < min_iter) && it < p_.dfsph_max_iterations);
   if (density) total_contacts_ += static_cast<std::int64_t>(contacts_);
@@ -287,10 +329,10 @@ double SphSystem::step_dfsph() {
     dfsph_factors();
   }
   if (!all_finite(density())) throw NonFiniteError("density", steps_);
+  div_iter_ = dt_prev_ > 0 ? dfsph_solve(static_cast<float>(dt_prev_), false) : 0;
   double dt;
   {
     StageTimer t(stats_[sid_.forces]);
-    div_iter_ = dt_prev_ > 0 ? dfsph_solve(static_cast<float>(dt_prev_), false) : 0;
     dfsph_advection_forces();
     // dt = min(dfsph_cfl dx / v_max, force sqrt(h / a_max), viscous h^2 / nu, dt_max) (BK15 section 4.3)
     dt = sph_choose_dt(p_, h_, 0.f, nu_, 0.f, amax_, dts_.limiter);
@@ -304,8 +346,8 @@ double SphSystem::step_dfsph() {
       vy_[i] += fdt * ay_[i];
       vz_[i] += fdt * az_[i];
     }
-    dens_iter_ = dfsph_solve(fdt, true);
   }
+  dens_iter_ = dfsph_solve(static_cast<float>(dt), true);
   if (!all_finite(vx()) || !all_finite(vy()) || !all_finite(vz())) throw NonFiniteError("pressure solve", steps_);
   {
     StageTimer t(stats_[sid_.integration]);

@@ -129,7 +129,10 @@ SphSystem::SphSystem(const SphParams& params, std::size_t dt_history)
   dt_hist_.assign(std::max<std::size_t>(dt_history, 1), 0.0);
   sid_.neighbours = stats_.add("neighbour search");
   sid_.density = stats_.add("density");
+  sid_.boundary = stats_.add("boundary");
+  if (df) sid_.divergence_solve = stats_.add("divergence solve");
   sid_.forces = stats_.add("forces");
+  if (df) sid_.density_solve = stats_.add("density solve");
   sid_.integration = stats_.add("integration");
   set_particles(px, py, pz);
 }
@@ -216,6 +219,9 @@ double SphSystem::step() {
   {
     StageTimer t(stats_[sid_.density]);
     compute_density(false);
+  }
+  {
+    StageTimer t(stats_[sid_.boundary]);
     compute_boundary_pressure();
   }
   if (!all_finite(density())) throw NonFiniteError("density", steps_);

@@ -122,9 +122,15 @@ class SphSystem {
   /// The grid path's accelerations and densities for the current positions, same layout.
   void grid_accelerations(std::span<float> ax, std::span<float> ay, std::span<float> az, std::span<float> rho);
 
-  /// Indices of the four step stages in stats().
+  /// Indices of the step's stages (passes) in stats(); the stages are disjoint, their times add up to the step's.
+  /// neighbours: the cell sort; density: the density pass (DFSPH: with the step's neighbour list and factors);
+  /// boundary: WCSPH the boundary particles' pressure, DFSPH the wall contact of the constant-density solve;
+  /// forces: WCSPH all forces, DFSPH the non-pressure ones (gravity, viscosity, the walls' hydrostatic push) and
+  /// the velocity update; divergence_solve, density_solve: DFSPH's two Jacobi solves (-1 with WCSPH);
+  /// integration: dt (WCSPH) and the positions.
   struct StageIds {
-    int neighbours, density, forces, integration;
+    int neighbours = -1, density = -1, forces = -1, integration = -1, boundary = -1;
+    int divergence_solve = -1, density_solve = -1;
   };
   const StageIds& stage_ids() const { return sid_; }
 
@@ -176,8 +182,11 @@ class SphSystem {
   /// divergence of the current velocities, with the Chebyshev weight wc over the previous iterate (in
   /// tkappa_); K = the change / rho into kick_; returns the mean error.
   double dfsph_update(float dt, bool density, float wc = 1.f);
-  /// Warm start, then Jacobi iterations until the mean error is below the tolerance; returns them.
+  /// Warm start, then Jacobi iterations until the mean error is below the tolerance; returns them. Timed as the
+  /// divergence_solve or density_solve stage (the wall contact's share as the boundary stage).
   int dfsph_solve(float dt, bool density);
+  /// dfsph_solve's work, untimed.
+  int dfsph_iterate(float dt, bool density);
   /// a = g + the walls' hydrostatic push + the viscous acceleration into ax_, ay_, az_; max |a| and |v|.
   void dfsph_advection_forces();
   /// p_i = rho_i (kappa_i + kappa^v_i) / l_i into p_arr_.
