@@ -61,8 +61,10 @@ void main() {
     discard;
   }
   // seen from under the water (the eye below this point of the surface): Snell's window, total
-  // internal reflection, and the water along the eye's path
-  if (u_ortho == 0 && dot(n, dir) > 0.0) {
+  // internal reflection, and the water along the eye's path. (A per-pixel normal turned away from
+  // an eye above the water, on a steep wave seen grazing, is not the underside: there n.v clamps
+  // to 0 and the facet reflects the sky.)
+  if (u_ortho == 0 && u_eye.z < v_pos.z) {
     o_color = vec4(through_water(underside(v_pos, n, dir, floor_z), length(v_pos - u_eye)), 1.0);
     return;
   }
