@@ -12,6 +12,18 @@
 #include "huygens/common/finite.hpp"
 #include "huygens/sph/system.hpp"
 
+// A product rounded on its own, never fused into the sum it feeds: GCC contracts across statements
+// (-ffp-contract=fast), so it needs the barrier; clang contracts within one expression only (its
+// default -ffp-contract=on) and has no such builtin (the fuzz build).
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_assoc_barrier)
+#define HUYGENS_ROUNDED(x) __builtin_assoc_barrier(x)
+#endif
+#endif
+#ifndef HUYGENS_ROUNDED
+#define HUYGENS_ROUNDED(x) (x)
+#endif
+
 namespace huygens {
 
 void SphSystem::dfsph_list_allocate(std::size_t slots) {
@@ -199,7 +211,7 @@ double SphSystem::dfsph_update(float dt, bool density, float wc) {
   for (std::size_t i = 0; i < n; ++i) {
     const float drho = -mg * S[i];  // Drho_i/Dt (kg/m^3/s)
     // dt Drho_i/Dt rounded on its own, not fused into rho_i + dt Drho_i/Dt (as the branchy scalar loop had it)
-    const float dd = __builtin_assoc_barrier(dt * drho);
+    const float dd = HUYGENS_ROUNDED(dt * drho);
     // the divergence-free solve leaves out the particles with too few neighbours (dvok_ = 0)
     const float res = sph_select(md, R[i] + dd - rho0, dd * D[i]);
     const float inc = sph_max(res, lo) * A[i] * w;
