@@ -604,6 +604,23 @@ std::vector<ValidationRow> ritter_rows() {
                       (resolved.stopped.empty() ? 0.0 : INFINITY))};
 }
 
+// The rows of one long Ritter run: L1 within 1e-2, the 0.1 h0 and 0.01 h0 points within 1 % of
+// their exact distance from the dam (`fronts` says how they are taken), and the largest local
+// error where the exact depth exceeds 0.05 h0 within 5 %; a stopped or negative run fails them all.
+void append_ritter_run(const char* name, const LbmRitterResult& r, const std::string& fronts, const std::string& at,
+                       std::vector<ValidationRow>& rows) {
+  const double fail = r.stopped.empty() && r.min_depth_m >= 0 ? 0.0 : INFINITY;
+  auto front = [&](const std::string& what, double x, double exact) {
+    return check(name, what + fronts + at + " (m from the dam; error / exact)", x, exact,
+                 std::abs(x - exact) / exact + fail, 1e-2);
+  };
+  rows.push_back(check(name, "L1 relative depth error" + at, r.l1_relative, 0.0, r.l1_relative + fail, 1e-2));
+  rows.push_back(front("x where h = 0.1 h0", r.x10_m, r.x10_exact_m));
+  rows.push_back(front("x where h = 0.01 h0", r.x01_m, r.x01_exact_m));
+  rows.push_back(check(name, "largest |h - h_exact| / h_exact where h_exact > 0.05 h0" + at, r.max_local_error, 0.0,
+                       r.max_local_error + fail, 5e-2));
+}
+
 // Ritter run twice as far (a 200 m channel, the dam at 66.7 m, until the rarefaction head is 6.7 m
 // from the upstream wall: the front 120 m beyond the dam, Froude up to 6 where h > 0.05 h0) at
 // three cell sizes (1024, 1536, 2048 cells), two depths (1 m and 0.1 m: min_depth_m 1e-4 and
@@ -619,19 +636,8 @@ std::vector<ValidationRow> ritter_long_rows() {
         s.length_m = 200.0;
         s.depth_m = depth;
         s.tau = tau;
-        const auto r = lbm_ritter(s);
-        const double fail = r.stopped.empty() && r.min_depth_m >= 0 ? 0.0 : INFINITY;
-        const std::string at = fmt(", %d cells, h0 %g m, tau %g", cells, depth, tau);
-        auto front = [&](const char* what, double x, double exact) {
-          return check("lbm_ritter_long", what + at + " (m from the dam; error / exact)", x, exact,
-                       std::abs(x - exact) / exact + fail, 1e-2);
-        };
-        rows.push_back(
-            check("lbm_ritter_long", "L1 relative depth error" + at, r.l1_relative, 0.0, r.l1_relative + fail, 1e-2));
-        rows.push_back(front("x where h = 0.1 h0", r.x10_m, r.x10_exact_m));
-        rows.push_back(front("x where h = 0.01 h0", r.x01_m, r.x01_exact_m));
-        rows.push_back(check("lbm_ritter_long", "largest |h - h_exact| / h_exact where h_exact > 0.05 h0" + at,
-                             r.max_local_error, 0.0, r.max_local_error + fail, 5e-2));
+        append_ritter_run("lbm_ritter_long", lbm_ritter(s), "", fmt(", %d cells, h0 %g m, tau %g", cells, depth, tau),
+                          rows);
       }
   return rows;
 }
@@ -648,19 +654,7 @@ std::vector<ValidationRow> ritter_channel_rows() {
     s.rows = 4;
     s.slip_sides = true;
     s.length_m = 200.0;
-    const auto r = lbm_ritter(s);
-    const double fail = r.stopped.empty() && r.min_depth_m >= 0 ? 0.0 : INFINITY;
-    const std::string at = fmt(", %d x 4 cells", cells);
-    auto front = [&](const char* what, double x, double exact) {
-      return check("lbm_ritter_channel", what + at + " (m from the dam; error / exact)", x, exact,
-                   std::abs(x - exact) / exact + fail, 1e-2);
-    };
-    rows.push_back(
-        check("lbm_ritter_channel", "L1 relative depth error" + at, r.l1_relative, 0.0, r.l1_relative + fail, 1e-2));
-    rows.push_back(front("x where h = 0.1 h0 (mean over the rows)", r.x10_m, r.x10_exact_m));
-    rows.push_back(front("x where h = 0.01 h0 (mean over the rows)", r.x01_m, r.x01_exact_m));
-    rows.push_back(check("lbm_ritter_channel", "largest |h - h_exact| / h_exact where h_exact > 0.05 h0" + at,
-                         r.max_local_error, 0.0, r.max_local_error + fail, 5e-2));
+    append_ritter_run("lbm_ritter_channel", lbm_ritter(s), " (mean over the rows)", fmt(", %d x 4 cells", cells), rows);
   }
   return rows;
 }
