@@ -192,26 +192,3 @@ vec3 through_water(vec3 c, float len) {
   vec3 T = exp(-u_absorb * len);
   return c * T + u_water_colour * (1.0 - T);
 }
-
-// The surface seen from under the water at P (normal n, pointing up) along the view ray d (going
-// up). Into the air the ray bends by Snell's law with the ratio index (water to air),
-// t = refract(d, -n, index); beyond the critical angle asin(1 / index) (48.6 deg for 1.333) there
-// is no t and the surface is a mirror (total internal reflection): Snell's window. Inside it
-// (1 - F) S(t) + F R, F the reflectance at the air side's cosine t.n; R what the reflected ray
-// r = reflect(d, -n) meets under the water: the floor or a pool's wall (seen_under_water),
-// absorbed along its path, or deep water's colour W. The eye's own path to P: the caller.
-vec3 underside(vec3 P, vec3 n, vec3 d, float floor_z) {
-  vec3 t = refract(d, -n, u_index);
-  vec3 r = reflect(d, -n);
-  vec3 below = u_deep != 0 ? u_water_colour : vec3(0.0);
-  if (u_deep == 0) {
-    r.z = min(r.z, -1e-6);
-    vec2 G = P.xy + r.xy * ((floor_z - P.z) / r.z);
-    vec3 hit;
-    below = seen_under_water(P, G, floor_z, hit);
-    below = through_water(below, length(hit - P));
-  }
-  if (dot(t, t) == 0.0) return below;  // total internal reflection
-  float F = fresnel(max(dot(t, n), 0.0));
-  return mix(sky(t), below, F);
-}

@@ -1,11 +1,13 @@
-// (#version and ground_common.glsl are prepended by the renderer)
+// (#version, ground_common.glsl, solid_colour.glsl and solids_trace.glsl are prepended by the renderer)
 // Water surface shading (paper 004, section 4; paper 003 for colour and absorption).
 // Per pixel: the normal from the full-resolution central height differences,
 //   n = normalize(-eta_u / (2 dx), -eta_v / (2 dx), 1);
 // the ground point seen through the surface, either linearised
 //   G = (u0, v0) + eta (a, b) + [c d; e f] (eta_u, eta_v)
 // or exact (Snell: t = refract(d, n, 1/index), followed to z = ground_z);
-// then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S(r) + g L, T = exp(-a_rgb d)
+// then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S(r) + g L, T = exp(-a_rgb d), where a
+// solid met by the refracted or the reflected ray stands in for the ground or the sky S
+// (solids_trace.glsl)
 // (deep water: W alone); the glint g is the paper's clamp(100 n.h - 98.95) or the sun reflected
 // by the facets of the surface's slope spread (ground_common.glsl, glint).
 in vec3 v_pos;
@@ -30,7 +32,8 @@ uniform vec2 u_grid_size;   // cols, rows
 uniform float u_dx;
 uniform float u_ground_z;
 uniform int u_exact;
-// (u_absorption, u_absorb, through_water, underside: ground_common.glsl)
+// (u_absorption, u_absorb, through_water: ground_common.glsl; underside, reflected, refracted_solids:
+// solids_trace.glsl)
 // (u_fresnel, u_glint, u_sun_*, u_slope_var, u_region_var: ground_common.glsl)
 
 // Value noise in [0, 1] at p (grid points): an integer hash per lattice corner, smooth blend.
@@ -79,14 +82,16 @@ void main() {
     G = v_base + vec2(c.x * d.x + c.y * d.y, c.z * d.x + c.w * d.y);
   }
 
-  vec3 hit;  // where the refracted ray ends: the floor, or a pool's wall
+  // where the refracted ray ends: a solid, the floor or a pool's wall; in deep water a solid or
+  // nothing (the water's own colour), the ray followed 1e4 m down
+  vec3 hit = u_deep != 0 ? v_pos + 1e4 * refract(dir, n, 1.0 / u_index) : vec3(0.0);
   vec3 refr = u_deep != 0 ? deep_water_colour(n) : seen_under_water(v_pos, G, floor_z, hit);
-  if (u_deep == 0) refr = through_water(refr, length(hit - v_pos));
+  if (refracted_solids(v_pos, hit, refr) || u_deep == 0) refr = through_water(refr, length(hit - v_pos));
   // dye carried by the flow (paper 002; viz/app/dye.hpp), in the water at this point
   if (u_use_dye != 0) refr = mix(refr, u_dye_colour, 0.7 * texture(u_dye, tc).r);
 
   float nv = max(dot(n, -dir), 0.0);
-  vec3 col = mix(refr, sky(reflect(dir, n)), fresnel(nv)) + glint(n, dir, u_region_var);
+  vec3 col = mix(refr, reflected(v_pos, reflect(dir, n)), fresnel(nv)) + glint(n, dir, u_region_var);
   vec3 sun = normalize(u_sun_dir);
   if (u_use_foam != 0) {
     vec2 gp = (v_pos.xy - u_grid_origin) / u_dx;

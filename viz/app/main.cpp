@@ -57,6 +57,8 @@ void usage(std::FILE* f) {
                "  --no-caustics         do not light the ground with caustics\n"
                "  --no-caption          headless perspective images without their caption (scene, time,\n"
                "                        the region's size, the floor tiles' side)\n"
+               "  --solid-optics M      trace (default): the solids seen through the surface and\n"
+               "                        reflected in it, traced per pixel; off: floor and sky only\n"
                "  --no-foam             LBM: do not draw the foam the flow carries (default: drawn)\n"
                "  --caustics-mode M     conserving (default: explicit area, float), mip_paper (the paper's\n"
                "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8\n"
@@ -92,6 +94,8 @@ struct CliOptions {
   std::string view;
   /// "" = the scene's; else a CausticsMode name.
   std::string caustics_mode;
+  /// false: --solid-optics off (the surface refracts the floor and reflects the sky only).
+  bool solid_optics = true;
 };
 
 bool parse_size(const char* s, int& w, int& h) {
@@ -130,6 +134,10 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
                               : o.benchmark) = true;
     } else if (a == "--paper-fresnel") {
       o.paper_fresnel = true;
+    } else if (a == "--solid-optics") {
+      const std::string m = nonempty_arg(a, next());
+      if (m != "trace" && m != "off") throw UsageError("--solid-optics takes trace or off");
+      o.solid_optics = m == "trace";
     } else if (a == "--no-foam") {
       o.no_foam = true;
     } else if (a == "--no-caption") {
@@ -230,6 +238,30 @@ BenchmarkRows benchmark_row(WaterRenderer& renderer, const OrbitCamera& cam, con
            fmt("%.2f", median(cca) / std::max(ctotal - median(cca), 1e-9))}};
 }
 
+// What tracing the solids in the surface pass costs (RenderSettings::solid_optics): the surface
+// pass and the frame at 1280x720 with the trace on and off, alternated 3 times (medians).
+void print_solid_optics_cost(WaterRenderer& renderer, const OrbitCamera& cam, const RenderSettings& settings,
+                             std::span<const float> heights, int samples) {
+  RenderTarget target(1280, 720, samples);
+  renderer.times.enabled = true;
+  std::vector<double> surf[2], total[2];
+  for (int i = 0; i < 14; ++i) {
+    RenderSettings s = settings;
+    s.solid_optics = i % 2 == 0 ? SolidOptics::trace : SolidOptics::off;
+    renderer.set_heights(heights);
+    renderer.render(cam, s, target);
+    if (i < 2) continue;
+    const RenderTimes& r = renderer.times;
+    surf[i % 2].push_back(r.surface);
+    total[i % 2].push_back(r.upload + r.caustics + r.ground + r.surface + r.ship + r.tonemap);
+  }
+  std::printf(
+      "solids in the water (1280x720, median of 6 each, alternated): surface pass %.2f ms traced, %.2f ms off "
+      "(x%.2f); frame %.2f ms traced, %.2f ms off (x%.2f)\n",
+      median(surf[0]), median(surf[1]), median(surf[0]) / std::max(median(surf[1]), 1e-9), median(total[0]),
+      median(total[1]), median(total[0]) / std::max(median(total[1]), 1e-9));
+}
+
 // A flow's dye and foam (LBM; dye.hpp, foam.hpp): their CPU step per displayed frame (median of
 // 10, unit: ms) with the solver's velocity now, and both handed to the renderer so the surface
 // pass draws them as in the app. {0, 0} when the solver has no velocity on the visible grid.
@@ -314,6 +346,7 @@ int run_benchmark(ViewerSolver vs, const RenderSettings& settings, int subsample
   }
   std::printf("camera move: linearised refraction coefficients recomputed in %.2f ms (median of 5, CPU)\n",
               median(lin_ms));
+  print_solid_optics_cost(renderer, cam, settings, solver.height(), samples);
   if (dye_ms > 0.0 || foam_ms > 0.0)
     std::printf(
         "flow (once per new frame, CPU, median of 10): dye step %.2f ms, foam step %.2f ms; drawn in the surface "
@@ -365,6 +398,7 @@ int run(CliOptions o) {
   if (o.paper_fresnel) settings.fresnel = FresnelModel::paper, settings.paper_glint = true;
   if (o.no_caustics) settings.caustics = false;
   if (o.no_foam) settings.foam = false;
+  if (!o.solid_optics) settings.solid_optics = SolidOptics::off;
   if (!o.caustics_mode.empty())
     settings.caustics_mode = o.caustics_mode == "mip_paper"     ? CausticsMode::mip_paper
                              : o.caustics_mode == "mip_float"   ? CausticsMode::mip_float

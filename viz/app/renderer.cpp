@@ -63,6 +63,7 @@ void WaterRenderer::set_bed(std::span<const float> bed) {
 void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
   footprints_.build(grid_, obstacles, offset_);
   solids_.set_obstacles(obstacles, solids_frame());
+  traced_.set_prisms(prisms(obstacles, solids_frame()));
 }
 
 ShadingScene WaterRenderer::shading_scene(const RenderSettings& s) const {
@@ -126,10 +127,14 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   ground_.bind_pattern();
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, scene.caustics ? caustics_->texture() : flat_light_tex_.id());
-  if (s.draw_water) surface_.draw(f, scene, ground_.bed());
+  // the hulls afloat on this frame's heights (float_ship): drawn, and met by the surface's rays
+  afloat_.assign(ships_.begin(), ships_.end());
+  for (ShipPose& sp : afloat_) float_ship(grid_, eta_, sp);
+  traced_.set_hulls(s.draw_ship ? std::span<const ShipPose>(afloat_) : std::span<const ShipPose>());
+  if (s.draw_water) surface_.draw(f, scene, ground_.bed(), traced_);
   if (s.draw_water && !s.deep_water) surface_.draw_sides(f, flat_);
   lap(times.surface, times.cpu.surface);
-  solids_.draw(f, flat_, ships_, eta_, solids_frame());
+  solids_.draw(f, flat_, afloat_, solids_frame());
   lap(times.ship, times.cpu.ship);
   // the ground seen directly, drawn after the water and solids so the depth test skips what they
   // cover, then the sky where nothing was drawn

@@ -35,6 +35,7 @@
 #include "solids_pass.hpp"
 #include "surface_pass.hpp"
 #include "tone_map_pass.hpp"
+#include "traced_solids.hpp"
 
 namespace huygens {
 
@@ -126,6 +127,8 @@ class WaterRenderer {
   float offset_ = 0.0f;
   std::vector<float> eta_;  // the visible heights after the offset, closed around the solids
   std::vector<ShipPose> ships_;
+  std::vector<ShipPose> afloat_;  // the ships' poses afloat on the last frame's heights
+  TracedSolids traced_;           // the boxes, cylinders and hulls the surface's rays meet
   Footprints footprints_;
   SurfacePass surface_;
   GroundPass ground_;

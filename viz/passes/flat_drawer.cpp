@@ -1,10 +1,15 @@
 #include "flat_drawer.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
 
 namespace huygens {
 
-FlatDrawer::FlatDrawer() : prog_(gl::program_from_shaders("ship.vert", "ship.frag")) {
+FlatDrawer::FlatDrawer()
+    : prog_(gl::program_from_strings(gl::shader_source("ship.vert"),
+                                     "#version 330 core\n" + std::string(gl::shader_source("solid_colour.glsl")) +
+                                         std::string(gl::shader_source("ship.frag")),
+                                     "ship.vert + ship.frag")) {
   glGenVertexArrays(1, &vao_);
   glBindVertexArray(vao_);
   glGenBuffers(1, &vbo_);

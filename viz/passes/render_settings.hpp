@@ -35,6 +35,10 @@ enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, ex
 /// the solver's RenderInfo::default_look), no second enum to map.
 using Look = LookRequest;
 enum class GroundPattern : int { tiles = 0, checker = 1, uniform = 2 };
+/// How the solids show in the water (docs/viz.md "Solids seen in and through the water"): not at
+/// all (the surface refracts the floor and reflects the sky only), or traced exactly per pixel
+/// against the boxes, cylinders and hulls (shaders/solids_trace.glsl).
+enum class SolidOptics : int { off = 0, trace = 1 };
 
 /// What the renderer draws and how (all colours are sRGB values in [0, 1], decoded on input).
 struct RenderSettings {
@@ -104,6 +108,8 @@ struct RenderSettings {
   bool draw_ship = true;
   /// Obstacles (RenderInfo::obstacles) as solid blocks above the water.
   bool draw_solids = true;
+  /// The solids seen through the surface and reflected in it.
+  SolidOptics solid_optics = SolidOptics::trace;
   /// Tint the water with the dye the flow carries (set_dye; LBM scenes, paper 002).
   bool dye = true;
   glm::vec3 dye_colour{0.75f, 0.12f, 0.45f};

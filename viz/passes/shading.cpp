@@ -8,10 +8,11 @@
 
 namespace huygens {
 
-gl::Program load_lit_program(const char* vs, const char* fs) {
+gl::Program load_lit_program(const char* vs, const char* fs, std::initializer_list<const char*> also) {
   const std::string vsrc(gl::shader_source(vs));
-  const std::string fsrc = "#version 330 core\n" + std::string(gl::shader_source("ground_common.glsl")) + "\n" +
-                           std::string(gl::shader_source(fs));
+  std::string fsrc = "#version 330 core\n" + std::string(gl::shader_source("ground_common.glsl")) + "\n";
+  for (const char* a : also) fsrc += std::string(gl::shader_source(a)) + "\n";
+  fsrc += gl::shader_source(fs);
   return gl::program_from_strings(vsrc, fsrc, std::string(vs) + " + " + fs);
 }
 

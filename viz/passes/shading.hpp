@@ -4,6 +4,7 @@
 // (shaders/ground_common.glsl: the ground's pattern, the caustics' light, the sea beyond the
 // region), set by one function so that the ground, the surface and the sky agree.
 #include <glm/glm.hpp>
+#include <initializer_list>
 #include <optional>
 
 #include "camera.hpp"
@@ -59,7 +60,8 @@ void set_shading_uniforms(const gl::Program& p, const FrameContext& f, const Sha
 /// linear radiance (srgb.hpp).
 void set_colour(const gl::Program& p, const char* name, const glm::vec3& srgb);
 
-/// A lit program: the fragment shader `fs` with shaders/ground_common.glsl in front of it.
-gl::Program load_lit_program(const char* vs, const char* fs);
+/// A lit program: the fragment shader `fs` with shaders/ground_common.glsl and then the shader
+/// files `also` in front of it.
+gl::Program load_lit_program(const char* vs, const char* fs, std::initializer_list<const char*> also = {});
 
 }  // namespace huygens

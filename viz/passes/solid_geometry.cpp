@@ -110,11 +110,33 @@ void append_mesh_solids(std::span<const RenderObstacle> obstacles, const SolidsF
   }
 }
 
-void append_prism_solids(std::span<const RenderObstacle> obstacles, const SolidsFrame& f, std::vector<float>& out) {
+std::vector<Prism> prisms(std::span<const RenderObstacle> obstacles, const SolidsFrame& f) {
   const GridPlacement& g = f.grid;
   const double extent = std::max(g.cols, g.rows) * g.dx;
   const double floor_z = f.ground_z, rise = std::max(0.25 * std::abs(f.ground_z), f.over_terrain ? 0.03 * extent : 0.0);
   auto zr = [&](double z, double fallback) { return std::isfinite(z) ? z - static_cast<float>(f.offset) : fallback; };
+  const double gx1 = g.x0 + (g.cols - 1) * g.dx, gy1 = g.y0 + (g.rows - 1) * g.dx;
+  std::vector<Prism> out;
+  for (const RenderObstacle& o : obstacles) {
+    if (o.kind == RenderObstacle::Kind::mesh) continue;  // append_mesh_solids
+    Prism p;
+    if (o.kind == RenderObstacle::Kind::box) {
+      // clipped to the visible region (a wall along the domain's edge stays inside it)
+      p.lo = {std::max(o.min_m[0], g.x0 - 0.5 * g.dx), std::max(o.min_m[1], g.y0 - 0.5 * g.dx)};
+      p.hi = {std::min(o.max_m[0], gx1 + 0.5 * g.dx), std::min(o.max_m[1], gy1 + 0.5 * g.dx)};
+      p.z0 = std::max(zr(o.min_m[2], floor_z), floor_z), p.z1 = zr(o.max_m[2], rise);
+      if (p.hi.x <= p.lo.x || p.hi.y <= p.lo.y) continue;
+    } else {
+      p.cylinder = true;
+      p.lo = {o.centre_m[0], o.centre_m[1]}, p.hi = {o.radius_m, 0.0};
+      p.z0 = std::max(zr(o.z0_m, floor_z), floor_z), p.z1 = zr(o.z1_m, rise);
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+void append_prism_solids(std::span<const Prism> prisms, std::vector<float>& out) {
   auto tri = [&](glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
     for (const glm::dvec3& p : {a, b, c})
       out.insert(out.end(), {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
@@ -123,30 +145,21 @@ void append_prism_solids(std::span<const RenderObstacle> obstacles, const Solids
     tri({p, z0}, {q, z0}, {q, z1});
     tri({p, z0}, {q, z1}, {p, z1});
   };
-  const double gx1 = g.x0 + (g.cols - 1) * g.dx, gy1 = g.y0 + (g.rows - 1) * g.dx;
-  for (const RenderObstacle& o : obstacles) {
-    if (o.kind == RenderObstacle::Kind::mesh) continue;  // append_mesh_solids
-    const double z0 = std::max(zr(o.z0_m, floor_z), floor_z), z1 = zr(o.z1_m, rise);
-    if (o.kind == RenderObstacle::Kind::box) {
-      // clipped to the visible region (a wall along the domain's edge stays inside it)
-      const double x0 = std::max(o.min_m[0], g.x0 - 0.5 * g.dx), x1 = std::min(o.max_m[0], gx1 + 0.5 * g.dx);
-      const double y0 = std::max(o.min_m[1], g.y0 - 0.5 * g.dx), y1 = std::min(o.max_m[1], gy1 + 0.5 * g.dx);
-      const double b0 = std::max(zr(o.min_m[2], floor_z), floor_z), b1 = zr(o.max_m[2], rise);
-      if (x1 <= x0 || y1 <= y0) continue;
-      const glm::dvec2 c[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-      for (int k = 0; k < 4; ++k) wall(c[k], c[(k + 1) % 4], b0, b1);
-      tri({c[0], b1}, {c[1], b1}, {c[2], b1});
-      tri({c[0], b1}, {c[2], b1}, {c[3], b1});
-    } else {
-      constexpr int n = 48;
-      const glm::dvec2 ctr(o.centre_m[0], o.centre_m[1]);
-      for (int k = 0; k < n; ++k) {
-        const double a0 = 2.0 * std::numbers::pi * k / n, a1 = 2.0 * std::numbers::pi * (k + 1) / n;
-        const glm::dvec2 p = ctr + o.radius_m * glm::dvec2(std::cos(a0), std::sin(a0));
-        const glm::dvec2 q = ctr + o.radius_m * glm::dvec2(std::cos(a1), std::sin(a1));
-        wall(p, q, z0, z1);
-        tri({ctr, z1}, {p, z1}, {q, z1});
-      }
+  for (const Prism& p : prisms) {
+    if (!p.cylinder) {
+      const glm::dvec2 c[4] = {p.lo, {p.hi.x, p.lo.y}, p.hi, {p.lo.x, p.hi.y}};
+      for (int k = 0; k < 4; ++k) wall(c[k], c[(k + 1) % 4], p.z0, p.z1);
+      tri({c[0], p.z1}, {c[1], p.z1}, {c[2], p.z1});
+      tri({c[0], p.z1}, {c[2], p.z1}, {c[3], p.z1});
+      continue;
+    }
+    constexpr int n = 48;
+    for (int k = 0; k < n; ++k) {
+      const double a0 = 2.0 * std::numbers::pi * k / n, a1 = 2.0 * std::numbers::pi * (k + 1) / n;
+      const glm::dvec2 a = p.lo + p.hi.x * glm::dvec2(std::cos(a0), std::sin(a0));
+      const glm::dvec2 b = p.lo + p.hi.x * glm::dvec2(std::cos(a1), std::sin(a1));
+      wall(a, b, p.z0, p.z1);
+      tri({p.lo, p.z1}, {a, p.z1}, {b, p.z1});
     }
   }
 }

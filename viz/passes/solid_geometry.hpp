@@ -57,11 +57,23 @@ struct SolidsFrame {
 /// The mesh obstacles' triangles (lowered by the offset), appended to `out`.
 void append_mesh_solids(std::span<const RenderObstacle> obstacles, const SolidsFrame& f, std::vector<float>& out);
 
-/// Boxes and cylinders (48 sides) as solids from the floor (or the obstacle's bottom) to its top,
-/// or for a 2D solver's obstacle (infinite z) to a quarter of the depth above the water at rest;
-/// over terrain at least 3 % of the region's size (houses in a flood). Boxes are clipped to the
-/// visible region. Appended to `out`.
-void append_prism_solids(std::span<const RenderObstacle> obstacles, const SolidsFrame& f, std::vector<float>& out);
+/// A box or a vertical cylinder where it is drawn (m, after the offset).
+struct Prism {
+  bool cylinder = false;
+  /// Box: the corners in x and y. Cylinder: the axis (lo) and the radius (hi.x).
+  glm::dvec2 lo{0.0}, hi{0.0};
+  /// Bottom and top.
+  double z0 = 0.0, z1 = 0.0;
+};
+
+/// The boxes and cylinders of `obstacles` as drawn: from the floor (or the obstacle's bottom) to its
+/// top, or for a 2D solver's obstacle (infinite z) to a quarter of the depth above the water at
+/// rest; over terrain at least 3 % of the region's size (houses in a flood). Boxes are clipped to
+/// the visible region (and left out when nothing is left).
+std::vector<Prism> prisms(std::span<const RenderObstacle> obstacles, const SolidsFrame& f);
+
+/// The prisms' triangles (cylinders with 48 sides), appended to `out`.
+void append_prism_solids(std::span<const Prism> prisms, std::vector<float>& out);
 
 /// A particle solver's container (0, 0, 0)-(box_m) (m, before the offset): the side walls from the
 /// floor to the lid that the eye is inside of (a wall between the eye and the water is left out).

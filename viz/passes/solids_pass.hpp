@@ -16,9 +16,9 @@ class SolidsPass {
   void set_obstacles(std::span<const RenderObstacle> obstacles, const SolidsFrame& frame);
   /// A particle solver's container (0, 0, 0)-(box_m) (m, before the offset); 0 = none.
   void set_tank(const std::array<double, 3>& box_m) { tank_ = box_m; }
-  /// The hulls at their poses afloat on `eta` (the visible heights after the offset), the
-  /// obstacles and the tank walls the eye is inside of.
-  void draw(const FrameContext& f, const FlatDrawer& flat, std::span<const ShipPose> ships, std::span<const float> eta,
+  /// The hulls at their poses afloat (float_ship), the obstacles and the tank walls the eye is
+  /// inside of.
+  void draw(const FrameContext& f, const FlatDrawer& flat, std::span<const ShipPose> afloat,
             const SolidsFrame& frame) const;
 
  private:

@@ -1,0 +1,306 @@
+// The solids seen through the water and in it (shaders/solids_trace.glsl), judged by an independent
+// CPU ray trace of the same scene: still water (z = 0) over a flat floor, one solid crossing the
+// surface, per pixel the eye's ray refracted and reflected at the surface and followed to the solid,
+// the floor or the sky, shaded with the same closed forms (the solid's flat colour, Schlick's
+// Fresnel, absorption T = exp(-a d) with the water's colour scattered in), in double precision and
+// with none of the renderer's code.
+#include <gtest/gtest.h>
+
+#include "render_test_helpers.hpp"
+
+namespace huygens::test {
+namespace {
+
+using glm::dvec3;
+
+// The one solid of a judged scene: a vertical cylinder around (cx, cy) of radius r, or the box lo-hi.
+struct JudgeSolid {
+  bool cylinder = true;
+  dvec3 lo{0.0}, hi{0.0};  // box corners; cylinder: lo = (cx, cy, z0), hi = (r, 0, z1)
+};
+
+// Distance along o + t d (d unit) to the solid's surface from outside (t > 1e-9), with the outward
+// normal there; +inf when the ray misses it.
+double hit_solid(const JudgeSolid& s, const dvec3& o, const dvec3& d, dvec3& n) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double best = inf;
+  auto take = [&](double t, const dvec3& p, const dvec3& nn, bool inside) {
+    if (t > 1e-9 && t < best && inside) best = t, n = nn;
+    (void)p;
+  };
+  if (s.cylinder) {
+    const double cx = s.lo.x, cy = s.lo.y, r = s.hi.x, z0 = s.lo.z, z1 = s.hi.z;
+    const double a = d.x * d.x + d.y * d.y, ox = o.x - cx, oy = o.y - cy;
+    const double b = ox * d.x + oy * d.y, c = ox * ox + oy * oy - r * r, disc = b * b - a * c;
+    if (a > 0.0 && disc >= 0.0) {
+      const double t = (-b - std::sqrt(disc)) / a;
+      const dvec3 p = o + t * d;
+      take(t, p, dvec3((p.x - cx) / r, (p.y - cy) / r, 0.0), p.z >= z0 && p.z <= z1);
+    }
+    for (const double z : {z0, z1}) {
+      const double t = (z - o.z) / d.z;
+      const dvec3 p = o + t * d;
+      const bool facing = (z == z1) == (d.z < 0.0);
+      take(t, p, dvec3(0.0, 0.0, z == z1 ? 1.0 : -1.0),
+           facing && (p.x - cx) * (p.x - cx) + (p.y - cy) * (p.y - cy) <= r * r);
+    }
+    return best;
+  }
+  for (int axis = 0; axis < 3; ++axis)
+    for (const double side : {-1.0, 1.0}) {
+      const double plane = side < 0.0 ? s.lo[axis] : s.hi[axis];
+      if (d[axis] * side >= 0.0) continue;  // the face turned away from the ray
+      const double t = (plane - o[axis]) / d[axis];
+      const dvec3 p = o + t * d;
+      bool inside = true;
+      for (int k = 0; k < 3; ++k)
+        if (k != axis) inside = inside && p[k] >= s.lo[k] && p[k] <= s.hi[k];
+      dvec3 nn(0.0);
+      nn[axis] = side;
+      take(t, p, nn, inside);
+    }
+  return best;
+}
+
+// What the judge renders: the settings' colours, the solid and the floor (uniform ground).
+struct JudgeScene {
+  RenderSettings s;
+  JudgeSolid solid;
+  double floor_z = -kDepth;
+  bool deep = false;  // no floor: the refracted ray meets the solid or nothing (the water's colour)
+};
+
+dvec3 lin3(const glm::vec3& srgb) { return dvec3(lin(srgb.r), lin(srgb.g), lin(srgb.b)); }
+
+// Snell's law for the unit d at the unit normal n facing d's side, ratio n_from / n_to.
+dvec3 snell(const dvec3& d, const dvec3& n, double ratio) {
+  const double c = -glm::dot(d, n), k = 1.0 - ratio * ratio * (1.0 - c * c);
+  return ratio * d + (ratio * c - std::sqrt(k)) * n;
+}
+
+// The solid's flat colour (shaders/solid_colour.glsl, an obstacle): concrete grey, 35 % ambient,
+// Lambert's cosine towards the sun, under the water towards the sun's ray refracted into it.
+dvec3 solid_radiance(const JudgeScene& j, const dvec3& p, const dvec3& n) {
+  dvec3 sun = glm::normalize(dvec3(j.s.sun_dir));
+  if (p.z < 0.0) sun = -snell(-sun, dvec3(0.0, 0.0, 1.0), 1.0 / j.s.index);
+  return lin3(glm::vec3(0.62f, 0.60f, 0.57f)) * (0.35 + 0.65 * std::max(glm::dot(n, sun), 0.0));
+}
+
+// One pixel's verdict: what the eye's ray shows where it meets the water first.
+struct JudgePixel {
+  bool water = false;        // the eye's ray meets the surface inside the region, before the solid
+  bool refr_solid = false;   // the refracted ray meets the solid
+  bool refl_solid = false;   // the reflected ray meets the solid
+  dvec3 colour{0.0};         // linear radiance
+  dvec3 reflected{0.0};      // the reflected ray's radiance (linear)
+  double fresnel = 0.0;      // Schlick's reflectance at the eye's angle
+};
+
+JudgePixel judge_ray(const JudgeScene& j, const dvec3& o, const dvec3& d) {
+  JudgePixel px;
+  const GridPlacement g = test_grid();
+  dvec3 n;
+  const double t_water = -o.z / d.z, t_solid = hit_solid(j.solid, o, d, n);
+  const dvec3 P = o + t_water * d;
+  const double margin = 3.0 * g.dx;
+  px.water = d.z < 0.0 && t_water < t_solid && P.x > g.x0 + margin && P.x < g.x(g.cols - 1) - margin &&
+             P.y > g.y0 + margin && P.y < g.y(g.rows - 1) - margin;
+  if (!px.water) return px;
+  const dvec3 up(0.0, 0.0, 1.0), W = lin3(j.s.water_colour);
+  const dvec3 t = snell(d, up, 1.0 / j.s.index), r(d.x, d.y, -d.z);
+  const double f0 = std::pow((j.s.index - 1.0) / (j.s.index + 1.0), 2.0);
+  px.fresnel = f0 + (1.0 - f0) * std::pow(1.0 + d.z, 5.0);
+  const double t_hit = hit_solid(j.solid, P, t, n), t_floor = j.deep ? 1e4 : (j.floor_z - P.z) / t.z;
+  px.refr_solid = t_hit < t_floor;
+  dvec3 refr = px.refr_solid ? solid_radiance(j, P + t_hit * t, n) : j.deep ? W : lin3(j.s.ground_uniform);
+  if (j.s.absorption && (px.refr_solid || !j.deep)) {
+    const double len = std::min(t_hit, t_floor);
+    for (int c = 0; c < 3; ++c) {
+      const double T = std::exp(-j.s.absorb_rgb[c] * len);
+      refr[c] = refr[c] * T + W[c] * (1.0 - T);
+    }
+  }
+  const double t_refl = hit_solid(j.solid, P, r, n);
+  px.refl_solid = std::isfinite(t_refl);
+  px.reflected = px.refl_solid ? solid_radiance(j, P + t_refl * r, n) : lin3(j.s.sky_colour);
+  px.colour = (1.0 - px.fresnel) * refr + px.fresnel * px.reflected;
+  return px;
+}
+
+// The judge's image: one verdict per pixel (row 0 at the top, as RenderTarget::read gives it).
+std::vector<JudgePixel> judge_image(const JudgeScene& j, const OrbitCamera& cam, int w, int h) {
+  std::vector<JudgePixel> out(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      dvec3 o, d;
+      cam.ray_through(2.0 * (x + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h, static_cast<double>(w) / h, o, d);
+      out[static_cast<std::size_t>(y) * w + x] = judge_ray(j, o, d);
+    }
+  return out;
+}
+
+// The renderer's image of the judged scene: still water over the test grid, the solid an obstacle.
+gl::Image8 render_judged(const JudgeScene& j, const OrbitCamera& cam, int w, int h) {
+  WaterRenderer r(test_grid(), -kDepth, 4);
+  RenderObstacle o;
+  if (j.solid.cylinder) {
+    o.kind = RenderObstacle::Kind::cylinder;
+    o.centre_m = {j.solid.lo.x, j.solid.lo.y};
+    o.radius_m = j.solid.hi.x;
+    o.z0_m = j.solid.lo.z, o.z1_m = j.solid.hi.z;
+  } else {
+    o.kind = RenderObstacle::Kind::box;
+    o.min_m = {j.solid.lo.x, j.solid.lo.y, j.solid.lo.z};
+    o.max_m = {j.solid.hi.x, j.solid.hi.y, j.solid.hi.z};
+  }
+  r.set_obstacles(std::vector<RenderObstacle>{o});
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  return render(r, cam, j.s, w, h);
+}
+
+// Pixels whose 3 x 3 neighbourhood has the same verdicts (water, refracted and reflected solid).
+bool interior(const std::vector<JudgePixel>& v, int w, int h, int x, int y) {
+  const JudgePixel& c = v[static_cast<std::size_t>(y) * w + x];
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int xx = x + dx, yy = y + dy;
+      if (xx < 0 || yy < 0 || xx >= w || yy >= h) return false;
+      const JudgePixel& n = v[static_cast<std::size_t>(yy) * w + xx];
+      if (n.water != c.water || n.refr_solid != c.refr_solid || n.refl_solid != c.refl_solid) return false;
+    }
+  return c.water;
+}
+
+double mean_abs_display(const gl::Image8& img, int x, int y, const dvec3& linear) {
+  double e = 0.0;
+  for (int c = 0; c < 3; ++c) e += std::abs(channel(img, x, y, c) - display(linear[c]));
+  return e / 3.0;
+}
+
+// A still pool 2 m deep, a cylinder (r = 0.4 m) from the floor to 0.6 m above the water, seen at 35 deg.
+JudgeScene cylinder_pool() {
+  JudgeScene j;
+  j.s = plain_settings();
+  j.s.ground = GroundPattern::uniform;
+  j.s.ground_uniform = glm::vec3(0.15f, 0.35f, 0.75f);
+  j.s.absorption = true;
+  j.s.fresnel = FresnelModel::schlick;
+  j.s.exact_refraction = true;
+  j.solid.lo = dvec3(3.0, 3.0, -kDepth);
+  j.solid.hi = dvec3(0.4, 0.0, 0.6);
+  return j;
+}
+
+OrbitCamera judge_camera(double pitch_deg, double distance) {
+  OrbitCamera cam;
+  cam.target = glm::dvec3(3.0, 2.7, -0.4);
+  cam.distance = distance;
+  cam.yaw = -0.5 * std::numbers::pi;
+  cam.pitch = pitch_deg * std::numbers::pi / 180.0;
+  return cam;
+}
+
+// Where along row y, between pixel centres x and x + 1, the judge's refracted ray leaves or enters
+// the solid (bisection of the verdict; pixel-centre units).
+double judge_edge(const JudgeScene& j, const OrbitCamera& cam, int w, int h, int y, int x) {
+  auto solid_at = [&](double px) {
+    dvec3 o, d;
+    cam.ray_through(2.0 * (px + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h, static_cast<double>(w) / h, o, d);
+    return judge_ray(j, o, d).refr_solid;
+  };
+  double a = x, b = x + 1.0;
+  const bool at_a = solid_at(a);
+  for (int k = 0; k < 30; ++k) (solid_at(0.5 * (a + b)) == at_a ? a : b) = 0.5 * (a + b);
+  return 0.5 * (a + b);
+}
+
+// The cylinder's pool rendered with the exact or the paper's linearised refraction against the trace.
+void check_cylinder(bool exact) {
+  JudgeScene j = cylinder_pool();
+  j.s.exact_refraction = exact;
+  const OrbitCamera cam = judge_camera(35.0, 6.0);
+  const int W = 320, H = 240;
+  const gl::Image8 img = render_judged(j, cam, W, H);
+  const std::vector<JudgePixel> v = judge_image(j, cam, W, H);
+  double sum_solid = 0.0, sum_floor = 0.0;
+  int n_solid = 0, n_floor = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      if (!interior(v, W, H, x, y)) continue;
+      const JudgePixel& p = v[static_cast<std::size_t>(y) * W + x];
+      (p.refr_solid ? sum_solid : sum_floor) += mean_abs_display(img, x, y, p.colour);
+      ++(p.refr_solid ? n_solid : n_floor);
+    }
+  // the submerged silhouette: on each row, each edge of the refracted cylinder in the trace against
+  // where the rendered row crosses halfway between the colours on either side (red: the floor
+  // is blue, the cylinder grey)
+  double worst_edge = 0.0;
+  int edges = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 1; x + 2 < W; ++x) {
+      const JudgePixel &a = v[static_cast<std::size_t>(y) * W + x], &b = v[static_cast<std::size_t>(y) * W + x + 1];
+      const JudgePixel &a0 = v[static_cast<std::size_t>(y) * W + x - 1], &b1 = v[static_cast<std::size_t>(y) * W + x + 2];
+      if (!a.water || !b.water || !a0.water || !b1.water || a.refr_solid == b.refr_solid) continue;
+      if (a.refl_solid || b.refl_solid) continue;
+      const double edge = judge_edge(j, cam, W, H, y, x);
+      const double ra = display(a0.colour.r), rb = display(b1.colour.r), level = 0.5 * (ra + rb);
+      double found = std::nan("");
+      for (int k = x - 3; k <= x + 3 && std::isnan(found); ++k) {
+        const double c0 = channel(img, k, y, 0), c1 = channel(img, k + 1, y, 0);
+        if ((c0 - level) * (c1 - level) <= 0.0 && c0 != c1) found = k + (c0 - level) / (c0 - c1);
+      }
+      worst_edge = std::max(worst_edge, std::isnan(found) ? 99.0 : std::abs(found - edge));
+      ++edges;
+    }
+  std::printf("%s refraction, cylinder through the water: %d pixels, mean |render - trace| %.2f/255; floor %d pixels %.2f/255; "
+              "%d silhouette edges, worst %.2f px\n",
+              exact ? "exact" : "linearised", n_solid, 255.0 * sum_solid / std::max(n_solid, 1), n_floor, 255.0 * sum_floor / std::max(n_floor, 1),
+              edges, worst_edge);
+  EXPECT_GT(n_solid, 500) << "the judged view shows the submerged cylinder";
+  EXPECT_LE(sum_solid / std::max(n_solid, 1), 8.0 / 255.0);
+  EXPECT_LE(sum_floor / std::max(n_floor, 1), 8.0 / 255.0);
+  EXPECT_GT(edges, 50);
+  EXPECT_LE(worst_edge, 1.0);
+  if (::testing::Test::HasFailure()) write_debug(exact ? "cylinder_exact.png" : "cylinder_linear.png", img);
+}
+
+TEST_F(VizRender, CylinderCrossingTheSurfaceMatchesTheRayTrace) { check_cylinder(true); }
+TEST_F(VizRender, CylinderCrossingTheSurfaceMatchesTheRayTraceLinearised) { check_cylinder(false); }
+
+// A box in still deep water (black water: the refracted part is the box's submerged part, absorbed)
+// at a 10 deg camera: where the reflected ray meets the box the pixel is F x its radiance (plus the
+// little that comes up from below), elsewhere F x the sky.
+TEST_F(VizRender, BoxReflectedInStillWaterMatchesTheRayTrace) {
+  JudgeScene j;
+  j.s = deep_sea_settings(false);
+  j.s.water_colour = glm::vec3(0.0f);
+  j.s.absorption = true;
+  j.s.absorb_rgb = glm::vec3(3.0f);
+  j.deep = true;
+  j.solid.cylinder = false;
+  j.solid.lo = dvec3(2.4, 3.0, -0.5);
+  j.solid.hi = dvec3(3.6, 3.8, 0.6);
+  const OrbitCamera cam = judge_camera(10.0, 5.0);
+  const int W = 320, H = 240;
+  const gl::Image8 img = render_judged(j, cam, W, H);
+  const std::vector<JudgePixel> v = judge_image(j, cam, W, H);
+  double worst_box = 0.0, worst_sky = 0.0;
+  int n_box = 0, n_sky = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      if (!interior(v, W, H, x, y)) continue;
+      const JudgePixel& p = v[static_cast<std::size_t>(y) * W + x];
+      const double e = mean_abs_display(img, x, y, p.colour);
+      (p.refl_solid ? worst_box : worst_sky) = std::max(p.refl_solid ? worst_box : worst_sky, e);
+      ++(p.refl_solid ? n_box : n_sky);
+    }
+  std::printf("box reflected: %d pixels, worst |render - trace| %.2f/255; sky reflected: %d pixels, worst %.2f/255\n",
+              n_box, 255.0 * worst_box, n_sky, 255.0 * worst_sky);
+  EXPECT_GT(n_box, 300) << "the judged view shows the box's reflection";
+  EXPECT_LE(worst_box, 3.0 / 255.0);
+  EXPECT_LE(worst_sky, 3.0 / 255.0);
+  if (::testing::Test::HasFailure()) write_debug("box_reflected.png", img);
+}
+
+}  // namespace
+}  // namespace huygens::test
