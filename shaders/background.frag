@@ -1,4 +1,4 @@
-// (#version and ground_common.glsl are prepended by the renderer)
+// (#version, solids_trace.glsl and ground_common.glsl are prepended by the renderer)
 // What the view ray of a pixel meets where nothing else was drawn (this pass comes last, at the
 // far plane): the sky S(r) (u_sky at the horizon to u_sky_zenith overhead), or below the horizon
 // the plane of the rest level out to the horizon, P = o + d (-o_z / d_z) on z = 0: the open sea

@@ -1,4 +1,4 @@
-// (#version and ground_common.glsl are prepended by the renderer)
+// (#version, solids_trace.glsl and ground_common.glsl are prepended by the renderer)
 // The ground seen directly (no water in between): the floor, or the pool deck around the water
 // (pale stone, lit by the sun without caustics).
 // Terrain (a bed) is lit by its slope: n . sun relative to a flat floor's, n from the screen-space
@@ -13,7 +13,7 @@ void main() {
     o_color = vec4(deck_colour(v_xy), 1.0);
     return;
   }
-  vec3 c = lit_ground(v_xy);
+  vec3 c = lit_ground(v_xy, v_p.z);
   if (u_terrain != 0) {
     vec3 n = normalize(cross(dFdx(v_p), dFdy(v_p)));
     if (n.z < 0.0) n = -n;

@@ -1,4 +1,5 @@
-// Shared by ground.frag, surface.frag and background.frag (prepended by the renderer): the lit
+// Shared by ground.frag, surface.frag and background.frag (prepended by the renderer, after
+// solids_trace.glsl): the lit
 // ground colour at a ground point G (world metres). Everything here is linear radiance (the
 // colour uniforms and the ground texture arrive decoded from sRGB; the tone map encodes). The ground texture covers the visible region
 // (origin u_ground_origin, size u_ground_extent) and repeats outside it; the caustics
@@ -125,14 +126,33 @@ vec3 flat_sea(vec3 P) {
   return mix(deep_water_colour(n), sky(reflect(dir, n)), fresnel(max(dot(n, -dir), 0.0))) + glint(n, dir, var);
 }
 
-vec3 lit_ground(vec2 G) {
+// 1 where the sun reaches the point P, 0 where a traced solid (solids_trace.glsl) is in the way: from
+// a point under the water along the sun's ray refracted at the still surface (Snell) up to the rest
+// level, then along the sun's direction (the refracted shadow of paper 000 Fig. 9c and paper 001).
+float sun_visible(vec3 P) {
+  if (u_trace_solids == 0 || u_traced_count == 0) return 1.0;
+  vec3 sun = normalize(u_sun_dir), n;
+  float t;
+  int kind;
+  if (P.z < -1e-4) {
+    vec3 up_w = -refract(-sun, vec3(0.0, 0.0, 1.0), 1.0 / u_index);
+    float len = -P.z / up_w.z;
+    if (trace_solids(P, up_w, len, t, n, kind)) return 0.0;
+    P += len * up_w;
+  }
+  return trace_solids(P, sun, 1e5, t, n, kind) ? 0.0 : 1.0;
+}
+
+// The lit ground at G (world metres) of height z: the sky's light and the sun's through the water
+// (the caustics' light, 1 for still water), shaded where a solid stands between it and the sun.
+vec3 lit_ground(vec2 G, float z) {
   vec2 uv = (G - u_ground_origin) / u_ground_extent;
   vec3 albedo = texture(u_ground, uv).rgb;
   float light = 1.0;
   vec2 cuv = (G - u_caustics_origin) / u_caustics_extent;
   if (u_use_caustics != 0 && all(greaterThanEqual(cuv, vec2(0.0))) && all(lessThanEqual(cuv, vec2(1.0))))
     light = u_caustics_scale * textureLod(u_caustics, cuv, 0.0).r;
-  return albedo * (u_ambient + u_sun_light * light);
+  return albedo * (u_ambient + u_sun_light * light * sun_visible(vec3(G, z)));
 }
 
 // The pool deck around the water: pale stone tiles (the ground texture, lightened), lit by the
@@ -140,7 +160,7 @@ vec3 lit_ground(vec2 G) {
 vec3 deck_colour(vec2 G) {
   if (u_deep != 0) return flat_sea(vec3(G, 0.0));
   vec3 albedo = mix(texture(u_ground, (G - u_ground_origin) / u_ground_extent).rgb, srgb_to_linear(vec3(0.85, 0.84, 0.80)), 0.6);
-  return albedo * (u_ambient + u_sun_light);
+  return albedo * (u_ambient + u_sun_light * sun_visible(vec3(G, 1e-4)));
 }
 
 // What the ray under water from the surface point P to its floor point F = (G, floor_z) meets,
@@ -160,8 +180,8 @@ vec3 seen_under_water(vec3 P, vec2 G, float floor_z, out vec3 hit) {
   vec2 beyond = max(u_floor_rect.xy - G, G - u_floor_rect.zw);
   float outside = max(beyond.x, beyond.y), px = max(fwidth(outside), 1e-6);
   float w = clamp(0.5 + outside / px, 0.0, 1.0);
-  if (u_deck == 0 || w == 0.0) return lit_ground(G);
-  vec3 floor_part = w < 1.0 ? lit_ground(clamp(G, u_floor_rect.xy, u_floor_rect.zw)) : vec3(0.0);
+  if (u_deck == 0 || w == 0.0) return lit_ground(G, floor_z);
+  vec3 floor_part = w < 1.0 ? lit_ground(clamp(G, u_floor_rect.xy, u_floor_rect.zw), floor_z) : vec3(0.0);
   vec2 d = G - P.xy;
   float f = 1e9;  // the ray's fraction P -> F at the nearest wall plane it reaches (within a pixel)
   vec2 nw = vec2(0.0);

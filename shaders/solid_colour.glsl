@@ -1,6 +1,6 @@
 // The colour of a solid's surface at p (world, m) with the unit normal n turned towards the viewer,
 // lit from the unit direction `light` (towards the sun; under the water the sun's refracted ray),
-// linear radiance. Shared by ship.frag (the solids drawn) and solids_trace.glsl (the solids seen in
+// linear radiance. Shared by ship.frag (the solids drawn) and solids_optics.glsl (the solids seen in
 // and through the water), so both show the same solid. kind: 0 a hull, 1 an obstacle (concrete
 // grey), 2 the water's sides, 3 a tank's wall.
 vec3 solid_colour(vec3 p, vec3 n, int kind, vec3 light) {

@@ -1,4 +1,5 @@
-// (#version, ground_common.glsl, solid_colour.glsl and solids_trace.glsl are prepended by the renderer)
+// (#version, solids_trace.glsl, ground_common.glsl, solid_colour.glsl and solids_optics.glsl are
+// prepended by the renderer)
 // Water surface shading (paper 004, section 4; paper 003 for colour and absorption).
 // Per pixel: the normal from the full-resolution central height differences,
 //   n = normalize(-eta_u / (2 dx), -eta_v / (2 dx), 1);
@@ -7,7 +8,7 @@
 // or exact (Snell: t = refract(d, n, 1/index), followed to z = ground_z);
 // then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S(r) + g L, T = exp(-a_rgb d), where a
 // solid met by the refracted or the reflected ray stands in for the ground or the sky S
-// (solids_trace.glsl)
+// (solids_optics.glsl)
 // (deep water: W alone); the glint g is the paper's clamp(100 n.h - 98.95) or the sun reflected
 // by the facets of the surface's slope spread (ground_common.glsl, glint).
 in vec3 v_pos;
@@ -33,7 +34,7 @@ uniform float u_dx;
 uniform float u_ground_z;
 uniform int u_exact;
 // (u_absorption, u_absorb, through_water: ground_common.glsl; underside, reflected, refracted_solids:
-// solids_trace.glsl)
+// solids_optics.glsl)
 // (u_fresnel, u_glint, u_sun_*, u_slope_var, u_region_var: ground_common.glsl)
 
 // Value noise in [0, 1] at p (grid points): an integer hash per lattice corner, smooth blend.

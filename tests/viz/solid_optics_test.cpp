@@ -304,3 +304,66 @@ TEST_F(VizRender, BoxReflectedInStillWaterMatchesTheRayTrace) {
 
 }  // namespace
 }  // namespace huygens::test
+
+namespace huygens::test {
+namespace {
+
+// A box standing in still water 2 m deep, the sun 45 degrees up, the floor seen straight down (no
+// reflection, no absorption): the floor where the sun's ray (refracted at the surface) meets the box
+// is lit by the sky alone, A (ambient), elsewhere A + S; the judge casts the same rays.
+TEST_F(VizRender, BoxShadowOnTheFloorMatchesTheRayTrace) {
+  JudgeScene j;
+  j.s = plain_settings();
+  j.s.ground = GroundPattern::uniform;
+  j.s.ground_uniform = glm::vec3(0.8f, 0.8f, 0.8f);
+  j.s.exact_refraction = true;
+  j.s.ambient = 0.3f, j.s.sun_light = 0.7f;
+  j.s.sun_dir = glm::vec3(1.0f, 0.0f, 1.0f);  // 45 degrees up, from +x
+  j.solid.cylinder = false;
+  j.solid.lo = dvec3(2.0, 2.6, -kDepth);
+  j.solid.hi = dvec3(2.6, 3.4, 0.5);
+  const GridPlacement g = test_grid();
+  const OrbitCamera cam = top_down(g.x0 + 0.5 * kWidth, g.y0 + 0.5 * kWidth, kWidth);
+  const int W = 256, H = 256;
+  const gl::Image8 img = render_judged(j, cam, W, H);
+  const dvec3 sun = glm::normalize(dvec3(j.s.sun_dir));
+  const dvec3 up_w = -snell(-sun, dvec3(0.0, 0.0, 1.0), 1.0 / j.s.index);
+  const double albedo = lin(0.8), lit = display(albedo * (j.s.ambient + j.s.sun_light)),
+               dark = display(albedo * j.s.ambient);
+  int trace_shadow = 0, render_shadow = 0, interior_n = 0;
+  double worst_inside = 0.0;
+  std::vector<std::uint8_t> shade(static_cast<std::size_t>(W) * H, 2);  // 2: not floor
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      dvec3 o, d, n;
+      cam.ray_through(2.0 * (x + 0.5) / W - 1.0, 1.0 - 2.0 * (y + 0.5) / H, 1.0, o, d);
+      if (std::isfinite(hit_solid(j.solid, o, d, n))) continue;  // the box's top
+      const dvec3 G = o + ((-kDepth - o.z) / d.z) * d, Q = G + (kDepth / up_w.z) * up_w;
+      const bool blocked = hit_solid(j.solid, G, up_w, n) < glm::length(Q - G) || std::isfinite(hit_solid(j.solid, Q, sun, n));
+      shade[static_cast<std::size_t>(y) * W + x] = blocked ? 1 : 0;
+    }
+  for (int y = 1; y + 1 < H; ++y)
+    for (int x = 1; x + 1 < W; ++x) {
+      const std::uint8_t c = shade[static_cast<std::size_t>(y) * W + x];
+      if (c == 2) continue;
+      trace_shadow += c;
+      render_shadow += lum(img, x, y) < 0.5 * (lit + dark) ? 1 : 0;
+      bool inner = c == 1;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) inner = inner && shade[static_cast<std::size_t>(y + dy) * W + x + dx] == 1;
+      if (!inner) continue;
+      ++interior_n;
+      worst_inside = std::max(worst_inside, std::abs(lum(img, x, y) - dark));
+    }
+  std::printf("box shadow: %d px in the trace, %d rendered (%+.2f %%); inside it worst |render - ambient| %.2f/255 "
+              "over %d px\n",
+              trace_shadow, render_shadow, 100.0 * (render_shadow - trace_shadow) / std::max(trace_shadow, 1),
+              255.0 * worst_inside, interior_n);
+  EXPECT_GT(trace_shadow, 1000);
+  EXPECT_NEAR(render_shadow, trace_shadow, 0.03 * trace_shadow);
+  EXPECT_LE(worst_inside, 2.0 / 255.0);
+  if (::testing::Test::HasFailure()) write_debug("box_shadow.png", img);
+}
+
+}  // namespace
+}  // namespace huygens::test

@@ -75,6 +75,7 @@ ShadingScene WaterRenderer::shading_scene(const RenderSettings& s) const {
     scene.caustics =
         ShadingScene::Caustics{glm::vec2(caustics_->origin()), glm::vec2(caustics_->extent()), caustics_->scale()};
   scene.far_sea = sky_.far_sea(s);
+  scene.solids = &traced_;
   return scene;
 }
 
@@ -131,7 +132,7 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   afloat_.assign(ships_.begin(), ships_.end());
   for (ShipPose& sp : afloat_) float_ship(grid_, eta_, sp);
   traced_.set_hulls(s.draw_ship ? std::span<const ShipPose>(afloat_) : std::span<const ShipPose>());
-  if (s.draw_water) surface_.draw(f, scene, ground_.bed(), traced_);
+  if (s.draw_water) surface_.draw(f, scene, ground_.bed());
   if (s.draw_water && !s.deep_water) surface_.draw_sides(f, flat_);
   lap(times.surface, times.cpu.surface);
   solids_.draw(f, flat_, afloat_, solids_frame());

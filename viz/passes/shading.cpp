@@ -10,7 +10,8 @@ namespace huygens {
 
 gl::Program load_lit_program(const char* vs, const char* fs, std::initializer_list<const char*> also) {
   const std::string vsrc(gl::shader_source(vs));
-  std::string fsrc = "#version 330 core\n" + std::string(gl::shader_source("ground_common.glsl")) + "\n";
+  std::string fsrc = "#version 330 core\n" + std::string(gl::shader_source("solids_trace.glsl")) + "\n" +
+                     std::string(gl::shader_source("ground_common.glsl")) + "\n";
   for (const char* a : also) fsrc += std::string(gl::shader_source(a)) + "\n";
   fsrc += gl::shader_source(fs);
   return gl::program_from_strings(vsrc, fsrc, std::string(vs) + " + " + fs);
@@ -93,6 +94,16 @@ void set_far_sea(const gl::Program& p, const FrameContext& f, const ShadingScene
   glUniform1f(p.loc("u_far_length"), L);
 }
 
+// The solids the rays are traced against (solids_trace.glsl): the surface's refracted and
+// reflected rays, the sun's rays to the ground.
+void set_traced_solids(const gl::Program& p, const FrameContext& f, const ShadingScene& scene) {
+  const int n = scene.solids ? scene.solids->count() : 0;
+  const bool on = f.s.solid_optics == SolidOptics::trace && n > 0;
+  glUniform1i(p.loc("u_trace_solids"), on ? 1 : 0);
+  glUniform1i(p.loc("u_traced_count"), on ? n : 0);
+  if (on) glUniform4fv(p.loc("u_traced"), 3 * n, glm::value_ptr(scene.solids->packed()[0]));
+}
+
 }  // namespace
 
 void set_colour(const gl::Program& p, const char* name, const glm::vec3& srgb) {
@@ -105,6 +116,7 @@ void set_shading_uniforms(const gl::Program& p, const FrameContext& f, const Sha
   set_view_and_light(p, f);
   set_ground(p, f, scene);
   set_far_sea(p, f, scene);
+  set_traced_solids(p, f, scene);
 }
 
 }  // namespace huygens

@@ -11,6 +11,7 @@
 #include "gl.hpp"
 #include "refraction.hpp"
 #include "render_settings.hpp"
+#include "traced_solids.hpp"
 
 namespace huygens {
 
@@ -46,6 +47,8 @@ struct ShadingScene {
     double unresolved_var = 0.0, region_var = 0.0;
   };
   std::optional<FarSea> far_sea;
+  /// The solids the rays meet (RenderSettings::solid_optics); null: none.
+  const TracedSolids* solids = nullptr;
 };
 
 /// The eye is under the water: a perspective eye below the rest level over the visible region (the
@@ -60,8 +63,8 @@ void set_shading_uniforms(const gl::Program& p, const FrameContext& f, const Sha
 /// linear radiance (srgb.hpp).
 void set_colour(const gl::Program& p, const char* name, const glm::vec3& srgb);
 
-/// A lit program: the fragment shader `fs` with shaders/ground_common.glsl and then the shader
-/// files `also` in front of it.
+/// A lit program: the fragment shader `fs` with shaders/solids_trace.glsl, ground_common.glsl and
+/// then the shader files `also` in front of it.
 gl::Program load_lit_program(const char* vs, const char* fs, std::initializer_list<const char*> also = {});
 
 }  // namespace huygens

@@ -9,7 +9,7 @@ SurfacePass::SurfacePass(const GridPlacement& grid, double ground_z, int subsamp
     : grid_(grid),
       ground_z_(ground_z),
       factor_(static_cast<std::size_t>(std::max(1, subsample))),
-      prog_(load_lit_program("surface.vert", "surface.frag", {"solid_colour.glsl", "solids_trace.glsl"})) {
+      prog_(load_lit_program("surface.vert", "surface.frag", {"solid_colour.glsl", "solids_optics.glsl"})) {
   layout_ = make_mesh_layout(grid_.rows, grid_.cols, factor_);
   mesh_h_.assign(layout_.vertex_rows() * layout_.vertex_cols(), 0.0f);
   diffs_.assign(2 * grid_.rows * grid_.cols, 0.0f);
@@ -98,11 +98,9 @@ void SurfacePass::upload(const OrbitCamera& camera, float index) {
   heights_dirty_ = false;
 }
 
-void SurfacePass::draw(const FrameContext& f, const ShadingScene& scene, const gl::Texture* bed,
-                       const TracedSolids& solids) const {
+void SurfacePass::draw(const FrameContext& f, const ShadingScene& scene, const gl::Texture* bed) const {
   const RenderSettings& s = f.s;
   set_shading_uniforms(prog_, f, scene);
-  set_traced_solids(f, solids);
   glUniformMatrix4fv(prog_.loc("u_mvp"), 1, GL_FALSE, glm::value_ptr(f.mvp));
   diffs_tex_.bind(2);
   const bool dye = s.dye && has_dye_;
@@ -129,14 +127,6 @@ void SurfacePass::draw(const FrameContext& f, const ShadingScene& scene, const g
   glUniform1i(prog_.loc("u_exact"), s.exact_refraction ? 1 : 0);
   glBindVertexArray(vao_);
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-}
-
-// The solids the refracted and reflected rays are traced against (solids_trace.glsl).
-void SurfacePass::set_traced_solids(const FrameContext& f, const TracedSolids& solids) const {
-  const bool on = f.s.solid_optics == SolidOptics::trace && solids.count() > 0;
-  glUniform1i(prog_.loc("u_trace_solids"), on ? 1 : 0);
-  glUniform1i(prog_.loc("u_traced_count"), on ? solids.count() : 0);
-  if (on) glUniform4fv(prog_.loc("u_traced"), 3 * solids.count(), glm::value_ptr(solids.packed()[0]));
 }
 
 void SurfacePass::draw_sides(const FrameContext& f, const FlatDrawer& flat) const {

@@ -12,7 +12,6 @@
 #include "gl.hpp"
 #include "refraction.hpp"
 #include "shading.hpp"
-#include "traced_solids.hpp"
 
 namespace huygens {
 
@@ -33,8 +32,8 @@ class SurfacePass {
   /// The view's linearisation (when the view or the index changed) and the prepared heights.
   void upload(const OrbitCamera& camera, float index);
   /// The surface; `bed` (R32F, m after the offset) is the terrain under it, or null for a flat floor;
-  /// its refracted and reflected rays meet `solids` (RenderSettings::solid_optics).
-  void draw(const FrameContext& f, const ShadingScene& scene, const gl::Texture* bed, const TracedSolids& solids) const;
+  /// its refracted and reflected rays meet the scene's solids (ShadingScene::solids).
+  void draw(const FrameContext& f, const ShadingScene& scene, const gl::Texture* bed) const;
   /// The water's sides (seen where no deck hides them: a quasi-2D slab from the side shows its
   /// profile), in the water's colour; where the surface is hidden as dry, so is its side.
   void draw_sides(const FrameContext& f, const FlatDrawer& flat) const;
@@ -44,7 +43,6 @@ class SurfacePass {
 
  private:
   void build_mesh();
-  void set_traced_solids(const FrameContext& f, const TracedSolids& solids) const;
   bool upload_grid_field(std::span<const float> values, gl::Texture& tex) const;
 
   GridPlacement grid_;
