@@ -86,8 +86,8 @@ TEST(HeightfieldMarch, ExactHitOnAStepIsTheClosedForm) {
   for (int k = 0; k < 4000; ++k) {
     glm::dvec3 P, t;
     random_ray(rng, P, t);
-    const double s = std::min({hit_on_piece(P, t, -2.0, 0.0, kX0 - 10.0, xa), hit_on_piece(P, t, -2.0, 1.5 / kDx, xa, xb),
-                               hit_on_piece(P, t, -0.5, 0.0, xb, far)});
+    const double s = std::min({hit_on_piece(P, t, -2.0, 0.0, kX0 - 10.0, xa),
+                               hit_on_piece(P, t, -2.0, 1.5 / kDx, xa, xb), hit_on_piece(P, t, -0.5, 0.0, xb, far)});
     const glm::dvec3 want = P + s * t;
     worst = std::max(worst, glm::length(exact_bed_hit(f, P, t, 10.0) - want));
     worst_march = std::max(worst_march, glm::length(glm::dvec2(shader_bed_hit(f, P, t) - want)));

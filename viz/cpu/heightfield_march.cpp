@@ -67,7 +67,7 @@ glm::dvec3 exact_bed_hit(const BedField& bed, const glm::dvec3& P, const glm::dv
 
 glm::dvec3 shader_bed_hit(const BedField& bed, const glm::dvec3& P, const glm::dvec3& t, const BedMarch& m) {
   const glm::dvec2 g = (glm::dvec2(P) - glm::dvec2(bed.x0, bed.y0)) / bed.dx, dir = glm::dvec2(t) / bed.dx;
-  const glm::dvec2 inv = 1.0 / glm::max(glm::abs(dir), glm::dvec2(1e-9));
+  const glm::dvec2 inv = 1.0 / glm::max(glm::abs(dir), glm::dvec2(1e-4));  // s per grid line crossed
   // s at the next grid line of each axis (the DDA of Amanatides & Woo)
   glm::dvec2 next = glm::mix(g - glm::ceil(g) + 1.0, glm::floor(g) + 1.0 - g, glm::step(0.0, dir)) * inv;
   double s0 = 0.0, h0 = height_above(bed, P, t, 0.0);
