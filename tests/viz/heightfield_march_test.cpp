@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -122,4 +123,21 @@ TEST(HeightfieldMarch, ShaderMarchFollowsTheExactHitOnARoughBed) {
   const double p99 = err[err.size() * 99 / 100], worst = err.back();
   std::printf("rough bed: shader's march vs exact, 99th percentile %.2e cells, largest %.2e cells\n", p99, worst);
   EXPECT_LT(worst, 1e-9);
+}
+
+// Past its cap of pieces the march takes the plane at the bed's height at its last sample: over the
+// step bed a ray from the shallow side that passes the lip and goes on over the flat deep floor
+// meets it there exactly when the cap falls beyond the lip, and on the shallow plane when it
+// falls before it (where the march has not reached the lip).
+TEST(HeightfieldMarch, ACappedMarchEndsOnThePlaneUnderItsLastSample) {
+  const Bed b = bed_of_column([](std::size_t j) { return j <= 31 ? -2.0 : -0.5; });
+  const BedField f = b.field();
+  const glm::dvec3 P(kX0 + 33.5 * kDx, kY0 + 20.0 * kDx, 0.0);
+  const double a = 50.0 * std::numbers::pi / 180.0;
+  const glm::dvec3 t(-std::sin(a), 0.0, -std::cos(a));  // along -x, 1.19 m per m down
+  const glm::dvec3 exact = exact_bed_hit(f, P, t, 10.0);
+  ASSERT_NEAR(exact.z, -2.0, 1e-12) << "the ray passes the lip";
+  EXPECT_LT(glm::length(shader_bed_hit(f, P, t, BedMarch{8}) - exact), 1e-12) << "the cap beyond the lip";
+  const glm::dvec3 short_cap = shader_bed_hit(f, P, t, BedMarch{1});
+  EXPECT_NEAR(short_cap.z, -0.5, 1e-12) << "the cap before the lip: the shallow plane";
 }
