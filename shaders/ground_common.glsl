@@ -212,3 +212,66 @@ vec3 through_water(vec3 c, float len) {
   vec3 T = exp(-u_absorb * len);
   return c * T + u_water_colour * (1.0 - T);
 }
+
+// The ground under the water over terrain (u_use_bed, surface.frag): the bed's height at the grid
+// points (R32F, m, the drawn frame), read bilinearly, and the grid's placement.
+uniform sampler2D u_bed;
+uniform int u_use_bed;
+uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
+uniform vec2 u_grid_size;   // cols, rows
+uniform float u_dx;
+
+// h(s) = R_z(s) - b(R_xy(s)): the height of the ray's point R(s) = P + s t above the bed b.
+float above_bed(vec3 P, vec3 t, float s) {
+  vec3 r = P + s * t;
+  return r.z - texture(u_bed, ((r.xy - u_grid_origin) / u_dx + 0.5) / u_grid_size).r;
+}
+
+// The smallest root in [0, 1] of A + B u + C u^2 (A > 0), or -1.
+float first_root(float A, float B, float C) {
+  if (abs(C) <= 1e-6 * (abs(A) + abs(B))) return B < 0.0 && -A / B <= 1.0 ? -A / B : -1.0;
+  float disc = B * B - 4.0 * A * C;
+  if (disc < 0.0) return -1.0;
+  float q = -0.5 * (B + (B < 0.0 ? -1.0 : 1.0) * sqrt(disc));
+  float u1 = q / C, u2 = q != 0.0 ? A / q : -1.0, best = -1.0;
+  if (u1 >= 0.0 && u1 <= 1.0) best = u1;
+  if (u2 >= 0.0 && u2 <= 1.0 && (best < 0.0 || u2 < best)) best = u2;
+  return best;
+}
+
+// Where the ray P + s t going down from P (above the bed) first meets the bed. Paper 001 (Baboud &
+// Decoret, "Realistic water volumes in real-time", sec. 3.2) traces the view ray through the
+// volume between the ground and the surface heightfields, searching both together; here the
+// rasteriser has found the surface point P already, and below it the refracted (or reflected) ray
+// meets the ground alone, so only the ground heightfield is marched. The ray is cut where it
+// crosses the grid lines x = x0 + j dx and y = y0 + i dx, found in order (the nearer of the next x
+// line and the next y line: Amanatides & Woo's grid traversal); on a piece the bilinear bed along
+// the ray is a quadratic in s, so h is the quadratic through its values at the piece's ends and
+// middle (samples at most 0.71 cell apart in xy, and on every grid line, where a step's lip is),
+//   h = A + B u + C u^2, A = h0, B = 4 hm - 3 h0 - h1, C = 2 h0 + 2 h1 - 4 hm, u in [0, 1],
+// and the first piece where it has a root holds the hit, solved in closed form (no bisection).
+// At most kBedPieces pieces (two bed reads each); beyond them, the plane at the bed's height at the
+// last sample. viz/cpu/heightfield_march.hpp: the mirror (shader_bed_hit) and the exact hit.
+const int kBedPieces = 128;
+vec3 march_bed(vec3 P, vec3 t) {
+  vec2 g = (P.xy - u_grid_origin) / u_dx, dir = t.xy / u_dx;
+  vec2 inv = 1.0 / max(abs(dir), vec2(1e-4));  // s per grid line crossed
+  vec2 next = mix(g - ceil(g) + 1.0, floor(g) + 1.0 - g, step(0.0, dir)) * inv;
+  float s0 = 0.0, h0 = above_bed(P, t, 0.0);
+  if (h0 <= 0.0) return P;
+  for (int k = 0; k < kBedPieces; ++k) {
+    float s1 = min(next.x, next.y);
+    next += inv * vec2(equal(next, vec2(s1)));
+    float hm = above_bed(P, t, 0.5 * (s0 + s1)), h1 = above_bed(P, t, s1);
+    float u = first_root(h0, 4.0 * hm - 3.0 * h0 - h1, 2.0 * h0 + 2.0 * h1 - 4.0 * hm);
+    if (u >= 0.0) return P + (s0 + u * (s1 - s0)) * t;
+    s0 = s1;
+    h0 = h1;
+  }
+  return P + s0 * t - t * (h0 / t.z);
+}
+
+// Where the ray P + s t going down meets the floor: the bed (march_bed), or the plane z = floor_z.
+vec3 floor_hit(vec3 P, vec3 t, float floor_z) {
+  return u_use_bed != 0 ? march_bed(P, t) : P + t * ((floor_z - P.z) / t.z);
+}

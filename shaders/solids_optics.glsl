@@ -36,7 +36,8 @@ bool refracted_solids(vec3 P, inout vec3 hit, inout vec3 c) {
 // t = refract(d, -n, index); beyond the critical angle asin(1 / index) (48.6 deg for 1.333) there
 // is no t and the surface is a mirror (total internal reflection): Snell's window. Inside it
 // (1 - F) S(t) + F R, S the sky or a solid above the water, F the reflectance at the air side's
-// cosine t.n; R what the reflected ray r = reflect(d, -n) meets under the water: a solid, the floor or a pool's wall (seen_under_water),
+// cosine t.n; R what the reflected ray r = reflect(d, -n) meets under the water: a solid, the floor
+// (over terrain the bed, march_bed) or a pool's wall (seen_under_water),
 // absorbed along its path, or deep water's colour W. The eye's own path to P: the caller.
 vec3 underside(vec3 P, vec3 n, vec3 d, float floor_z) {
   vec3 t = refract(d, -n, u_index);
@@ -44,9 +45,9 @@ vec3 underside(vec3 P, vec3 n, vec3 d, float floor_z) {
   vec3 below = u_deep != 0 ? u_water_colour : vec3(0.0);
   if (u_deep == 0) {
     r.z = min(r.z, -1e-6);
-    vec2 G = P.xy + r.xy * ((floor_z - P.z) / r.z);
+    vec3 F = floor_hit(P, r, floor_z);
     vec3 hit;
-    below = seen_under_water(P, G, floor_z, hit);
+    below = seen_under_water(P, F.xy, F.z, hit);
     refracted_solids(P, hit, below);
     below = through_water(below, length(hit - P));
   }

@@ -5,7 +5,8 @@
 //   n = normalize(-eta_u / (2 dx), -eta_v / (2 dx), 1);
 // the ground point seen through the surface, either linearised
 //   G = (u0, v0) + eta (a, b) + [c d; e f] (eta_u, eta_v)
-// or exact (Snell: t = refract(d, n, 1/index), followed to z = ground_z);
+// or exact (Snell: t = refract(d, n, 1/index), followed to z = ground_z, or over terrain through
+// the bed's heightfield to where it meets the bed: march_bed, paper 001);
 // then C = (1 - F) [ lit_ground(G) T + W (1 - T) ] + F S(r) + g L, T = exp(-a_rgb d), where a
 // solid met by the refracted or the reflected ray stands in for the ground or the sky S
 // (solids_optics.glsl)
@@ -19,8 +20,6 @@ uniform sampler2D u_diffs;  // RG32F: eta_u, eta_v at the grid points
 uniform sampler2D u_coef;   // RGBA32F: c, d, e, f at the grid points
 uniform sampler2D u_dye;    // R32F: dye in [0, 1] at the grid points (u_use_dye)
 uniform int u_use_dye;
-uniform sampler2D u_bed;    // R32F: the bed's height at the grid points (u_use_bed; m, drawn frame)
-uniform int u_use_bed;
 uniform float u_dry_depth;  // water thinner than this over a bed (or u_hide_dry) is not drawn (m)
 uniform int u_hide_dry;     // leave out thin water over the flat floor too (the SPH look)
 uniform vec3 u_dye_colour;
@@ -28,9 +27,7 @@ uniform sampler2D u_foam;   // R32F: foam in [0, 1] at the grid points (u_use_fo
 uniform int u_use_foam;
 uniform vec3 u_foam_colour;
 // (u_eye, u_ortho, u_view_dir, u_index, u_water_colour, u_sky*, u_sun_dir, u_deep: ground_common.glsl)
-uniform vec2 u_grid_origin; // world position of grid point (0, 0) (m)
-uniform vec2 u_grid_size;   // cols, rows
-uniform float u_dx;
+// (u_bed, u_use_bed, u_grid_origin, u_grid_size, u_dx, march_bed: ground_common.glsl)
 uniform float u_ground_z;
 uniform int u_exact;
 // (u_absorption, u_absorb, through_water: ground_common.glsl; underside, reflected, refracted_solids:
@@ -56,7 +53,7 @@ void main() {
   vec3 n = normalize(vec3(-d / (2.0 * u_dx), 1.0));
   vec3 dir = u_ortho != 0 ? u_view_dir : normalize(v_pos - u_eye);
 
-  // over a bed: dry land is not water; the floor is the bed here (locally flat), refracted exactly
+  // over a bed: dry land is not water; the refracted ray is followed to the bed (march_bed)
   float floor_z = u_ground_z;
   if (u_use_bed != 0) {
     floor_z = texture(u_bed, tc).r;
@@ -77,7 +74,9 @@ void main() {
     vec3 nn = dot(n, dir) > 0.0 ? -n : n;
     vec3 t = refract(dir, nn, 1.0 / u_index);
     t.z = min(t.z, -1e-6);
-    G = v_pos.xy + t.xy * ((floor_z - v_pos.z) / t.z);
+    vec3 F = floor_hit(v_pos, t, floor_z);
+    G = F.xy;
+    floor_z = F.z;
   } else {
     vec4 c = texture(u_coef, tc);
     G = v_base + vec2(c.x * d.x + c.y * d.y, c.z * d.x + c.w * d.y);

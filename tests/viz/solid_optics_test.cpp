@@ -88,12 +88,12 @@ dvec3 solid_radiance(const JudgeScene& j, const dvec3& p, const dvec3& n) {
 
 // One pixel's verdict: what the eye's ray shows where it meets the water first.
 struct JudgePixel {
-  bool water = false;        // the eye's ray meets the surface inside the region, before the solid
-  bool refr_solid = false;   // the refracted ray meets the solid
-  bool refl_solid = false;   // the reflected ray meets the solid
-  dvec3 colour{0.0};         // linear radiance
-  dvec3 reflected{0.0};      // the reflected ray's radiance (linear)
-  double fresnel = 0.0;      // Schlick's reflectance at the eye's angle
+  bool water = false;       // the eye's ray meets the surface inside the region, before the solid
+  bool refr_solid = false;  // the refracted ray meets the solid
+  bool refl_solid = false;  // the reflected ray meets the solid
+  dvec3 colour{0.0};        // linear radiance
+  dvec3 reflected{0.0};     // the reflected ray's radiance (linear)
+  double fresnel = 0.0;     // Schlick's reflectance at the eye's angle
 };
 
 JudgePixel judge_ray(const JudgeScene& j, const dvec3& o, const dvec3& d) {
@@ -239,7 +239,8 @@ void check_cylinder(bool exact) {
   for (int y = 0; y < H; ++y)
     for (int x = 1; x + 2 < W; ++x) {
       const JudgePixel &a = v[static_cast<std::size_t>(y) * W + x], &b = v[static_cast<std::size_t>(y) * W + x + 1];
-      const JudgePixel &a0 = v[static_cast<std::size_t>(y) * W + x - 1], &b1 = v[static_cast<std::size_t>(y) * W + x + 2];
+      const JudgePixel &a0 = v[static_cast<std::size_t>(y) * W + x - 1],
+                       &b1 = v[static_cast<std::size_t>(y) * W + x + 2];
       if (!a.water || !b.water || !a0.water || !b1.water || a.refr_solid == b.refr_solid) continue;
       if (a.refl_solid || b.refl_solid) continue;
       const double edge = judge_edge(j, cam, W, H, y, x);
@@ -252,10 +253,11 @@ void check_cylinder(bool exact) {
       worst_edge = std::max(worst_edge, std::isnan(found) ? 99.0 : std::abs(found - edge));
       ++edges;
     }
-  std::printf("%s refraction, cylinder through the water: %d pixels, mean |render - trace| %.2f/255; floor %d pixels %.2f/255; "
-              "%d silhouette edges, worst %.2f px\n",
-              exact ? "exact" : "linearised", n_solid, 255.0 * sum_solid / std::max(n_solid, 1), n_floor, 255.0 * sum_floor / std::max(n_floor, 1),
-              edges, worst_edge);
+  std::printf(
+      "%s refraction, cylinder through the water: %d pixels, mean |render - trace| %.2f/255; floor %d pixels %.2f/255; "
+      "%d silhouette edges, worst %.2f px\n",
+      exact ? "exact" : "linearised", n_solid, 255.0 * sum_solid / std::max(n_solid, 1), n_floor,
+      255.0 * sum_floor / std::max(n_floor, 1), edges, worst_edge);
   EXPECT_GT(n_solid, 500) << "the judged view shows the submerged cylinder";
   EXPECT_LE(sum_solid / std::max(n_solid, 1), 8.0 / 255.0);
   EXPECT_LE(sum_floor / std::max(n_floor, 1), 8.0 / 255.0);
@@ -339,7 +341,8 @@ TEST_F(VizRender, BoxShadowOnTheFloorMatchesTheRayTrace) {
       cam.ray_through(2.0 * (x + 0.5) / W - 1.0, 1.0 - 2.0 * (y + 0.5) / H, 1.0, o, d);
       if (std::isfinite(hit_solid(j.solid, o, d, n))) continue;  // the box's top
       const dvec3 G = o + ((-kDepth - o.z) / d.z) * d, Q = G + (kDepth / up_w.z) * up_w;
-      const bool blocked = hit_solid(j.solid, G, up_w, n) < glm::length(Q - G) || std::isfinite(hit_solid(j.solid, Q, sun, n));
+      const bool blocked =
+          hit_solid(j.solid, G, up_w, n) < glm::length(Q - G) || std::isfinite(hit_solid(j.solid, Q, sun, n));
       shade[static_cast<std::size_t>(y) * W + x] = blocked ? 1 : 0;
     }
   for (int y = 1; y + 1 < H; ++y)
@@ -355,10 +358,11 @@ TEST_F(VizRender, BoxShadowOnTheFloorMatchesTheRayTrace) {
       ++interior_n;
       worst_inside = std::max(worst_inside, std::abs(lum(img, x, y) - dark));
     }
-  std::printf("box shadow: %d px in the trace, %d rendered (%+.2f %%); inside it worst |render - ambient| %.2f/255 "
-              "over %d px\n",
-              trace_shadow, render_shadow, 100.0 * (render_shadow - trace_shadow) / std::max(trace_shadow, 1),
-              255.0 * worst_inside, interior_n);
+  std::printf(
+      "box shadow: %d px in the trace, %d rendered (%+.2f %%); inside it worst |render - ambient| %.2f/255 "
+      "over %d px\n",
+      trace_shadow, render_shadow, 100.0 * (render_shadow - trace_shadow) / std::max(trace_shadow, 1),
+      255.0 * worst_inside, interior_n);
   EXPECT_GT(trace_shadow, 1000);
   EXPECT_NEAR(render_shadow, trace_shadow, 0.03 * trace_shadow);
   EXPECT_LE(worst_inside, 2.0 / 255.0);

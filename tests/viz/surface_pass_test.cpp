@@ -3,9 +3,10 @@
 // flat surface at index 1 shows the ground unchanged (the paper's Figure 4 check), still water seen
 // straight down magnifies by the apparent-depth factor, the sky reflection at the centre pixel is
 // the Fresnel formula, a tilted surface shifts the ground image as Snell's law says, the foam, and
-// the sun's glint against its closed form.
+// the sun's glint against its closed form, the refracted ray meeting a bed with a step.
 #include <gtest/gtest.h>
 
+#include "heightfield_march.hpp"
 #include "render_test_helpers.hpp"
 
 using namespace huygens;
@@ -470,4 +471,154 @@ TEST_F(VizRender, SnellsWindowFromUnderTheWater) {
     EXPECT_NEAR(channel(lit, W / 2, W / 2, c), display(expected), 1.5 / 255.0) << "channel " << c;
   }
   if (::testing::Test::HasFailure()) write_debug("snells_window.png", img);
+}
+
+namespace {
+
+// Still water at z = 0 over a bed 2 m down for x < 2.97 m and 0.5 m down from x = 3 m (a step one
+// cell wide across the test grid), a checker of 0.125 m squares (4 cells).
+std::vector<float> step_bed() {
+  std::vector<float> bed(kN * kN);
+  for (std::size_t i = 0; i < kN; ++i)
+    for (std::size_t j = 0; j < kN; ++j) bed[i * kN + j] = j < kN / 2 ? -2.0f : -0.5f;
+  return bed;
+}
+constexpr double kSquare = kWidth / 32.0;
+
+// Where the ray of the centre column's fractional image row y meets the bed: exactly, and by the
+// plane at the bed under the surface point (the rule before the march).
+using BedHits = std::function<void(double y, glm::dvec3& exact, glm::dvec3& flat)>;
+
+// The checker edges down the image's centre column (sub-pixel, away from the rows where the hit
+// jumps): each is the image's hit, compared with the exact hit of its row's ray (the edge nearest
+// it) and with the flat rule's hit, in cells; `past_lip`: where the two rules differ by > 2 cells.
+struct EdgeErrors {
+  int edges = 0, past_lip = 0;
+  double worst = 0.0, worst_past_lip = 0.0, flat_past_lip = 1e9;
+};
+EdgeErrors checker_edges(const gl::Image8& img, const BedHits& hits, double dx, const char* name) {
+  const int W = img.width, H = img.height;
+  const double level = display(0.5 * (lin(0.9) + lin(0.1))), x0 = test_grid().x0;
+  EdgeErrors e;
+  for (int y = 2; y + 3 < H; ++y) {
+    const double a = lum(img, W / 2, y), b = lum(img, W / 2, y + 1);
+    if ((a - level) * (b - level) > 0.0 || a == b) continue;
+    glm::dvec3 e0, f0, e1, f1, ex, fl;
+    hits(y - 2.0, e0, f0);
+    hits(y + 3.0, e1, f1);
+    if (!std::isfinite(e0.x + e1.x) || std::abs(e1.x - e0.x) > 2.0 * dx) continue;  // the hit jumps: no edge
+    hits(y + (a - level) / (a - b), ex, fl);
+    const double edge = x0 + std::round((ex.x - x0) / kSquare) * kSquare;
+    const double err = std::abs(ex.x - edge) / dx, flat_err = std::abs(fl.x - edge) / dx;
+    ++e.edges;
+    e.worst = std::max(e.worst, err);
+    if (std::abs(fl.x - ex.x) <= 2.0 * dx) continue;
+    ++e.past_lip;
+    e.worst_past_lip = std::max(e.worst_past_lip, err);
+    e.flat_past_lip = std::min(e.flat_past_lip, flat_err);
+    std::printf("%s: row %.2f, checker edge at x = %.4f m: exact hit %.2f cells off, flat rule %.1f cells off\n", name,
+                y + (a - level) / (a - b), edge, err, flat_err);
+  }
+  std::printf(
+      "%s: %d edges, march vs exact at most %.2f cells; past the lip %d edges, march %.2f cells, flat rule at least "
+      "%.1f cells\n",
+      name, e.edges, e.worst, e.past_lip, e.worst_past_lip, e.flat_past_lip);
+  return e;
+}
+
+void expect_on_the_exact_hit(const EdgeErrors& e) {
+  EXPECT_GE(e.edges, 10);
+  EXPECT_GE(e.past_lip, 2) << "edges seen past the step's lip";
+  EXPECT_LT(e.worst, 0.5) << "the image's hit within half a cell of the exact one";
+  EXPECT_GT(e.flat_past_lip, 2.0) << "the flat rule is off past the lip";
+}
+
+// The centre column's ray through the fractional image row y (ndc x = 0: the vertical plane of
+// the view) and where it meets still water at z = 0.
+void centre_ray(const OrbitCamera& cam, int W, int H, double y, glm::dvec3& P, glm::dvec3& d) {
+  glm::dvec3 o;
+  cam.ray_through(0.0, 1.0 - (2.0 * y + 1.0) / H, static_cast<double>(W) / H, o, d);
+  P = o + d * (-o.z / d.z);
+}
+
+}  // namespace
+
+// Paper 001 (the water volume between the ground heightfield and the surface): the step bed
+// (step_bed) seen with parallel rays 60 degrees from the vertical looking along -x (the centre
+// column's rays and their refracted rays stay in the plane y = yc, mid-square: the hit reads the
+// checker's x edges). Rays entering over the shallow side within 0.43 m of the step pass its lip
+// and meet the deep floor 1.28 m (41 cells) beyond the plane at the bed under P. At every checker
+// edge down the centre column the image's hit must lie within 0.5 cell of the exact hit of that
+// row's ray (heightfield_march.hpp, exact_bed_hit); past the lip the flat rule's hit, printed, is
+// over 2 cells off it. Measured: 0.02 cells (march), 41.0 cells (flat rule); with the flat rule in
+// the shader this test measures 1.24 cells (the edge nearest the exact hit) and fails.
+TEST_F(VizRender, RefractedRayMeetsTheBedStep) {
+  const GridPlacement g = test_grid();
+  const std::vector<float> bed = step_bed();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_bed(bed);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam;
+  cam.ortho = true;
+  cam.ortho_height = 1.0;
+  cam.yaw = 0.0;  // the eye on the +x side, looking along -x
+  cam.pitch = 30.0 * std::numbers::pi / 180.0;
+  cam.target = glm::dvec3(3.0, g.y0 + 15.5 * kSquare, 0.0);
+  RenderSettings s = plain_settings();
+  s.pool_deck = false;
+  s.ground = GroundPattern::checker;
+  s.ground_squares = 32;
+  const int W = 65, H = 400;
+  const gl::Image8 img = render(r, cam, s, W, H);
+  const BedField field{bed, kN, kN, g.dx, g.x0, g.y0};
+  const BedHits hits = [&](double y, glm::dvec3& exact, glm::dvec3& flat) {
+    glm::dvec3 P, d;
+    centre_ray(cam, W, H, y, P, d);
+    const glm::dvec3 t = refract_dir(d, glm::dvec3(0.0, 0.0, 1.0), 1.0 / s.index);
+    exact = exact_bed_hit(field, P, t, 10.0);
+    flat = flat_bed_hit(field, P, t);
+  };
+  expect_on_the_exact_hit(checker_edges(img, hits, g.dx, "bed step"));
+  if (::testing::Test::HasFailure()) write_debug("bed_step.png", img);
+}
+
+// The same bed seen from under the water (the eye 0.3 m down over the deep side at x = 1.5 m,
+// looking along +x and 20 degrees up): beyond the critical angle the surface mirrors the ray
+// (underside: total internal reflection), r = reflect(d, -n), and the reflected ray is marched
+// through the bed too. Reflected rays 13 to 28 degrees below the horizontal pass over the step's
+// lip and meet the shallow floor, which the plane at the bed under the surface point (2 m down)
+// puts 1.5 m / tan(angle) beyond; steeper ones meet the step's face. The image's hit within 0.5
+// cell of the exact one, the flat rule over 2 cells off. Measured: 0.07 cells (march), 89.8 cells
+// at least (flat rule); with the flat rule in the shader this test measures 1.94 cells and fails.
+TEST_F(VizRender, RayReflectedUnderTheSurfaceMeetsTheBedStep) {
+  const GridPlacement g = test_grid();
+  const std::vector<float> bed = step_bed();
+  WaterRenderer r(g, -kDepth, 4);
+  r.set_bed(bed);
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  OrbitCamera cam;
+  cam.yaw = std::numbers::pi;                    // the eye on the -x side, looking along +x
+  cam.pitch = -20.0 * std::numbers::pi / 180.0;  // below the target, looking up
+  cam.fov_y = 30.0 * std::numbers::pi / 180.0;
+  cam.distance = 1.0;
+  cam.target = glm::dvec3(1.5, g.y0 + 15.5 * kSquare, -0.3) + cam.forward();
+  RenderSettings s = plain_settings();
+  s.pool_deck = false;
+  s.ground = GroundPattern::checker;
+  s.ground_squares = 32;
+  const int W = 65, H = 600;
+  const gl::Image8 img = render(r, cam, s, W, H);
+  const BedField field{bed, kN, kN, g.dx, g.x0, g.y0};
+  const double critical = std::asin(1.0 / s.index);
+  const BedHits hits = [&](double y, glm::dvec3& exact, glm::dvec3& flat) {
+    glm::dvec3 P, d;
+    centre_ray(cam, W, H, y, P, d);
+    exact = flat = glm::dvec3(std::nan(""));
+    if (d.z <= 0.0 || std::acos(d.z) <= critical) return;  // not mirrored
+    const glm::dvec3 rr(d.x, d.y, -d.z);
+    exact = exact_bed_hit(field, P, rr, 20.0);
+    flat = flat_bed_hit(field, P, rr);
+  };
+  expect_on_the_exact_hit(checker_edges(img, hits, g.dx, "bed step from below"));
+  if (::testing::Test::HasFailure()) write_debug("bed_step_below.png", img);
 }
