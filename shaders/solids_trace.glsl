@@ -4,9 +4,12 @@
 // (viz/passes/traced_solids.hpp packs them). Paper 000 renders penetrating obstacles into
 // per-object environment maps from virtual eye points; this is the exact per-pixel answer that
 // method approximates.
-uniform int u_trace_solids;  // 0: the rays meet only the floor and the sky, and nothing shades the sun
+uniform int u_trace_solids;  // 0: the rays meet only the floor and the sky, nothing shades the sun;
+                             // 1: traced; 2: paper 000's virtual eye maps (solids_optics.glsl)
 uniform int u_traced_count;
 uniform vec4 u_traced[96];   // three per solid (traced_solids.hpp)
+uniform vec3 u_traced_lo;    // a box holding them all: a ray that misses it meets none
+uniform vec3 u_traced_hi;
 
 // Entry and exit distances of the ray o + t d through the box lo-hi (the slab method), and the axis
 // of the entry face.
@@ -94,6 +97,9 @@ bool hull_hit(vec3 o, vec3 d, vec4 a, vec4 b, vec4 c, float tmax, out float t, o
 // and solid_colour kind (0 hull, 1 obstacle). A ray starting inside a solid meets nothing.
 bool trace_solids(vec3 o, vec3 d, float tmax, out float t, out vec3 n, out int kind) {
   t = tmax;
+  int axis;
+  vec2 all = box_span(o, d, u_traced_lo, u_traced_hi, axis);
+  if (all.x > all.y || all.y < 1e-4 || all.x > tmax) return false;
   for (int i = 0; i < u_traced_count; ++i) {
     vec4 a = u_traced[3 * i], b = u_traced[3 * i + 1], c = u_traced[3 * i + 2];
     float th;

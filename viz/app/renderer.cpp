@@ -63,7 +63,17 @@ void WaterRenderer::set_bed(std::span<const float> bed) {
 void WaterRenderer::set_obstacles(std::span<const RenderObstacle> obstacles) {
   footprints_.build(grid_, obstacles, offset_);
   solids_.set_obstacles(obstacles, solids_frame());
-  traced_.set_prisms(prisms(obstacles, solids_frame()));
+  prisms_ = prisms(obstacles, solids_frame());
+  traced_.set_prisms(prisms_);
+  mesh_objects_.clear();
+  for (const RenderObstacle& o : obstacles) {
+    if (o.kind != RenderObstacle::Kind::mesh) continue;
+    EyeObject e;
+    append_mesh_solids(std::span<const RenderObstacle>(&o, 1), solids_frame(), e.tri);
+    e.lo = glm::dvec3(o.min_m[0], o.min_m[1], o.min_m[2] - offset_);
+    e.hi = glm::dvec3(o.max_m[0], o.max_m[1], o.max_m[2] - offset_);
+    mesh_objects_.push_back(std::move(e));
+  }
 }
 
 ShadingScene WaterRenderer::shading_scene(const RenderSettings& s) const {
@@ -76,6 +86,7 @@ ShadingScene WaterRenderer::shading_scene(const RenderSettings& s) const {
         ShadingScene::Caustics{glm::vec2(caustics_->origin()), glm::vec2(caustics_->extent()), caustics_->scale()};
   scene.far_sea = sky_.far_sea(s);
   scene.solids = &traced_;
+  scene.eye_maps = eye_maps_.get();
   return scene;
 }
 
@@ -119,6 +130,11 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   // programs read of them (the pass sizes its texture on its first run)
   if (s.caustics && caustics_ && caustics_->available()) caustics_->run(eta_, ships_, s);
   lap(times.caustics, times.cpu.caustics);
+  // the hulls afloat on this frame's heights (float_ship): drawn, and met by the surface's rays
+  afloat_.assign(ships_.begin(), ships_.end());
+  for (ShipPose& sp : afloat_) float_ship(grid_, eta_, sp);
+  traced_.set_hulls(s.draw_ship ? std::span<const ShipPose>(afloat_) : std::span<const ShipPose>());
+  if (s.solid_optics == SolidOptics::virtual_eye) build_eye_maps(camera, s);
   const ShadingScene scene = shading_scene(s);
 
   const double aspect = static_cast<double>(target.width()) / target.height();
@@ -128,10 +144,6 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   ground_.bind_pattern();
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, scene.caustics ? caustics_->texture() : flat_light_tex_.id());
-  // the hulls afloat on this frame's heights (float_ship): drawn, and met by the surface's rays
-  afloat_.assign(ships_.begin(), ships_.end());
-  for (ShipPose& sp : afloat_) float_ship(grid_, eta_, sp);
-  traced_.set_hulls(s.draw_ship ? std::span<const ShipPose>(afloat_) : std::span<const ShipPose>());
   if (s.draw_water) surface_.draw(f, scene, ground_.bed());
   if (s.draw_water && !s.deep_water) surface_.draw_sides(f, flat_);
   lap(times.surface, times.cpu.surface);
@@ -151,6 +163,51 @@ void WaterRenderer::render(const OrbitCamera& camera, const RenderSettings& s, c
   glActiveTexture(GL_TEXTURE0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl::check("WaterRenderer::render");
+}
+
+namespace {
+
+// The mean height of the visible heights `eta` over the object's footprint grown by a quarter on
+// each side: paper 000's plane round the object (its normal kept vertical); 0 off the grid.
+double plane_round(const GridPlacement& g, std::span<const float> eta, const EyeObject& o) {
+  const glm::dvec2 pad = 0.25 * (glm::dvec2(o.hi) - glm::dvec2(o.lo));
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < g.rows; ++i) {
+    if (g.y(i) < o.lo.y - pad.y || g.y(i) > o.hi.y + pad.y) continue;
+    for (std::size_t j = 0; j < g.cols; ++j)
+      if (g.x(j) >= o.lo.x - pad.x && g.x(j) <= o.hi.x + pad.x) sum += eta[i * g.cols + j], ++n;
+  }
+  return n > 0 ? sum / static_cast<double>(n) : 0.0;
+}
+
+}  // namespace
+
+// Paper 000's objects this frame (prisms, meshes, hulls afloat), each with the plane round it, drawn
+// into their maps from their virtual eyes.
+void WaterRenderer::build_eye_maps(const OrbitCamera& camera, const RenderSettings& s) {
+  if (!eye_maps_) eye_maps_ = std::make_unique<VirtualEyeMaps>();
+  eye_objects_.clear();
+  for (const Prism& p : prisms_) {
+    EyeObject e;
+    append_prism_solids(std::span<const Prism>(&p, 1), e.tri);
+    const glm::dvec2 r = p.cylinder ? glm::dvec2(p.hi.x) : glm::dvec2(0.0);
+    e.lo = glm::dvec3(p.cylinder ? p.lo - r : p.lo, p.z0), e.hi = glm::dvec3(p.cylinder ? p.lo + r : p.hi, p.z1);
+    eye_objects_.push_back(std::move(e));
+  }
+  eye_objects_.insert(eye_objects_.end(), mesh_objects_.begin(), mesh_objects_.end());
+  for (const ShipPose& sp : s.draw_ship ? afloat_ : std::vector<ShipPose>{}) {
+    EyeObject e;
+    e.kind = 0;
+    append_hull(sp, e.tri);
+    e.lo = e.hi = glm::dvec3(e.tri[0], e.tri[1], e.tri[2]);
+    for (std::size_t k = 0; k + 2 < e.tri.size(); k += 3)
+      e.lo = glm::min(e.lo, glm::dvec3(e.tri[k], e.tri[k + 1], e.tri[k + 2])),
+      e.hi = glm::max(e.hi, glm::dvec3(e.tri[k], e.tri[k + 1], e.tri[k + 2]));
+    eye_objects_.push_back(std::move(e));
+  }
+  for (EyeObject& e : eye_objects_) e.plane = plane_round(grid_, eta_, e);
+  eye_maps_->build(eye_objects_, camera.eye(), s);
 }
 
 void WaterRenderer::render_plan(std::span<const float> values, const std::string& quantity, double unit_scale,

@@ -36,6 +36,7 @@
 #include "surface_pass.hpp"
 #include "tone_map_pass.hpp"
 #include "traced_solids.hpp"
+#include "virtual_eye_maps.hpp"
 
 namespace huygens {
 
@@ -127,8 +128,13 @@ class WaterRenderer {
   float offset_ = 0.0f;
   std::vector<float> eta_;  // the visible heights after the offset, closed around the solids
   std::vector<ShipPose> ships_;
-  std::vector<ShipPose> afloat_;  // the ships' poses afloat on the last frame's heights
-  TracedSolids traced_;           // the boxes, cylinders and hulls the surface's rays meet
+  std::vector<ShipPose> afloat_;              // the ships' poses afloat on the last frame's heights
+  TracedSolids traced_;                       // the boxes, cylinders and hulls the surface's rays meet
+  std::vector<Prism> prisms_;                 // the boxes and cylinders where they are drawn
+  std::vector<EyeObject> mesh_objects_;       // the mesh obstacles as paper 000's objects
+  std::vector<EyeObject> eye_objects_;        // this frame's objects for the virtual eye maps
+  std::unique_ptr<VirtualEyeMaps> eye_maps_;  // made when solid_optics is first virtual_eye
+  void build_eye_maps(const OrbitCamera& camera, const RenderSettings& s);
   Footprints footprints_;
   SurfacePass surface_;
   GroundPass ground_;

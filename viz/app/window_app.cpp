@@ -361,7 +361,8 @@ void panel_features(App& a) {
   ImGui::Combo("Fresnel (F)", &fres, "off\0paper clamp(1-2.5 n.v)\0Schlick\0");
   a.settings.fresnel = static_cast<FresnelModel>(fres);
   int optics = static_cast<int>(a.settings.solid_optics);
-  ImGui::Combo("solids in the water", &optics, "off (floor and sky only)\0traced per pixel\0");
+  ImGui::Combo("solids in the water", &optics,
+               "off (floor and sky only)\0traced per pixel\0paper 000: virtual eye maps\0");
   a.settings.solid_optics = static_cast<SolidOptics>(optics);
   if (a.has_velocity) {
     ImGui::Checkbox("dye (flow)", &a.settings.dye);

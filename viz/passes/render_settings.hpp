@@ -35,10 +35,11 @@ enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, ex
 /// the solver's RenderInfo::default_look), no second enum to map.
 using Look = LookRequest;
 enum class GroundPattern : int { tiles = 0, checker = 1, uniform = 2 };
-/// How the solids show in the water (docs/viz.md "Solids seen in and through the water"): not at
-/// all (the surface refracts the floor and reflects the sky only), or traced exactly per pixel
-/// against the boxes, cylinders and hulls (shaders/solids_trace.glsl).
-enum class SolidOptics : int { off = 0, trace = 1 };
+/// How the solids show in the water (docs/viz.md "Solids in and through the water"): not at all
+/// (the surface refracts the floor and reflects the sky only), traced exactly per pixel against
+/// the boxes, cylinders and hulls (shaders/solids_trace.glsl), or by paper 000's maps from virtual
+/// eye points (virtual_eye_maps.hpp; meshes too). Shadows are traced unless off.
+enum class SolidOptics : int { off = 0, trace = 1, virtual_eye = 2 };
 
 /// What the renderer draws and how (all colours are sRGB values in [0, 1], decoded on input).
 struct RenderSettings {

@@ -98,10 +98,14 @@ void set_far_sea(const gl::Program& p, const FrameContext& f, const ShadingScene
 // reflected rays, the sun's rays to the ground.
 void set_traced_solids(const gl::Program& p, const FrameContext& f, const ShadingScene& scene) {
   const int n = scene.solids ? scene.solids->count() : 0;
-  const bool on = f.s.solid_optics == SolidOptics::trace && n > 0;
-  glUniform1i(p.loc("u_trace_solids"), on ? 1 : 0);
+  const bool on = f.s.solid_optics != SolidOptics::off && n > 0;
+  glUniform1i(p.loc("u_trace_solids"), on ? static_cast<int>(f.s.solid_optics) : 0);
   glUniform1i(p.loc("u_traced_count"), on ? n : 0);
   if (on) glUniform4fv(p.loc("u_traced"), 3 * n, glm::value_ptr(scene.solids->packed()[0]));
+  if (on) glUniform3fv(p.loc("u_traced_lo"), 1, glm::value_ptr(scene.solids->lo()));
+  if (on) glUniform3fv(p.loc("u_traced_hi"), 1, glm::value_ptr(scene.solids->hi()));
+  glUniform1i(p.loc("u_env_count"), 0);
+  if (f.s.solid_optics == SolidOptics::virtual_eye && scene.eye_maps) scene.eye_maps->set_uniforms(p, 8);
 }
 
 }  // namespace

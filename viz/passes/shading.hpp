@@ -12,6 +12,7 @@
 #include "refraction.hpp"
 #include "render_settings.hpp"
 #include "traced_solids.hpp"
+#include "virtual_eye_maps.hpp"
 
 namespace huygens {
 
@@ -49,6 +50,8 @@ struct ShadingScene {
   std::optional<FarSea> far_sea;
   /// The solids the rays meet (RenderSettings::solid_optics); null: none.
   const TracedSolids* solids = nullptr;
+  /// Paper 000's maps of the solids (solid_optics virtual_eye, bound to unit 8); null: none.
+  const VirtualEyeMaps* eye_maps = nullptr;
 };
 
 /// The eye is under the water: a perspective eye below the rest level over the visible region (the

@@ -27,10 +27,14 @@ class TracedSolids {
   /// The packing: prisms then hulls, at most kMax solids.
   std::span<const glm::vec4> packed() const { return {packed_.data(), 3 * static_cast<std::size_t>(count())}; }
   int count() const;
+  /// A box holding every packed solid (m; empty when there are none): rays that miss it meet none.
+  glm::vec3 lo() const { return lo_; }
+  glm::vec3 hi() const { return hi_; }
 
  private:
   void repack();
   std::vector<glm::vec4> prisms_, hulls_, packed_;
+  glm::vec3 prisms_lo_{1e30f}, prisms_hi_{-1e30f}, hulls_lo_{1e30f}, hulls_hi_{-1e30f}, lo_{1e30f}, hi_{-1e30f};
 };
 
 }  // namespace huygens
