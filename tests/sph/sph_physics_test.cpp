@@ -22,17 +22,36 @@ TEST(SphPhysics, HydrostaticColumnShort) {
 }
 
 TEST(SphPhysics, DamBreakFrontCoarse) {
-  // 10 particles across the column up to T = 3 (validate: 16 across, T <= 5)
+  // 10 particles across the column up to T = 3 (validate: 16 across, T <= 5); the four points at
+  // T <= 1.5 are reported rows (EarlyFrontRunsAheadMoreAtFinerResolution)
   expect_rows_pass(sph_dam_break_rows(10, 3.0, martin_moyce_1952()));
 }
 
 // DFSPH at the size of DamBreakFrontCoarse (validate: sph_dam_break_dfsph, 16 across, T <= 5): the
-// front within 8 % of both series up to T = 3 (measured 0.01-7.7 %; the largest, +7.7 % at T = 1.212,
-// is the point validate's 16 across misses at +9.8 %), and the largest mean compression at a step
-// within 6 times the density solve's tolerance, 3e-4 (measured 1.9e-4; 5.5e-4 with that tolerance
-// loosened 10 times, which moves no front by more than 0.3 %). ~0.3 s on one thread.
+// front within 8 % of both series for 1.5 < T <= 3 (the points at T <= 1.5 are reported), and the
+// largest mean compression at a step within 6 times the density solve's tolerance, 3e-4 (measured
+// 1.9e-4; 5.5e-4 with that tolerance loosened 10 times, which moves no front by more than 0.3 %).
+// ~0.3 s on one thread.
 TEST(SphPhysics, DamBreakFrontCoarseDfsph) {
   expect_rows_pass(sph_dam_break_rows(10, 3.0, martin_moyce_1952(), SphMethod::dfsph));
+}
+
+// Why the Martin & Moyce points at T <= 1.5 are reported, not judged (docs/sph.md, "Limits"): the
+// early front of the model (instant release, free-slip floor) runs ahead of every measured point
+// there, and further ahead at 16 particles across than at 10 (DFSPH, T = 1.212 of the 1.125 in series:
+// +7.2 % and +9.7 %), so refining does not bring it onto the data. ~1.5 s on one thread.
+TEST(SphPhysics, EarlyFrontRunsAheadMoreAtFinerResolution) {
+  const auto coarse = sph_dam_break_rows(10, kMartinMoyceEarlyT, martin_moyce_1952(), SphMethod::dfsph);
+  const auto fine = sph_dam_break_rows(16, kMartinMoyceEarlyT, martin_moyce_1952(), SphMethod::dfsph);
+  int early = 0;
+  for (std::size_t i = 0; i < coarse.size() && i < fine.size(); ++i) {
+    if (coarse[i].quantity.find("front z/a") == std::string::npos) continue;
+    ++early;
+    EXPECT_FALSE(coarse[i].judged) << coarse[i].quantity;
+    EXPECT_GT(coarse[i].measured, coarse[i].expected) << coarse[i].quantity;
+    EXPECT_GT(fine[i].measured, coarse[i].measured) << fine[i].quantity;
+  }
+  EXPECT_EQ(early, 4);
 }
 
 // The invariants of the boundary over 1 s of the validate set-up (8 particles across a, a 4a box;
