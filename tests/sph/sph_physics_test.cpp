@@ -19,7 +19,7 @@ TEST(SphPhysics, HydrostaticColumnShort) {
   // and pressure gradient within 2 % of the weight per area and rho0 g (boundary particles with Adami's
   // extrapolated wall pressure, gradient correction), density error below 1 %, max speed below the
   // surface layer below 1 % of sqrt(g H). The column leaves its start lattice in events of up to ~0.009
-  // sqrt(g H) until t ~ 12.5 s at this size; after them the starts read 0.0005-0.005 (docs/sph.md,
+  // sqrt(g H) until t ~ 12.5 s at this size; after them the two starts read 0.0052 and 0.0005 (docs/sph.md,
   // "Limits"). ~80 s on one thread.
   expect_rows_pass(sph_hydrostatic_rows(6, 12, 0.5, 12.5, 1.0, SphMethod::wcsph, 2));
 }
