@@ -16,9 +16,12 @@ using namespace huygens;
 
 namespace {
 
-// The rows of a 6 x 6 x 12 column (1 s damped, 2 s free, held 0.5 s), run once for both tests.
+// The rows of a 6 x 6 x 12 column (1 s damped, 10 s free, held 1 s) from 4 starts (the lattice and 3
+// moved by up to 1e-7 m; each row the worst start's), run once for both tests. The column leaves its
+// start lattice in events of up to ~0.012 sqrt(g H) below the surface layer until t ~ 10 s at this size;
+// over the hold the starts read 0.0033 (the lattice), 0.0052, 0.0006, 0.0042.
 const std::vector<ValidationRow>& column_rows() {
-  static const std::vector<ValidationRow> rows = sph_hydrostatic_rows(6, 12, 1.0, 2.0, 0.5, SphMethod::dfsph);
+  static const std::vector<ValidationRow> rows = sph_hydrostatic_rows(6, 12, 1.0, 10.0, 1.0, SphMethod::dfsph, 4);
   return rows;
 }
 
@@ -37,9 +40,26 @@ void expect_rows(const std::vector<std::string>& keys, int count) {
 }  // namespace
 
 // mean density error below the surface layer within 0.1 %, max compression within 1 %, max speed
-// within 1 % of sqrt(g H)
+// below the surface layer within 1 % of sqrt(g H) (the worst of the 4 starts)
 TEST(SphDfsph, HydrostaticColumnStaysAtRestWithinATenthOfAPercent) {
-  expect_rows({"mean |rho/rho0 - 1|", "max compression", "max speed"}, 3);
+  expect_rows({"mean |rho/rho0 - 1|", "max compression", "max speed below the surface layer over"}, 3);
+}
+
+// The stillness row is the worst of the column's starts: one reported row per start, the judged row's
+// figure their largest, and the 1e-7 m moves change the runs (not every start reads the same).
+TEST(SphDfsph, StillnessRowIsTheWorstOfFourPerturbedStarts) {
+  std::vector<double> starts;
+  double judged = -1;
+  for (const auto& r : column_rows()) {
+    if (r.quantity.find("max speed below the surface layer") == std::string::npos) continue;
+    if (r.judged)
+      judged = r.measured;
+    else
+      starts.push_back(r.measured);
+  }
+  ASSERT_EQ(starts.size(), 4u);
+  EXPECT_EQ(judged, *std::max_element(starts.begin(), starts.end()));
+  EXPECT_NE(*std::min_element(starts.begin(), starts.end()), judged);
 }
 
 // bottom pressure of the p(z) fit against the weight per floor area (rho0 g H to 3e-5 with the cubic
