@@ -16,6 +16,7 @@
 #include "huygens/pipeline/solver.hpp"
 #include "huygens/solvers/registry.hpp"
 #include "scenes_dir.hpp"
+#include "virtual_eye.hpp"
 
 using namespace huygens;
 
@@ -267,4 +268,35 @@ TEST(VizRefraction, FastCoefficientsMatchThePapersNumericalOnes) {
   EXPECT_LT(dfull / cmax, 1e-5);
   EXPECT_LT(dmax / cmax, 1e-3);
   EXPECT_LT(gmax, 0.01);
+}
+
+// Paper 000's virtual eye points (viz/cpu/virtual_eye.hpp).
+TEST(VirtualEye, ReflectedEyeIsTheFocusOfTheReflectedRays) {
+  const glm::dvec3 eye(1.0, -2.0, 3.0), E = huygens::reflected_eye(eye, 0.5);
+  EXPECT_DOUBLE_EQ(E.z, -2.0);
+  for (const glm::dvec3 p : {glm::dvec3(0.0, 0.0, 0.5), glm::dvec3(4.0, 1.0, 0.5)}) {
+    const glm::dvec3 r = glm::reflect(glm::normalize(p - eye), glm::dvec3(0.0, 0.0, 1.0));
+    EXPECT_NEAR(glm::length(glm::cross(r, glm::normalize(p - E))), 0.0, 1e-12);  // E, p and r in line
+  }
+}
+
+TEST(VirtualEye, RefractedEyeSeesThePointAAlongItsRefractedRay) {
+  const glm::dvec3 eye(0.0, -5.0, 4.0), lo(-0.5, -0.5, -2.0), hi(0.5, 0.5, 1.0);
+  const glm::dvec3 a = huygens::nearest_waterline_point(eye, lo, hi, 0.0);
+  EXPECT_NEAR(a.x, 0.0, 1e-12);
+  EXPECT_NEAR(a.y, -0.5, 1e-12);  // where the line from the eye's foot to the axis enters the box
+  const glm::dvec3 E = huygens::refracted_eye(eye, a, 1.333);
+  EXPECT_NEAR(glm::length(E - a), glm::length(eye - a), 1e-12);  // eq. 2: |E_refr - a| = |E - a|
+  const glm::dvec3 t = huygens::refract_dir(glm::normalize(a - eye), glm::dvec3(0.0, 0.0, 1.0), 1.0 / 1.333);
+  EXPECT_NEAR(glm::length(glm::cross(glm::normalize(a - E), glm::normalize(t))), 0.0, 1e-12);
+}
+
+TEST(VirtualEye, RefractedRayThroughAPointUnderTheSurfaceMeetsIt) {
+  const glm::dvec3 eye(0.3, -6.0, 2.5), b(0.1, 0.4, -1.7);
+  const glm::dvec3 t = huygens::refracted_ray_through(eye, b, 0.0, 1.333);
+  // back along -t from b to the surface, then the view ray from there must come from the eye
+  const glm::dvec3 q = b - t * (b.z / t.z);
+  const glm::dvec3 t_q = huygens::refract_dir(glm::normalize(q - eye), glm::dvec3(0.0, 0.0, 1.0), 1.0 / 1.333);
+  EXPECT_NEAR(q.z, 0.0, 1e-12);
+  EXPECT_NEAR(glm::length(glm::cross(glm::normalize(t_q), t)), 0.0, 1e-9);
 }

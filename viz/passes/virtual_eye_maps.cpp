@@ -120,8 +120,7 @@ void VirtualEyeMaps::build(std::span<const EyeObject> objects, const glm::dvec3&
   const glm::vec3 sun_w(-refract_dir(-sun, glm::dvec3(0.0, 0.0, 1.0), 1.0 / s.index));
   for (int i = 0; i < count_; ++i) {
     const EyeObject& o = objects[static_cast<std::size_t>(i)];
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(o.tri.size() * sizeof(float)), o.tri.data(),
-                 GL_STREAM_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(o.tri.size() * sizeof(float)), o.tri.data(), GL_STREAM_DRAW);
     const glm::dvec3 a = nearest_waterline_point(eye, o.lo, o.hi, o.plane);
     tiles_[2 * i] = draw_tile(o, refracted_eye(eye, a, s.index), false, 2 * i, sun_w);
     tiles_[2 * i + 1] = draw_tile(o, reflected_eye(eye, o.plane), true, 2 * i + 1, glm::vec3(sun));
