@@ -194,6 +194,20 @@ JudgeScene cylinder_pool() {
   return j;
 }
 
+// A box from 0.5 m under still deep water (black, absorbing `absorb` per metre) to 0.6 m above it.
+JudgeScene box_in_deep_water(double absorb) {
+  JudgeScene j;
+  j.s = deep_sea_settings(false);
+  j.s.water_colour = glm::vec3(0.0f);
+  j.s.absorption = true;
+  j.s.absorb_rgb = glm::vec3(static_cast<float>(absorb));
+  j.deep = true;
+  j.solid.cylinder = false;
+  j.solid.lo = dvec3(2.4, 3.0, -0.5);
+  j.solid.hi = dvec3(3.6, 3.8, 0.6);
+  return j;
+}
+
 OrbitCamera judge_camera(double pitch_deg, double distance) {
   OrbitCamera cam;
   cam.target = glm::dvec3(3.0, 2.7, -0.4);
@@ -276,15 +290,7 @@ TEST_F(VizRender, CylinderCrossingTheSurfaceMatchesTheRayTraceLinearised) { chec
 // at a 10 deg camera: where the reflected ray meets the box the pixel is F x its radiance (plus the
 // little that comes up from below), elsewhere F x the sky.
 TEST_F(VizRender, BoxReflectedInStillWaterMatchesTheRayTrace) {
-  JudgeScene j;
-  j.s = deep_sea_settings(false);
-  j.s.water_colour = glm::vec3(0.0f);
-  j.s.absorption = true;
-  j.s.absorb_rgb = glm::vec3(3.0f);
-  j.deep = true;
-  j.solid.cylinder = false;
-  j.solid.lo = dvec3(2.4, 3.0, -0.5);
-  j.solid.hi = dvec3(3.6, 3.8, 0.6);
+  const JudgeScene j = box_in_deep_water(3.0);
   const OrbitCamera cam = judge_camera(10.0, 5.0);
   const int W = 320, H = 240;
   const gl::Image8 img = render_judged(j, cam, W, H);
@@ -306,12 +312,6 @@ TEST_F(VizRender, BoxReflectedInStillWaterMatchesTheRayTrace) {
   EXPECT_LE(worst_sky, 3.0 / 255.0);
   if (::testing::Test::HasFailure()) write_debug("box_reflected.png", img);
 }
-
-}  // namespace
-}  // namespace huygens::test
-
-namespace huygens::test {
-namespace {
 
 // A box standing in still water 2 m deep, the sun 45 degrees up, the floor seen straight down (no
 // reflection, no absorption): the floor where the sun's ray (refracted at the surface) meets the box
@@ -372,12 +372,6 @@ TEST_F(VizRender, BoxShadowOnTheFloorMatchesTheRayTrace) {
   if (::testing::Test::HasFailure()) write_debug("box_shadow.png", img);
 }
 
-}  // namespace
-}  // namespace huygens::test
-
-namespace huygens::test {
-namespace {
-
 // Paper 000's virtual eye maps against the trace, in the two judged scenes: the reflection is exact
 // for a plane (every reflected ray passes through the virtual reflected eye, eq. 1), so it is held
 // to the trace's bound; the refraction is exact only along the ray through the waterline point a
@@ -405,15 +399,7 @@ TEST_F(VizRender, VirtualEyeMapsAgainstTheRayTrace) {
     EXPECT_GT(shown, n / 2) << "the maps show the submerged cylinder over most of the trace's pixels";
     write_debug("virtual_eye_cylinder.png", img);
   }
-  JudgeScene j;
-  j.s = deep_sea_settings(false);
-  j.s.water_colour = glm::vec3(0.0f);
-  j.s.absorption = true;
-  j.s.absorb_rgb = glm::vec3(30.0f);  // the submerged part dark: the reflection alone is judged
-  j.deep = true;
-  j.solid.cylinder = false;
-  j.solid.lo = dvec3(2.4, 3.0, -0.5);
-  j.solid.hi = dvec3(3.6, 3.8, 0.6);
+  const JudgeScene j = box_in_deep_water(30.0);  // the submerged part dark: the reflection alone is judged
   const OrbitCamera cam = judge_camera(10.0, 5.0);
   const gl::Image8 img = render_judged(j, cam, W, H, SolidOptics::virtual_eye);
   const std::vector<JudgePixel> v = judge_image(j, cam, W, H);
