@@ -417,5 +417,120 @@ TEST_F(VizRender, VirtualEyeMapsAgainstTheRayTrace) {
   if (::testing::Test::HasFailure()) write_debug("virtual_eye_box.png", img);
 }
 
+// A Wigley hull (L = 1.6 m, B = 0.5 m, T = 0.3 m) afloat on still water: the judge's hull is the drawn one's definition
+// (solid_geometry.hpp append_hull), written out here: below the waterline |y| <= B/2 (1 - (2x/L)^2)(1 - (z/T)^2), the
+// topsides flaring 12 % to the deck at the freeboard F = max(0.6 T, 0.08 L), crowned by 0.08 B;
+// intersected by a fine march (L / 4000) and bisection, its normal the gradient of the side (or the
+// deck's plane); coloured as solid_colour.glsl colours a hull.
+struct JudgeHull {
+  double L = 1.6, B = 0.5, T = 0.3, x = 3.0, y = 3.0;
+  double F() const { return std::max(0.6 * T, 0.08 * L); }
+  double half(double lx, double z) const {
+    const double xi = 2.0 * lx / L, zz = z < 0.0 ? z / T : 0.0, flare = z > 0.0 ? 1.0 + 0.12 * z / F() : 1.0;
+    return 0.5 * B * (1.0 - xi * xi) * (1.0 - zz * zz) * flare;
+  }
+  double deck(double lx, double ly) const {
+    const double xi = 2.0 * lx / L;
+    return F() + 0.08 * B * (1.0 - xi * xi) * (1.0 - std::abs(ly) / std::max(half(lx, F()), 1e-9));
+  }
+  bool inside(const dvec3& p) const {
+    const double lx = p.x - x, ly = p.y - y;
+    return std::abs(lx) <= 0.5 * L && p.z >= -T && std::abs(ly) <= half(lx, std::min(p.z, F())) && p.z <= deck(lx, ly);
+  }
+  // the first crossing into the hull along o + t d within t_max (+inf: none), and the normal there
+  double hit(const dvec3& o, const dvec3& d, double t_max, dvec3& n) const {
+    JudgeSolid box;  // the hull's bounding box: the march runs through it only
+    box.cylinder = false;
+    box.lo = dvec3(x - 0.5 * L, y - 0.56 * B, -T), box.hi = dvec3(x + 0.5 * L, y + 0.56 * B, F() + 0.08 * B);
+    dvec3 unused;
+    const bool from_inside =
+        o.x > box.lo.x && o.x < box.hi.x && o.y > box.lo.y && o.y < box.hi.y && o.z > box.lo.z && o.z < box.hi.z;
+    const double t0 = from_inside ? 0.0 : hit_solid(box, o, d, unused), dt = L / 4000.0;
+    if (!std::isfinite(t0)) return t0;
+    for (double t = t0; t < t_max && t < t0 + 2.0 * L; t += dt) {
+      if (!inside(o + (t + dt) * d)) continue;
+      double a = t, b = t + dt;
+      for (int k = 0; k < 40; ++k) (inside(o + 0.5 * (a + b) * d) ? b : a) = 0.5 * (a + b);
+      const dvec3 p = o + b * d;
+      const double lx = p.x - x, ly = p.y - y, e = 1e-6;
+      if (p.z > deck(lx, ly) - 1e-4) {  // the deck: the plane of its crown
+        n = glm::normalize(dvec3(-(deck(lx + e, ly) - deck(lx - e, ly)) / (2 * e),
+                                 -(deck(lx, ly + e) - deck(lx, ly - e)) / (2 * e), 1.0));
+      } else {  // the side: the gradient of |y| - half(x, z)
+        const double z = std::min(p.z, F());
+        n = glm::normalize(dvec3(-(half(lx + e, z) - half(lx - e, z)) / (2 * e), ly > 0.0 ? 1.0 : -1.0,
+                                 -(half(lx, z + e) - half(lx, z - e)) / (2 * e)));
+      }
+      return b;
+    }
+    return std::numeric_limits<double>::infinity();
+  }
+};
+
+// solid_colour.glsl for a hull: the deck (|n_z| > 0.8) pale grey, the topsides white, below the
+// waterline red; 35 % ambient, Lambert towards the light (under the water the refracted sun).
+dvec3 hull_radiance(const RenderSettings& s, const dvec3& p, const dvec3& n) {
+  dvec3 sun = glm::normalize(dvec3(s.sun_dir));
+  if (p.z < 0.0) sun = -snell(-sun, dvec3(0.0, 0.0, 1.0), 1.0 / s.index);
+  const glm::vec3 base = std::abs(n.z) > 0.8 ? glm::vec3(0.78f, 0.78f, 0.76f)
+                         : p.z > 0.0         ? glm::vec3(0.93f, 0.93f, 0.91f)
+                                             : glm::vec3(0.55f, 0.12f, 0.10f);
+  return lin3(base) * (0.35 + 0.65 * std::max(glm::dot(n, sun), 0.0));
+}
+
+// The hull reflected in still deep water (black, absorbing 30 per metre) at a 10 degree camera:
+// where the reflected ray meets the hull (its topsides and deck, marched in solids_trace.glsl) the
+// pixel is F times the hull's radiance plus what its submerged side sends up through the water,
+// within 3/255 away from its outline (the drawn hull is a triangle mesh, the judge's the exact form).
+TEST_F(VizRender, HullReflectedInStillWaterMatchesTheRayTrace) {
+  RenderSettings s = box_in_deep_water(30.0).s;
+  s.draw_ship = true;
+  const JudgeHull hull;
+  const OrbitCamera cam = judge_camera(10.0, 5.0);
+  const int W = 320, H = 240;
+  WaterRenderer r(test_grid(), -kDepth, 4);
+  ShipPose pose;
+  pose.x = hull.x, pose.y = hull.y, pose.length = hull.L, pose.beam = hull.B, pose.draft = hull.T;
+  r.set_ships(std::span<const ShipPose>(&pose, 1));
+  r.set_heights(std::vector<float>(kN * kN, 0.0f));
+  const gl::Image8 img = render(r, cam, s, W, H);
+  std::vector<int> cls(static_cast<std::size_t>(W) * H, 0);  // 0 not judged, 1 sky reflected, 2 hull
+  std::vector<dvec3> expect(cls.size());
+  const double f0 = std::pow((s.index - 1.0) / (s.index + 1.0), 2.0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      dvec3 o, d, n;
+      cam.ray_through(2.0 * (x + 0.5) / W - 1.0, 1.0 - 2.0 * (y + 0.5) / H, static_cast<double>(W) / H, o, d);
+      const double t_w = -o.z / d.z;
+      const dvec3 P = o + t_w * d, r_dir(d.x, d.y, -d.z);
+      if (d.z >= 0.0 || std::isfinite(hull.hit(o, d, t_w, n))) continue;
+      const double F = f0 + (1.0 - f0) * std::pow(1.0 + d.z, 5.0), t_r = hull.hit(P, r_dir, 1e3, n);
+      cls[static_cast<std::size_t>(y) * W + x] = std::isfinite(t_r) ? 2 : 1;
+      const dvec3 reflected = std::isfinite(t_r) ? hull_radiance(s, P + t_r * r_dir, n) : lin3(s.sky_colour);
+      // what comes up from below: the hull's submerged side where the refracted ray meets it,
+      // absorbed along the way (the water's own colour is black)
+      const dvec3 t = snell(d, dvec3(0.0, 0.0, 1.0), 1.0 / s.index);
+      const double t_u = hull.hit(P, t, 10.0, n);
+      const dvec3 below = std::isfinite(t_u) ? hull_radiance(s, P + t_u * t, n) * std::exp(-30.0 * t_u) : dvec3(0.0);
+      expect[static_cast<std::size_t>(y) * W + x] = F * reflected + (1.0 - F) * below;
+    }
+  double worst = 0.0, sum = 0.0;
+  int n = 0;
+  for (int y = 2; y + 2 < H; ++y)
+    for (int x = 2; x + 2 < W; ++x) {
+      bool same = cls[static_cast<std::size_t>(y) * W + x] == 2;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) same = same && cls[static_cast<std::size_t>(y + dy) * W + x + dx] == 2;
+      if (!same) continue;
+      const double e = mean_abs_display(img, x, y, expect[static_cast<std::size_t>(y) * W + x]);
+      sum += e, worst = std::max(worst, e), ++n;
+    }
+  std::printf("hull reflected: %d pixels, mean |render - trace| %.2f/255, worst %.2f/255\n", n,
+              255.0 * sum / std::max(n, 1), 255.0 * worst);
+  EXPECT_GT(n, 200) << "the judged view shows the hull's reflection";
+  EXPECT_LE(worst, 3.0 / 255.0);
+  if (::testing::Test::HasFailure()) write_debug("hull_reflected.png", img);
+}
+
 }  // namespace
 }  // namespace huygens::test
