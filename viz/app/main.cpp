@@ -62,7 +62,8 @@ void usage(std::FILE* f) {
                "                        maps from virtual eye points; off: floor and sky only\n"
                "  --no-foam             LBM: do not draw the foam the flow carries (default: drawn)\n"
                "  --caustics-mode M     conserving (default: explicit area, float), mip_paper (the paper's\n"
-               "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8\n"
+               "                        MIP trick, 8-bit, accumulation blur), mip_float, explicit_u8,\n"
+               "                        simple (paper 000's eq. 4 from heights and normals)\n"
                "  --view V              perspective (default); plan (the water level from above as a colour\n"
                "                        map, colour bar, axes in metres); LBM also speed, dye or foam (from\n"
                "                        above: the flow's speed, the dye and foam it carries); SPH also\n"
@@ -151,8 +152,8 @@ bool parse_args(int argc, char** argv, CliOptions& o) {
     } else if (a == "--caustics-mode") {
       o.caustics_mode = nonempty_arg(a, next());
       if (o.caustics_mode != "conserving" && o.caustics_mode != "mip_paper" && o.caustics_mode != "mip_float" &&
-          o.caustics_mode != "explicit_u8")
-        throw UsageError("--caustics-mode takes conserving, mip_paper, mip_float or explicit_u8");
+          o.caustics_mode != "explicit_u8" && o.caustics_mode != "simple")
+        throw UsageError("--caustics-mode takes conserving, mip_paper, mip_float, explicit_u8 or simple");
     } else if (a == "--auto-frames") {
       o.auto_frames = static_cast<int>(parse_int_arg(a, next(), 1, 1000000));
     } else if (!a.empty() && a[0] == '-') {
@@ -432,6 +433,7 @@ int run(CliOptions o) {
     settings.caustics_mode = o.caustics_mode == "mip_paper"     ? CausticsMode::mip_paper
                              : o.caustics_mode == "mip_float"   ? CausticsMode::mip_float
                              : o.caustics_mode == "explicit_u8" ? CausticsMode::explicit_u8
+                             : o.caustics_mode == "simple"      ? CausticsMode::simple
                                                                 : CausticsMode::conserving;
   const bool plan = o.view.empty() ? vs.info.request.plan_view.value_or(false) : o.view != "perspective";
   const PlanQuantity quantity = o.view == "speed"       ? PlanQuantity::speed

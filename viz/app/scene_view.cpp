@@ -181,6 +181,7 @@ void apply_render_request(const RenderRequest& request, RenderSettings& s) {
     s.caustics_mode = *request.caustics_mode == CausticsModeRequest::mip_paper     ? CausticsMode::mip_paper
                       : *request.caustics_mode == CausticsModeRequest::mip_float   ? CausticsMode::mip_float
                       : *request.caustics_mode == CausticsModeRequest::explicit_u8 ? CausticsMode::explicit_u8
+                      : *request.caustics_mode == CausticsModeRequest::simple      ? CausticsMode::simple
                                                                                    : CausticsMode::conserving;
   }
   if (request.sun_elevation_deg || request.sun_azimuth_deg) {

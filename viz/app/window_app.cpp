@@ -350,7 +350,9 @@ void panel_features(App& a) {
   ImGui::SameLine();
   ImGui::Checkbox("float blur (8-bit modes)", &a.settings.blur_float);
   int mode = static_cast<int>(a.settings.caustics_mode);
-  ImGui::Combo("caustics mode", &mode, "conserving (explicit, float)\0paper MIP, 8-bit\0MIP, float\0explicit, 8-bit\0");
+  ImGui::Combo(
+      "caustics mode", &mode,
+      "conserving (explicit, float)\0paper MIP, 8-bit\0MIP, float\0explicit, 8-bit\0paper 000 eq. 4 (simple)\0");
   a.settings.caustics_mode = static_cast<CausticsMode>(mode);
   ImGui::Checkbox("exact Snell (E)", &a.settings.exact_refraction);
   ImGui::SameLine();

@@ -625,3 +625,52 @@ SyntheticField synthetic_ring_wave(int n, double L, double depth, double strengt
 }
 
 }  // namespace huygens::viz
+
+namespace huygens::viz {
+
+namespace {
+
+// Bilinear height of the field at (x, y) (m, field coordinates; clamped to the grid).
+float field_height(const HeightfieldView& f, float x, float y) {
+  const float fx = std::clamp(x / f.dx_m, 0.0f, static_cast<float>(f.cols - 1)),
+              fy = std::clamp(y / f.dx_m, 0.0f, static_cast<float>(f.rows - 1));
+  const int c = std::min(static_cast<int>(fx), f.cols - 2), r = std::min(static_cast<int>(fy), f.rows - 2);
+  const float tx = fx - c, ty = fy - r;
+  const auto e = [&](int i, int j) { return f.eta[static_cast<std::size_t>(i) * f.cols + j]; };
+  return (1 - ty) * ((1 - tx) * e(r, c) + tx * e(r, c + 1)) + ty * ((1 - tx) * e(r + 1, c) + tx * e(r + 1, c + 1));
+}
+
+}  // namespace
+
+std::vector<float> simple_caustics(const CausticsParams& p, const HeightfieldView& field,
+                                   const SimpleCausticsWeights& w) {
+  const int W = p.texture_width, H = p.texture_height;
+  const GroundRect g = ground_rect(p, field);
+  // the sun's ray refracted at the still surface: a texel's light left the surface this far back
+  const glm::dvec3 s = glm::normalize(glm::dvec3(p.sun_dir[0], p.sun_dir[1], p.sun_dir[2]));
+  const double r = 1.0 / p.refractive_index, ci = s.z < 0 ? -s.z : s.z;
+  const glm::dvec3 t = r * s + (r * ci - std::sqrt(1.0 - r * r * (1.0 - ci * ci))) * glm::dvec3(0.0, 0.0, 1.0);
+  const float back_x = static_cast<float>(t.x / -t.z * field.depth_m),
+              back_y = static_cast<float>(t.y / -t.z * field.depth_m);
+  const auto [lo, hi] = std::minmax_element(field.eta.begin(), field.eta.end());
+  const float z0 = *lo, span = *hi - *lo, e = field.dx_m;
+  std::vector<float> out(static_cast<std::size_t>(W) * H);
+  double sum = 0.0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const float gx = static_cast<float>(g.x0 + (x + 0.5) * g.width / W) - back_x,
+                  gy = static_cast<float>(g.y0 + (y + 0.5) * g.height / H) - back_y;
+      const float sx = (field_height(field, gx + e, gy) - field_height(field, gx - e, gy)) / (2 * e),
+                  sy = (field_height(field, gx, gy + e) - field_height(field, gx, gy - e)) / (2 * e);
+      const float n = 1.0f / std::sqrt(1.0f + sx * sx + sy * sy);
+      const float zn = span > 0.0f ? (field_height(field, gx, gy) - z0) / span : 0.0f;
+      const float v = w.a * zn + w.b * std::abs(-sx * n - sy * n);
+      out[static_cast<std::size_t>(y) * W + x] = v;
+      sum += v;
+    }
+  const float c = static_cast<float>(1.0 - sum / (static_cast<double>(W) * H));
+  for (float& v : out) v += c;
+  return out;
+}
+
+}  // namespace huygens::viz

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
 
@@ -208,6 +209,19 @@ ShipShadow make_ellipse_hull(float cx_m, float cy_m, float heading_rad, float le
 /// shadow polygon (projected along the sun onto z = 0) carry no light.
 std::vector<float> photon_caustics(const CausticsParams& p, const HeightfieldView& field, int per_cell,
                                    std::uint64_t seed, const ShipShadow* ship = nullptr);
+
+/// Paper 000's "simple caustics" (section 2.4, eq. 4): the floor's light from the surface above it
+/// along the sun (the point the still-water refracted sun ray from the texel left the surface),
+///   I = a (z - z_min) / (z_max - z_min) + b |n_x + n_y| + c,
+/// z the height there and n its unit normal (central differences, bilinear), z_min and z_max over
+/// the field. The paper leaves a, b, c to the animator; here c makes the mean over the rect 1 (the
+/// light the surface lets through), so still water reads 1 everywhere. Texture layout as
+/// photon_caustics (the ground rect of `p`, row 0 at its y0).
+struct SimpleCausticsWeights {
+  float a = 1.0f, b = 2.0f;
+};
+std::vector<float> simple_caustics(const CausticsParams& p, const HeightfieldView& field,
+                                   const SimpleCausticsWeights& w = {});
 
 /// Projected shadow polygon on the surface plane z = 0 (the outline shifted along the sun).
 std::vector<std::array<float, 2>> shadow_on_surface(const CausticsParams& p, const ShipShadow& ship);

@@ -64,10 +64,11 @@ class PaperCaustics final : public CausticsStage {
     // at least ~8 mesh cells per dominant wavelength, up to the grid's own resolution
     const int mesh =
         s.caustics_mesh > 0 ? s.caustics_mesh : quantised_mesh(viz::mesh_size_for_field(field), caustics_ ? mesh_ : 0);
+    const CausticsMode drawn = s.caustics_mode == CausticsMode::simple ? CausticsMode::conserving : s.caustics_mode;
     if (!caustics_ || mesh != mesh_ || s.caustics_mode != mode_) {
       caustics_.reset();
-      caustics_.emplace(mode_params(s.caustics_mode, std::min(mesh, static_cast<int>(std::max(grid_.rows, grid_.cols))),
-                                    texture_side(grid_)));
+      caustics_.emplace(
+          mode_params(drawn, std::min(mesh, static_cast<int>(std::max(grid_.rows, grid_.cols))), texture_side(grid_)));
       mesh_ = mesh;
       mode_ = s.caustics_mode;
     }
@@ -84,10 +85,14 @@ class PaperCaustics final : public CausticsStage {
       shadow.height_m = static_cast<float>(hull_freeboard(p));
       ship = &shadow;
     }
-    caustics_->render(field, ship);
     const viz::GroundRect r = viz::ground_rect(caustics_->params(), field);
     origin_ = {grid_.x0 + r.x0, grid_.y0 + r.y0};
     extent_ = {r.width, r.height};
+    if (s.caustics_mode == CausticsMode::simple) {  // paper 000's eq. 4 on the same rect, no ship shadow
+      run_simple(field);
+      return;
+    }
+    caustics_->render(field, ship);
     // blur (paper 004 sec. 6): float targets in float; the 8-bit target by the
     // accumulation-buffer emulation unless the float blur is asked for
     const bool u8 = !caustics_->params().float_target;
@@ -96,6 +101,18 @@ class PaperCaustics final : public CausticsStage {
                                  : blur_.blur_float(caustics_->texture()).id();
     scale_ = u8 ? 255.0f / caustics_->params().unit_level_u8 : 1.0f;
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  }
+
+  // Paper 000's simple caustics (eq. 4) into their own float texture.
+  void run_simple(const viz::HeightfieldView& field) {
+    const viz::CausticsParams& p = caustics_->params();
+    if (!simple_tex_ || simple_tex_->width() != p.texture_width)
+      simple_tex_.emplace(p.texture_width, p.texture_height, GL_R32F);
+    simple_tex_->set_filter(GL_LINEAR, GL_LINEAR);
+    const std::vector<float> light = viz::simple_caustics(p, field);
+    simple_tex_->upload(light.data(), GL_RED, GL_FLOAT);
+    tex_ = simple_tex_->id();
+    scale_ = 1.0f;
   }
 
   GLuint texture() const override { return tex_; }
@@ -111,6 +128,7 @@ class PaperCaustics final : public CausticsStage {
   int mesh_ = 0;
   CausticsMode mode_ = CausticsMode::conserving;
   viz::AccumBlur blur_;
+  std::optional<gl::Texture> simple_tex_;
   GLuint tex_ = 0;
   float scale_ = 1.0f;
   glm::dvec2 origin_{0.0}, extent_{1.0};

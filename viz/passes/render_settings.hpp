@@ -28,8 +28,9 @@ enum class FresnelModel : int { off = 0, paper = 1, schlick = 2 };
 /// conserving = explicit area per triangle, exact Snell projection of the vertices, float
 /// target, float blur (the default, light conserved); mip_paper = the paper's MIP trick in the 8-bit target with the
 /// accumulation-buffer blur emulation; mip_float = the MIP trick in a float target; explicit_u8 = explicit area in the
-/// 8-bit target (unit light = 32/255, saturates at 8x).
-enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, explicit_u8 = 3 };
+/// 8-bit target (unit light = 32/255, saturates at 8x); simple = paper 000's eq. 4 from the heights and
+/// normals (viz::simple_caustics, on the CPU).
+enum class CausticsMode : int { conserving = 0, mip_paper = 1, mip_float = 2, explicit_u8 = 3, simple = 4 };
 /// How the scene looks (SceneView::look, chosen from RenderInfo, docs/viz.md "Looks").
 /// The kind of picture: the render description's LookRequest itself (the scene's "render.look", else
 /// the solver's RenderInfo::default_look), no second enum to map.

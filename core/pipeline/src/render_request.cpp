@@ -15,10 +15,11 @@ RenderRequest parse_render_request(const JsonIn& root) {
   }
   if (block->has("caustics_mode")) {
     const std::string m =
-        block->string("caustics_mode", "conserving", {"conserving", "mip_paper", "mip_float", "explicit_u8"});
+        block->string("caustics_mode", "conserving", {"conserving", "mip_paper", "mip_float", "explicit_u8", "simple"});
     r.caustics_mode = m == "mip_paper"     ? CausticsModeRequest::mip_paper
                       : m == "mip_float"   ? CausticsModeRequest::mip_float
                       : m == "explicit_u8" ? CausticsModeRequest::explicit_u8
+                      : m == "simple"      ? CausticsModeRequest::simple
                                            : CausticsModeRequest::conserving;
   }
   if (block->has("look")) {

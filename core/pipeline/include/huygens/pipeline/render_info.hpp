@@ -60,7 +60,7 @@ struct RenderHull {
 enum class BlurMode { accumulation, float_target, none };
 
 /// How the caustics texture is made ("caustics_mode"; docs/viz.md "Caustics").
-enum class CausticsModeRequest { conserving, mip_paper, mip_float, explicit_u8 };
+enum class CausticsModeRequest { conserving, mip_paper, mip_float, explicit_u8, simple };
 
 /// The kind of picture ("look"; docs/viz.md "Looks"): open ocean (no floor), pool / pond (floor,
 /// walls, caustics), shallow water (LBM: bed, solid walls) or SPH (solids, closed surface).
@@ -86,7 +86,7 @@ struct RenderRequest {
   std::optional<bool> caustics;
   /// "blur": "accumulation" (the paper's 8-bit emulation), "float" or "none".
   std::optional<BlurMode> blur;
-  /// "caustics_mode": "conserving", "mip_paper", "mip_float" or "explicit_u8".
+  /// "caustics_mode": "conserving", "mip_paper", "mip_float", "explicit_u8" or "simple".
   std::optional<CausticsModeRequest> caustics_mode;
   /// "look": "pool", "ocean", "shallow" or "sph".
   std::optional<LookRequest> look;
