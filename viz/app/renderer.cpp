@@ -196,7 +196,7 @@ void WaterRenderer::build_eye_maps(const OrbitCamera& camera, const RenderSettin
     eye_objects_.push_back(std::move(e));
   }
   eye_objects_.insert(eye_objects_.end(), mesh_objects_.begin(), mesh_objects_.end());
-  for (const ShipPose& sp : s.draw_ship ? afloat_ : std::vector<ShipPose>{}) {
+  for (const ShipPose& sp : s.draw_ship ? std::span<const ShipPose>(afloat_) : std::span<const ShipPose>()) {
     EyeObject e;
     e.kind = 0;
     append_hull(sp, e.tri);
